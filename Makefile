@@ -1,0 +1,51 @@
+# geardyn quick start:  make demo  |  make test
+# Both install the dependencies (scripts/install-deps, idempotent), configure and build.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+WERROR ?= OFF
+CMAKE_FLAGS ?=
+DEMO_MODEL ?= examples/geared_rotor_hcf/model.toml
+DEMO_OUT ?= results/geared_rotor_hcf
+
+.PHONY: all deps build demo test test-all test-slow sanitize fuzz bench format clean
+
+all: build
+
+deps:
+	./scripts/install-deps
+
+$(BUILD)/build.ninja:
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DGEARDYN_WERROR=$(WERROR) $(CMAKE_FLAGS)
+
+build: deps $(BUILD)/build.ninja
+	cmake -DGEARDYN_WERROR=$(WERROR) $(BUILD) >/dev/null
+	cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	$(BUILD)/apps/geardyn/geardyn run $(DEMO_MODEL) -o $(DEMO_OUT)
+	@echo "Report: $(abspath $(DEMO_OUT))/report.html"
+
+# Default test run: unit + validation (slow tests excluded).
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE slow
+
+test-slow: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L slow
+
+test-all: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build and full test run.
+sanitize: deps
+	cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEARDYN_SANITIZE=ON -DGEARDYN_BUILD_BENCH=OFF
+	cmake --build build-asan -j $(JOBS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD)/bench/geardyn_bench --benchmark_min_time=0.2
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+clean:
+	rm -rf $(BUILD) build-asan build-fuzz

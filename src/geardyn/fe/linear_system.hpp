@@ -1,0 +1,87 @@
+#pragma once
+// The assembled linear model of a rotor-bearing system (DESIGN 4.1):
+//   M q'' + (C(Omega) + Omega G) q' + K(Omega) q = f(t),   frequency domain adds i K_s (hysteretic)
+// Omega is the reference speed [rad/s]; each shaft spins at speed_ratio x Omega, and G already
+// carries the speed ratios. All matrices are sparse, symmetric except G (skew) and
+// cross-coupled bearing terms, in the DofMap's numbering (constrained DOFs removed).
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include <string>
+#include <vector>
+
+#include "geardyn/fe/dof_map.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::fe {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+using ComplexSparseMatrix = Eigen::SparseMatrix<std::complex<double>>;
+
+/// A bearing whose coefficients depend on speed; its contribution is added by K_at / C_at.
+struct SpeedDependentBearing {
+  std::vector<double> speeds;                   ///< [rad/s], increasing
+  std::vector<Eigen::Matrix<double, 12, 12>> stiffness, damping;  ///< in equation space
+  std::array<int, 12> equations{};              ///< -1 for constrained or ground
+};
+
+struct LinearSystem {
+  DofMap dofs;
+  SparseMatrix M;           ///< mass
+  SparseMatrix K;           ///< stiffness without speed-dependent bearings
+  SparseMatrix C;           ///< viscous damping (bearings, couplings, meshes, Rayleigh) without
+                            ///< speed-dependent bearings and without gyroscopic terms
+  SparseMatrix G;           ///< gyroscopic matrix per unit reference speed (skew-symmetric)
+  SparseMatrix K_loss;      ///< hysteretic part: frequency-domain stiffness K + i K_loss
+  std::vector<SpeedDependentBearing> speed_bearings;
+
+  /// Modal damping (DESIGN 4.1) as a low-rank term C_modal = B diag(c) B^T with B = M Phi from
+  /// mass-normalised undamped modes at zero speed and c_r = 2 zeta_r omega_r. Empty if none.
+  Eigen::MatrixXd modal_basis;
+  Eigen::VectorXd modal_coefficients;
+
+  int size() const { return dofs.num_dofs(); }
+  /// K + speed-dependent bearing stiffness at reference speed `speed`.
+  SparseMatrix K_at(double speed) const;
+  /// C + speed-dependent bearing damping at `speed` (without Omega G and modal damping).
+  SparseMatrix C_at(double speed) const;
+  bool has_modal_damping() const { return modal_coefficients.size() > 0; }
+  /// Dense C_at(speed) + speed G + modal damping: for small (dense) solvers and checks.
+  Eigen::MatrixXd damping_dense(double speed) const;
+
+  /// Unit load vector for a force/moment at `node` along component `c` of the node frame.
+  Eigen::VectorXd unit_load(int node, model::Component c) const;
+};
+
+/// Complex amplitude of a rotating unbalance force, f(t) = Re(F exp(i |r| Omega t)), with r the
+/// node's speed ratio: m e (r Omega)^2 in the node's e1-e2 plane, turning in the spin sense.
+/// Only unbalances whose node has |speed_ratio| == `order` (within 1e-12) are included, so the
+/// result is one frequency component. `selected` empty: all unbalances.
+Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system,
+                                double speed, double order,
+                                const std::vector<std::string>& selected = {});
+
+/// Distinct |speed ratios| of the nodes that carry the selected unbalances (the orders at which
+/// unbalance excites the system), ascending.
+std::vector<double> unbalance_orders(const model::Model& model, const LinearSystem& system,
+                                     const std::vector<std::string>& selected = {});
+
+struct AssemblyOptions {
+  /// Modes used for modal damping (0: max(20, 2 x modes with a ratio given)); ignored when the
+  /// model has no modal damping.
+  int modal_damping_modes = 0;
+};
+
+/// Builds DOF map and matrices from a validated model. Throws InputError for inconsistent
+/// references that slipped past the parser, NumericalError when modal damping needs modes of a
+/// singular system.
+LinearSystem assemble(const model::Model& model, const AssemblyOptions& options = {});
+
+/// Energy fractions of a mode shape by DOF family (uses diag(M)-weighted squares):
+/// lateral (ux, uy, rx, ry), axial (uz), torsional (rz). They sum to 1.
+struct ModeFamilies {
+  double lateral = 0, axial = 0, torsional = 0;
+};
+ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& shape);
+
+}  // namespace geardyn::fe

@@ -1,0 +1,17 @@
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::model {
+
+const Material* Model::find_material(const std::string& name) const {
+  for (const auto& m : materials)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+const Analysis* Model::find_analysis(const std::string& name) const {
+  for (const auto& a : analyses)
+    if (a.name == name) return &a;
+  return nullptr;
+}
+
+}  // namespace geardyn::model

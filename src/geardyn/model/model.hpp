@@ -1,0 +1,309 @@
+#pragma once
+// The model as plain data, in SI units (m, kg, s, N, rad, rad/s). Filled by the parser
+// (parse.hpp) from a TOML file; physics lives in fe/ and the analyses, not here.
+// Every object keeps the SourceLocation of its table so later checks can point at the file.
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "geardyn/core/error.hpp"
+
+namespace geardyn::model {
+
+using Vec3 = std::array<double, 3>;
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Node DOF components, expressed in the node's own frame (e1, e2, e3 = spin axis).
+/// For a shaft along global z the node frame is the global frame.
+enum class Component { Ux = 0, Uy = 1, Uz = 2, Rx = 3, Ry = 4, Rz = 5 };
+inline constexpr std::array<const char*, 6> kComponentNames = {"ux", "uy", "uz", "rx", "ry", "rz"};
+
+struct Material {
+  std::string name;
+  double youngs_modulus = kNaN;  ///< E [Pa]
+  double shear_modulus = kNaN;   ///< G [Pa] (given, or E / (2 (1 + poisson_ratio)))
+  double density = kNaN;         ///< rho [kg/m^3]
+  SourceLocation where;
+};
+
+/// One shaft section; `divisions` equal beam elements are made from it.
+struct ShaftElement {
+  double length = kNaN;          ///< [m]
+  double outer_diameter = kNaN;  ///< [m]
+  double inner_diameter = 0.0;   ///< [m], 0 for a solid section
+  std::string material;          ///< empty: the shaft's material
+  double loss_factor = 0.0;      ///< structural damping eta of this element (K (1 + i eta))
+  int divisions = 1;
+  SourceLocation where;
+};
+
+enum class BeamTheory { Timoshenko, EulerBernoulli };
+
+/// A straight shaft along `axis` from `origin`. Nodes are named "<shaft>.<k>", k = 0..n_elements
+/// counted after `divisions` are expanded. Spin speed = speed_ratio x reference speed; a shaft
+/// driven through a gear pair gives `driven_by` and `gear_ratio` (spin = gear_ratio x spin of
+/// driven_by; negative for opposite sense), resolved by the parser into `speed_ratio`.
+struct Shaft {
+  std::string name;
+  std::string material;
+  Vec3 origin{0.0, 0.0, 0.0};
+  Vec3 axis{0.0, 0.0, 1.0};  ///< unit vector (normalised by the parser)
+  double speed_ratio = 1.0;
+  std::string driven_by;
+  double gear_ratio = kNaN;
+  double shear_coefficient = kNaN;  ///< NaN: Hutchinson's value for the (hollow) circle per element
+  BeamTheory theory = BeamTheory::Timoshenko;
+  bool rotary_inertia = true;
+  bool gyroscopic = true;
+  std::vector<ShaftElement> elements;
+  SourceLocation where;
+};
+
+/// A node that is not on a shaft (a gear disk on a flexible web, a housing point).
+/// It spins with `spin_of` (a shaft name, empty: not spinning) about `axis`.
+struct Node {
+  std::string name;
+  Vec3 position{0.0, 0.0, 0.0};
+  Vec3 axis{0.0, 0.0, 1.0};
+  std::string spin_of;
+  double speed_ratio = 0.0;  ///< resolved from spin_of by the parser
+  SourceLocation where;
+};
+
+/// Rigid disk at a node: mass and inertias given, or from geometry (resolved by the parser).
+struct Disk {
+  std::string name;
+  std::string node;
+  double mass = kNaN;               ///< [kg]
+  double polar_inertia = kNaN;      ///< Ip about the spin axis [kg m^2]
+  double diametral_inertia = kNaN;  ///< Id about a diameter [kg m^2]
+  SourceLocation where;
+};
+
+struct PointMass {
+  std::string name;
+  std::string node;
+  double mass = kNaN;
+  SourceLocation where;
+};
+
+/// Bearing / bushing between `node` and ground (node2 empty) or between two nodes.
+/// 6x6 stiffness and damping in `node`'s frame, row-major over (ux, uy, uz, rx, ry, rz),
+/// acting on the relative motion u_node - u_node2. When `speeds` is not empty, stiffness[i]
+/// and damping[i] are given at speeds[i] (reference speed, rad/s, increasing) and interpolated
+/// linearly, held constant outside the table.
+struct Bearing {
+  using Matrix6 = std::array<double, 36>;
+  std::string name;
+  std::string node;
+  std::string node2;
+  std::vector<double> speeds;
+  std::vector<Matrix6> stiffness;  ///< size 1 when not tabulated
+  std::vector<Matrix6> damping;
+  SourceLocation where;
+};
+
+/// General linear element between two nodes (or node and ground): full 12x12 (6x6 to ground)
+/// stiffness, damping and mass in global coordinates, row-major over (node1 dofs, node2 dofs).
+struct Coupling {
+  std::string name;
+  std::string node1;
+  std::string node2;  ///< empty: ground, matrices are 6x6
+  std::vector<double> stiffness, damping, mass;  ///< empty: zero
+  SourceLocation where;
+};
+
+enum class GearType { Spur, Helical, StraightBevel, SpiralBevel, Hypoid };
+enum class Hand { Right, Left };
+enum class Flank { Drive, Coast };
+
+/// Linear gear-mesh coupling: a spring-damper along the line of action between the gear
+/// nodes, coupling lateral, axial, torsional and tilting DOFs of both gears.
+/// gear1 drives. Angles in rad.
+struct GearMesh {
+  std::string name;
+  std::string gear1, gear2;
+  GearType type = GearType::Spur;
+  int teeth1 = 0, teeth2 = 0;            ///< for gear-mesh orders (0: unknown)
+  double base_radius1 = kNaN, base_radius2 = kNaN;  ///< [m]
+  double pressure_angle = kNaN;          ///< transverse (spur), normal (helical, bevel) [rad]
+  double helix_angle = 0.0;              ///< helix / mean spiral angle [rad]
+  double pitch_cone_angle1 = 0.0;        ///< bevel only [rad]
+  double pitch_cone_angle2 = 0.0;
+  Hand hand = Hand::Right;               ///< hand of gear1's helix / spiral
+  Flank flank = Flank::Drive;
+  double stiffness = kNaN;               ///< mesh stiffness along the line of action [N/m]
+  double damping = 0.0;                  ///< [N s/m]
+  std::optional<Vec3> mesh_direction;    ///< from gear1's centre towards the pitch point; default
+                                         ///< from the node positions
+  SourceLocation where;
+};
+
+struct Constraint {
+  std::string node;
+  std::vector<Component> dofs;  ///< in the node's frame
+  SourceLocation where;
+};
+
+struct Unbalance {
+  std::string name;
+  std::string node;
+  double mass_eccentricity = kNaN;  ///< m e [kg m]
+  double phase = 0.0;               ///< [rad]
+  SourceLocation where;
+};
+
+/// A force or moment at a node along a component of the node frame, amplitude and phase.
+struct HarmonicForce {
+  std::string name;
+  std::string node;
+  Component dof = Component::Ux;
+  double amplitude = kNaN;  ///< [N] or [N m]
+  double phase = 0.0;       ///< [rad]
+  SourceLocation where;
+};
+
+struct Sensor {
+  std::string name;
+  std::string node;
+  Component dof = Component::Ux;  ///< in the node's frame
+  SourceLocation where;
+};
+
+/// Frequency band with a modal damping ratio (applies to modes whose undamped frequency lies in
+/// [f_min, f_max)).
+struct DampingBand {
+  double f_min = 0.0;  ///< [rad/s] inside (keys say _hz)
+  double f_max = 0.0;
+  double ratio = 0.0;
+};
+
+struct Damping {
+  double rayleigh_alpha = 0.0;    ///< C += alpha M [1/s]
+  double rayleigh_beta = 0.0;     ///< C += beta K [s]
+  double loss_factor = 0.0;       ///< global structural eta (frequency domain only)
+  double modal_ratio = 0.0;       ///< ratio for every mode not in modal_ratios / bands
+  std::vector<double> modal_ratios;  ///< per mode, in order of undamped frequency
+  std::vector<DampingBand> bands;
+  int modal_modes = 0;            ///< modes used to build modal damping (0: none used)
+  bool any_modal() const { return modal_ratio > 0.0 || !modal_ratios.empty() || !bands.empty(); }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Analyses
+
+enum class EigenMethod { Auto, Dense, Sparse };
+enum class Spacing { Linear, Log };
+enum class ResponseQuantity { Receptance, Mobility, Accelerance };
+enum class Integrator { Newmark, GeneralizedAlpha };
+
+struct ModalSettings {
+  double speed = 0.0;          ///< reference speed [rad/s]
+  int n_modes = 10;
+  bool complex_modes = true;   ///< also the damped gyroscopic (complex) modes
+  EigenMethod method = EigenMethod::Auto;
+  double shift = 0.0;          ///< shift for shift-invert [rad/s]; modes nearest to it
+};
+
+struct CampbellSettings {
+  std::vector<double> speeds;        ///< reference speeds [rad/s]
+  int n_modes = 8;
+  std::vector<double> engine_orders = {1.0};  ///< orders of the reference shaft
+  bool shaft_orders = true;          ///< add order 1 of every shaft (x its speed ratio)
+  bool mesh_orders = true;           ///< add teeth x shaft order of every mesh with teeth
+  double mac_threshold = 0.7;        ///< below this a tracking step is flagged ambiguous
+  EigenMethod method = EigenMethod::Auto;
+};
+
+struct HarmonicSettings {
+  double speed = 0.0;
+  double f_min = kNaN, f_max = kNaN;  ///< [rad/s]
+  int n_points = 200;
+  Spacing spacing = Spacing::Linear;
+  bool adaptive = true;               ///< refine around peaks
+  std::string input_node;             ///< unit-force input (FRF) ...
+  Component input_dof = Component::Ux;
+  std::vector<std::string> forces;    ///< ... or these named harmonic forces (forced response)
+  std::vector<std::string> sensors;   ///< empty: all sensors
+  ResponseQuantity quantity = ResponseQuantity::Receptance;
+};
+
+struct UnbalanceSettings {
+  std::vector<double> speeds;         ///< [rad/s]
+  std::vector<std::string> unbalances;  ///< empty: all
+  std::vector<std::string> sensors;     ///< empty: all
+};
+
+struct TransientSettings {
+  double speed = 0.0;            ///< constant speed, or start of a run-up [rad/s]
+  double speed_end = kNaN;       ///< run-up end speed (NaN: constant speed)
+  double duration = kNaN;        ///< [s]
+  double time_step = kNaN;       ///< [s]
+  Integrator integrator = Integrator::GeneralizedAlpha;
+  double rho_infinity = 0.9;     ///< spectral radius at infinity (generalised-alpha)
+  double steady_fraction = 0.5;  ///< last fraction of the record used for spectra and orbits
+  std::vector<std::string> unbalances;  ///< empty: all
+  std::vector<std::string> sensors;     ///< empty: all
+  int output_every = 1;          ///< store every n-th step
+};
+
+/// Scalar results a sweep tabulates per point.
+struct SweepOutput {
+  enum class Quantity { NaturalFrequency, CriticalSpeed, PeakAmplitude, PeakLocation, AmplitudeAt };
+  Quantity quantity = Quantity::NaturalFrequency;
+  int mode = 1;             ///< NaturalFrequency / CriticalSpeed: 1-based index
+  std::string sensor;       ///< PeakAmplitude / PeakLocation / AmplitudeAt
+  double at = kNaN;         ///< AmplitudeAt: speed or frequency [rad/s]
+  std::string label;        ///< column name stem
+};
+
+struct SweepSettings {
+  std::string parameter;          ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
+  std::vector<double> values;     ///< in the units of the key
+  std::string analysis;           ///< name of the analysis run per point
+  std::vector<SweepOutput> outputs;
+  bool log_x = false;             ///< plot with a log axis
+  int threads = 0;                ///< 0: all cores
+};
+
+enum class AnalysisType { Modal, Campbell, Harmonic, Unbalance, Transient, Sweep };
+
+struct Analysis {
+  std::string name;
+  AnalysisType type = AnalysisType::Modal;
+  bool enabled = true;  ///< false: only run through a sweep
+  std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
+               TransientSettings, SweepSettings>
+      settings;
+  SourceLocation where;
+};
+
+struct Model {
+  int version = 1;
+  std::string title;
+  std::string source_file;
+  std::vector<Material> materials;
+  std::vector<Shaft> shafts;
+  std::vector<Node> nodes;
+  std::vector<Disk> disks;
+  std::vector<PointMass> point_masses;
+  std::vector<Bearing> bearings;
+  std::vector<Coupling> couplings;
+  std::vector<GearMesh> gear_meshes;
+  std::vector<Constraint> constraints;
+  std::vector<Unbalance> unbalances;
+  std::vector<HarmonicForce> forces;
+  std::vector<Sensor> sensors;
+  Damping damping;
+  std::vector<Analysis> analyses;
+
+  const Material* find_material(const std::string& name) const;
+  const Analysis* find_analysis(const std::string& name) const;
+};
+
+}  // namespace geardyn::model
