@@ -1,0 +1,152 @@
+#include "commands.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "geardyn/analysis/system_builder.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/core/progress.hpp"
+#include "geardyn/io/results_writer.hpp"
+#include "geardyn/model/parse.hpp"
+#include "geardyn/report/html_report.hpp"
+#include "geardyn/study/run_analysis.hpp"
+
+namespace geardyn::app {
+namespace {
+
+model::Model load_model(const std::string& path, const std::vector<std::string>& overrides,
+                        model::ModelDocument& document) {
+  document = model::load_document(path);
+  for (const auto& o : overrides) model::apply_override(document, o);
+  return model::build_model(document);
+}
+
+std::string format_cell(const Column& c, std::size_t row) {
+  if (c.text) return c.texts[row];
+  return fmt::format("{:.6g}", c.numbers[row]);
+}
+
+// A compact view of a table on the terminal: the answer to the user's question at a glance.
+void print_table(const Table& table, std::size_t max_rows, std::size_t max_columns) {
+  const std::size_t n_cols = std::min(table.columns.size(), max_columns);
+  std::vector<std::size_t> width(n_cols);
+  const std::size_t n_rows = std::min(table.rows(), max_rows);
+  for (std::size_t j = 0; j < n_cols; ++j) {
+    width[j] = table.columns[j].name.size();
+    for (std::size_t i = 0; i < n_rows; ++i)
+      width[j] = std::max(width[j], format_cell(table.columns[j], i).size());
+  }
+  std::string line = "    ";
+  for (std::size_t j = 0; j < n_cols; ++j)
+    line += fmt::format("{:>{}}  ", table.columns[j].name, width[j]);
+  std::printf("%s\n", line.c_str());
+  for (std::size_t i = 0; i < n_rows; ++i) {
+    line = "    ";
+    for (std::size_t j = 0; j < n_cols; ++j)
+      line += fmt::format("{:>{}}  ", format_cell(table.columns[j], i), width[j]);
+    std::printf("%s\n", line.c_str());
+  }
+  if (table.rows() > n_rows || table.columns.size() > n_cols)
+    std::printf("    (%zu rows x %zu columns in %s.csv)\n", table.rows(), table.columns.size(),
+                table.name.c_str());
+}
+
+}  // namespace
+
+int command_run(const RunOptions& options, int argc, char** argv) {
+  model::ModelDocument document;
+  const model::Model m = load_model(options.model_path, options.overrides, document);
+
+  // Every name in --only must exist: a typo must not silently run nothing.
+  for (const auto& name : options.only)
+    if (m.find_analysis(name) == nullptr)
+      throw InputError({options.model_path, 0, 0}, "--only", "the name of an analysis in the model",
+                       fmt::format("'{}'", name));
+
+  namespace fs = std::filesystem;
+  const fs::path outdir = options.output_dir.empty()
+                              ? fs::path("results") / fs::path(options.model_path).stem()
+                              : fs::path(options.output_dir);
+
+  std::unique_ptr<Progress> progress;
+  if (options.quiet)
+    progress = std::make_unique<NullProgress>();
+  else
+    progress = std::make_unique<StderrProgress>();
+
+  io::RunInfo info;
+  info.model_path = options.model_path;
+  for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
+
+  std::vector<AnalysisOutput> outputs;
+  bool failed = false;
+  fe::LinearSystem system;
+  try {
+    system = analysis::build_system(m);
+  } catch (const NumericalError& e) {
+    AnalysisOutput out;
+    out.name = "build";
+    out.type = "build";
+    out.status = Status::Failed;
+    out.message = e.what();
+    outputs.push_back(out);
+    failed = true;
+  }
+
+  std::printf("geardyn: %s — %d nodes, %d DOFs\n",
+              m.title.empty() ? options.model_path.c_str() : m.title.c_str(),
+              system.dofs.num_nodes(), system.size());
+  if (!failed) {
+    for (const auto& a : m.analyses) {
+      const bool selected = options.only.empty()
+                                ? a.enabled
+                                : std::find(options.only.begin(), options.only.end(), a.name) !=
+                                      options.only.end();
+      if (!selected) continue;
+      study::RunContext context;
+      context.document = &document;
+      context.progress = progress.get();
+      AnalysisOutput out = study::run_analysis(m, system, a, context);
+      std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
+                  std::string(to_string(out.status)).c_str(), out.run_time_s);
+      if (out.status != Status::Ok) {
+        failed = true;
+        std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
+                     out.message.c_str());
+      } else if (!out.tables.empty()) {
+        print_table(out.tables.front(), 12, 9);
+      }
+      outputs.push_back(std::move(out));
+    }
+  }
+
+  const std::string html = report::render_html(info, outputs);
+  io::write_results(outdir, info, outputs, html);
+  std::printf("\nResults: %s\nReport: %s\n", fs::absolute(outdir).string().c_str(),
+              fs::absolute(outdir / "report.html").string().c_str());
+  return failed ? 1 : 0;
+}
+
+int command_check(const std::string& model_path, const std::vector<std::string>& overrides) {
+  model::ModelDocument document;
+  const model::Model m = load_model(model_path, overrides, document);
+  std::size_t elements = 0;
+  for (const auto& s : m.shafts)
+    for (const auto& e : s.elements) elements += static_cast<std::size_t>(e.divisions);
+  std::printf("%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
+              "%zu analyses\n",
+              model_path.c_str(), m.shafts.size(), elements, m.disks.size(), m.bearings.size(),
+              m.gear_meshes.size(), m.analyses.size());
+  return 0;
+}
+
+int command_schema() {
+  std::fputs(model::schema_markdown().c_str(), stdout);
+  return 0;
+}
+
+}  // namespace geardyn::app

@@ -1,0 +1,88 @@
+#include "geardyn/study/run_analysis.hpp"
+
+#include <chrono>
+
+#include "geardyn/analysis/campbell.hpp"
+#include "geardyn/analysis/harmonic.hpp"
+#include "geardyn/analysis/modal.hpp"
+#include "geardyn/analysis/unbalance.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/study/sweep.hpp"
+#include "geardyn/transient/transient_analysis.hpp"
+
+namespace geardyn::study {
+
+std::string analysis_type_name(model::AnalysisType type) {
+  switch (type) {
+    case model::AnalysisType::Modal: return "modal";
+    case model::AnalysisType::Campbell: return "campbell";
+    case model::AnalysisType::Harmonic: return "harmonic";
+    case model::AnalysisType::Unbalance: return "unbalance";
+    case model::AnalysisType::Transient: return "transient";
+    case model::AnalysisType::Sweep: return "sweep";
+  }
+  return "unknown";
+}
+
+AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& system,
+                            const model::Analysis& analysis, const RunContext& context) {
+  Progress& progress = context.progress != nullptr ? *context.progress : null_progress();
+  const auto start = std::chrono::steady_clock::now();
+  AnalysisOutput out;
+  try {
+    switch (analysis.type) {
+      case model::AnalysisType::Modal: {
+        const auto& s = std::get<model::ModalSettings>(analysis.settings);
+        out = analysis::modal_output(model, system, analysis::run_modal(system, s, progress),
+                                     analysis.name);
+        break;
+      }
+      case model::AnalysisType::Campbell: {
+        const auto& s = std::get<model::CampbellSettings>(analysis.settings);
+        out = analysis::campbell_output(model, system,
+                                        analysis::run_campbell(model, system, s, progress),
+                                        analysis.name);
+        break;
+      }
+      case model::AnalysisType::Harmonic: {
+        const auto& s = std::get<model::HarmonicSettings>(analysis.settings);
+        out = analysis::harmonic_output(model, system,
+                                        analysis::run_harmonic(model, system, s, progress),
+                                        analysis.name);
+        break;
+      }
+      case model::AnalysisType::Unbalance: {
+        const auto& s = std::get<model::UnbalanceSettings>(analysis.settings);
+        out = analysis::unbalance_output(model, system,
+                                         analysis::run_unbalance(model, system, s, progress),
+                                         analysis.name);
+        break;
+      }
+      case model::AnalysisType::Transient: {
+        const auto& s = std::get<model::TransientSettings>(analysis.settings);
+        out = transient::transient_output(model, system,
+                                          transient::run_transient(model, system, s, progress),
+                                          analysis.name);
+        break;
+      }
+      case model::AnalysisType::Sweep: {
+        const auto& s = std::get<model::SweepSettings>(analysis.settings);
+        if (context.document == nullptr)
+          throw NumericalError(analysis.name, "a sweep needs the model document to rebuild points");
+        out = sweep_output(run_sweep(*context.document, s, progress), s, analysis.name);
+        break;
+      }
+    }
+  } catch (const NumericalError& e) {
+    out = AnalysisOutput{};
+    out.status = Status::Failed;
+    out.message = e.what();
+  }
+  out.name = analysis.name;
+  out.type = analysis_type_name(analysis.type);
+  out.run_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace geardyn::study
