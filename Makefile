@@ -41,6 +41,11 @@ sanitize: deps
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
 
+FUZZ_SECONDS ?= 60
+# libFuzzer (clang) on the model parser, validation and assembly for FUZZ_SECONDS.
+fuzz: deps
+	./scripts/run-fuzz $(FUZZ_SECONDS)
+
 bench: build
 	$(BUILD)/bench/geardyn_bench --benchmark_min_time=0.2
 

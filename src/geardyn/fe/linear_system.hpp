@@ -18,7 +18,9 @@ namespace geardyn::fe {
 using SparseMatrix = Eigen::SparseMatrix<double>;
 using ComplexSparseMatrix = Eigen::SparseMatrix<std::complex<double>>;
 
-/// A bearing whose coefficients depend on speed; its contribution is added by K_at / C_at.
+/// A bearing whose coefficients depend on speed; its contribution is added by K_at / C_at
+/// (linear interpolation in the reference speed, held constant outside the table).
+/// Matrices are over (node 1 DOFs, node 2 DOFs) in the node frames.
 struct SpeedDependentBearing {
   std::vector<double> speeds;                   ///< [rad/s], increasing
   std::vector<Eigen::Matrix<double, 12, 12>> stiffness, damping;  ///< in equation space
@@ -30,9 +32,12 @@ struct LinearSystem {
   SparseMatrix M;           ///< mass
   SparseMatrix K;           ///< stiffness without speed-dependent bearings
   SparseMatrix C;           ///< viscous damping (bearings, couplings, meshes, Rayleigh) without
-                            ///< speed-dependent bearings and without gyroscopic terms
+                            ///< speed-dependent bearings and without gyroscopic terms;
+                            ///< Rayleigh alpha M + beta K uses this K (speed-independent part)
   SparseMatrix G;           ///< gyroscopic matrix per unit reference speed (skew-symmetric)
-  SparseMatrix K_loss;      ///< hysteretic part: frequency-domain stiffness K + i K_loss
+  SparseMatrix K_loss;      ///< hysteretic part: frequency-domain stiffness K + i K_loss, with
+                            ///< K_loss = sum_e eta_e K_e (shaft elements' loss_factor)
+                            ///<        + Damping::loss_factor x K
   std::vector<SpeedDependentBearing> speed_bearings;
 
   /// Modal damping (DESIGN 4.1) as a low-rank term C_modal = B diag(c) B^T with B = M Phi from
@@ -50,6 +55,7 @@ struct LinearSystem {
   Eigen::MatrixXd damping_dense(double speed) const;
 
   /// Unit load vector for a force/moment at `node` along component `c` of the node frame.
+  /// Throws InputError when that DOF is constrained.
   Eigen::VectorXd unit_load(int node, model::Component c) const;
 };
 

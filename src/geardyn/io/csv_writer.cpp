@@ -22,10 +22,9 @@ std::string format_number(double value) {
 }
 
 std::string csv_field(std::string_view text) {
-  const bool needs_quotes =
-      text.find_first_of(",\"\r\n") != std::string_view::npos ||
-      (!text.empty() && (text.front() == ' ' || text.front() == '\t' || text.back() == ' ' ||
-                         text.back() == '\t'));
+  const bool needs_quotes = text.find_first_of(",\"\r\n") != std::string_view::npos ||
+                            (!text.empty() && (text.front() == ' ' || text.front() == '\t' ||
+                                               text.back() == ' ' || text.back() == '\t'));
   if (!needs_quotes) return std::string(text);
   std::string quoted;
   quoted.reserve(text.size() + 2);

@@ -37,7 +37,8 @@ class Sha256 {
 
  private:
   [[noreturn]] void fail(const char* step) const {
-    throw std::runtime_error(fmt::format("SHA-256 of {}: OpenSSL EVP digest {} failed", what_, step));
+    throw std::runtime_error(
+        fmt::format("SHA-256 of {}: OpenSSL EVP digest {} failed", what_, step));
   }
   std::string what_;
   DigestContext context_;

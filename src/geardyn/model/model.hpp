@@ -56,7 +56,7 @@ struct Shaft {
   double speed_ratio = 1.0;
   std::string driven_by;
   double gear_ratio = kNaN;
-  double shear_coefficient = kNaN;  ///< NaN: Hutchinson's value for the (hollow) circle per element
+  double shear_coefficient = kNaN;  ///< NaN: Cowper's (1966) value for the (hollow) circle per element
   BeamTheory theory = BeamTheory::Timoshenko;
   bool rotary_inertia = true;
   bool gyroscopic = true;
@@ -82,6 +82,12 @@ struct Disk {
   double mass = kNaN;               ///< [kg]
   double polar_inertia = kNaN;      ///< Ip about the spin axis [kg m^2]
   double diametral_inertia = kNaN;  ///< Id about a diameter [kg m^2]
+  /// Geometry input (a steel blank etc.): when outer_diameter is not NaN, the parser computed
+  /// mass and inertias from it with the material's density. Kept for drawing and reports.
+  double outer_diameter = kNaN;     ///< [m]
+  double inner_diameter = 0.0;      ///< [m]
+  double thickness = kNaN;          ///< [m]
+  std::string material;
   SourceLocation where;
 };
 
@@ -264,6 +270,7 @@ struct SweepOutput {
 
 struct SweepSettings {
   std::string parameter;          ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
+  std::vector<std::string> linked_parameters;  ///< further key paths set to the same value
   std::vector<double> values;     ///< in the units of the key
   std::string analysis;           ///< name of the analysis run per point
   std::vector<SweepOutput> outputs;
@@ -277,6 +284,9 @@ struct Analysis {
   std::string name;
   AnalysisType type = AnalysisType::Modal;
   bool enabled = true;  ///< false: only run through a sweep
+  /// Model changes for this analysis only ("key.path=value", like --set), e.g. a variant
+  /// without the gear mesh: ["gear_meshes[0].stiffness=0"].
+  std::vector<std::string> overrides;
   std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
                TransientSettings, SweepSettings>
       settings;

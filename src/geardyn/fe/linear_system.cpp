@@ -1,0 +1,457 @@
+#include "geardyn/fe/linear_system.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include "geardyn/core/error.hpp"
+#include "geardyn/fe/bearing_element.hpp"
+#include "geardyn/fe/coupling_element.hpp"
+#include "geardyn/fe/gear_mesh_element.hpp"
+#include "geardyn/fe/rigid_disk.hpp"
+#include "geardyn/fe/timoshenko_beam.hpp"
+
+namespace geardyn::fe {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+
+template <std::size_t N>
+std::array<int, 2 * N> concat(const std::array<int, N>& a, const std::array<int, N>& b) {
+  std::array<int, 2 * N> out{};
+  std::copy(a.begin(), a.end(), out.begin());
+  std::copy(b.begin(), b.end(), out.begin() + N);
+  return out;
+}
+
+// Adds factor x element into the triplet list; constrained (-1) rows and columns are dropped,
+// which is what eliminating a zero displacement does.
+template <std::size_t N, class Matrix>
+void scatter(Triplets& triplets, const std::array<int, N>& equations, const Matrix& element,
+             double factor = 1.0) {
+  for (std::size_t r = 0; r < N; ++r) {
+    if (equations[r] < 0) continue;
+    for (std::size_t c = 0; c < N; ++c) {
+      if (equations[c] < 0) continue;
+      const double value = element(static_cast<int>(r), static_cast<int>(c));
+      if (value != 0.0) triplets.emplace_back(equations[r], equations[c], factor * value);
+    }
+  }
+}
+
+SparseMatrix from_triplets(int n, const Triplets& triplets) {
+  SparseMatrix m(n, n);
+  m.setFromTriplets(triplets.begin(), triplets.end());
+  m.makeCompressed();
+  return m;
+}
+
+int require_node(const DofMap& dofs, const std::string& name, const SourceLocation& where,
+                 const std::string& key) {
+  const int index = dofs.find_node(name);
+  if (index < 0) {
+    throw InputError(where, key, "the name of a shaft station (\"<shaft>.<k>\") or node",
+                     fmt::format("'{}'", name));
+  }
+  return index;
+}
+
+void require_finite_non_negative(double value, const SourceLocation& where, const std::string& key,
+                                 const char* what) {
+  if (!(value >= 0.0) || !std::isfinite(value)) {
+    throw InputError(where, key, what, fmt::format("{}", value));
+  }
+}
+
+template <class Matrix>
+void require_finite(const Matrix& m, const SourceLocation& where, const std::string& key) {
+  if (!m.allFinite()) throw InputError(where, key, "finite matrix entries", "NaN or infinity");
+}
+
+struct Assembler {
+  const model::Model& model;
+  LinearSystem& system;
+  Triplets M, K, C, G, K_loss;
+
+  const DofMap& dofs() const { return system.dofs; }
+
+  void shafts() {
+    for (std::size_t s = 0; s < model.shafts.size(); ++s) {
+      const model::Shaft& shaft = model.shafts[s];
+      const std::string key = fmt::format("shafts[{}]", s);
+      int node = dofs().node_index(shaft.name + ".0");
+      const double speed_ratio = shaft.speed_ratio;
+      if (!(std::isnan(shaft.shear_coefficient) || shaft.shear_coefficient > 0)) {
+        throw InputError(shaft.where, key + ".shear_coefficient", "a positive number (or none)",
+                         fmt::format("{}", shaft.shear_coefficient));
+      }
+      for (std::size_t e = 0; e < shaft.elements.size(); ++e) {
+        const model::ShaftElement& element = shaft.elements[e];
+        const std::string ekey = fmt::format("{}.elements[{}]", key, e);
+        const std::string& material_name =
+            element.material.empty() ? shaft.material : element.material;
+        const model::Material* material = model.find_material(material_name);
+        if (material == nullptr) {
+          throw InputError(element.where, ekey + ".material", "the name of a material",
+                           fmt::format("'{}'", material_name));
+        }
+        if (!(material->youngs_modulus > 0) || !(material->shear_modulus > 0) ||
+            !(material->density >= 0)) {
+          throw InputError(material->where, fmt::format("materials.{}", material->name),
+                           "positive E and G and non-negative density",
+                           fmt::format("E = {}, G = {}, rho = {}", material->youngs_modulus,
+                                       material->shear_modulus, material->density));
+        }
+        if (!(element.outer_diameter > 0) || !(element.inner_diameter >= 0) ||
+            !(element.inner_diameter < element.outer_diameter)) {
+          throw InputError(element.where, ekey, "0 <= inner_diameter < outer_diameter",
+                           fmt::format("outer {} m, inner {} m", element.outer_diameter,
+                                       element.inner_diameter));
+        }
+        require_finite_non_negative(element.loss_factor, element.where, ekey + ".loss_factor",
+                                    "a non-negative loss factor");
+        BeamProperties p;
+        p.length = element.length / element.divisions;
+        p.outer_diameter = element.outer_diameter;
+        p.inner_diameter = element.inner_diameter;
+        p.youngs_modulus = material->youngs_modulus;
+        p.shear_modulus = material->shear_modulus;
+        p.density = material->density;
+        p.shear_coefficient = shaft.shear_coefficient;
+        p.theory = shaft.theory;
+        p.rotary_inertia = shaft.rotary_inertia;
+        p.gyroscopic = shaft.gyroscopic;
+        const BeamMatrices beam = timoshenko_beam(p);
+        for (int d = 0; d < element.divisions; ++d, ++node) {
+          const auto eq = concat(dofs().node_dofs(node), dofs().node_dofs(node + 1));
+          scatter(K, eq, beam.stiffness);
+          scatter(M, eq, beam.mass);
+          if (speed_ratio != 0.0) scatter(G, eq, beam.gyroscopic, speed_ratio);
+          // The global loss factor is added to all of K at the end.
+          if (element.loss_factor != 0.0) scatter(K_loss, eq, beam.stiffness, element.loss_factor);
+        }
+      }
+    }
+  }
+
+  void masses() {
+    for (std::size_t i = 0; i < model.disks.size(); ++i) {
+      const model::Disk& disk = model.disks[i];
+      const std::string key = fmt::format("disks[{}]", i);
+      const int node = require_node(dofs(), disk.node, disk.where, key + ".node");
+      require_finite_non_negative(disk.mass, disk.where, key + ".mass", "a mass >= 0 [kg]");
+      require_finite_non_negative(disk.polar_inertia, disk.where, key + ".polar_inertia",
+                                  "an inertia >= 0 [kg m^2]");
+      require_finite_non_negative(disk.diametral_inertia, disk.where, key + ".diametral_inertia",
+                                  "an inertia >= 0 [kg m^2]");
+      const auto eq = dofs().node_dofs(node);
+      scatter(M, eq, rigid_disk_mass(disk.mass, disk.diametral_inertia, disk.polar_inertia));
+      const double ratio = dofs().node(node).speed_ratio;
+      if (ratio != 0.0) scatter(G, eq, rigid_disk_gyroscopic(disk.polar_inertia), ratio);
+    }
+    for (std::size_t i = 0; i < model.point_masses.size(); ++i) {
+      const model::PointMass& mass = model.point_masses[i];
+      const std::string key = fmt::format("point_masses[{}]", i);
+      const int node = require_node(dofs(), mass.node, mass.where, key + ".node");
+      require_finite_non_negative(mass.mass, mass.where, key + ".mass", "a mass >= 0 [kg]");
+      scatter(M, dofs().node_dofs(node), point_mass_matrix(mass.mass));
+    }
+  }
+
+  void bearings() {
+    for (std::size_t i = 0; i < model.bearings.size(); ++i) {
+      const model::Bearing& bearing = model.bearings[i];
+      const std::string key = fmt::format("bearings[{}]", i);
+      const int node1 = require_node(dofs(), bearing.node, bearing.where, key + ".node");
+      const int node2 = bearing.node2.empty()
+                            ? -1
+                            : require_node(dofs(), bearing.node2, bearing.where, key + ".node2");
+      if (node1 == node2) {
+        throw InputError(bearing.where, key + ".node2", "a node other than 'node'",
+                         fmt::format("'{}' twice", bearing.node));
+      }
+      const std::size_t n_table = std::max<std::size_t>(bearing.speeds.size(), 1);
+      auto check_size = [&](std::size_t size, const char* what) {
+        if (size != 0 && size != n_table) {
+          throw InputError(bearing.where, key + "." + what,
+                           fmt::format("{} matrices (one per speed)", n_table),
+                           std::to_string(size));
+        }
+      };
+      check_size(bearing.stiffness.size(), "stiffness");
+      check_size(bearing.damping.size(), "damping");
+      for (std::size_t k = 0; k < bearing.speeds.size(); ++k) {
+        if (!std::isfinite(bearing.speeds[k]) || (k > 0 && !(bearing.speeds[k] > bearing.speeds[k - 1]))) {
+          throw InputError(bearing.where, fmt::format("{}.speeds[{}]", key, k),
+                           "finite, strictly increasing speeds", fmt::format("{}", bearing.speeds[k]));
+        }
+      }
+
+      const Eigen::Matrix3d& frame1 = dofs().node(node1).frame;
+      auto element = [&](const model::Bearing::Matrix6& values, const std::string& what) {
+        const Matrix6d b = bearing_matrix(values);
+        require_finite(b, bearing.where, key + "." + what);
+        Matrix12d out = Matrix12d::Zero();
+        if (node2 < 0) {
+          out.topLeftCorner<6, 6>() = b;
+        } else {
+          out = bearing_between_nodes(b, frame1, dofs().node(node2).frame);
+        }
+        return out;
+      };
+      std::array<int, 6> eq2;
+      eq2.fill(-1);
+      if (node2 >= 0) eq2 = dofs().node_dofs(node2);
+      const auto eq = concat(dofs().node_dofs(node1), eq2);
+
+      if (bearing.speeds.size() <= 1) {
+        // A one-row table is a constant bearing.
+        if (!bearing.stiffness.empty()) scatter(K, eq, element(bearing.stiffness.front(), "stiffness"));
+        if (!bearing.damping.empty()) scatter(C, eq, element(bearing.damping.front(), "damping"));
+        continue;
+      }
+      SpeedDependentBearing table;
+      table.speeds = bearing.speeds;
+      table.equations = eq;
+      for (std::size_t k = 0; k < n_table; ++k) {
+        table.stiffness.push_back(bearing.stiffness.empty()
+                                      ? Matrix12d::Zero().eval()
+                                      : element(bearing.stiffness[k], fmt::format("stiffness[{}]", k)));
+        table.damping.push_back(bearing.damping.empty()
+                                    ? Matrix12d::Zero().eval()
+                                    : element(bearing.damping[k], fmt::format("damping[{}]", k)));
+      }
+      system.speed_bearings.push_back(std::move(table));
+    }
+  }
+
+  void couplings() {
+    for (std::size_t i = 0; i < model.couplings.size(); ++i) {
+      const model::Coupling& coupling = model.couplings[i];
+      const std::string key = fmt::format("couplings[{}]", i);
+      const int node1 = require_node(dofs(), coupling.node1, coupling.where, key + ".node1");
+      const bool ground = coupling.node2.empty();
+      const int node2 =
+          ground ? -1 : require_node(dofs(), coupling.node2, coupling.where, key + ".node2");
+      const std::size_t expected = ground ? 36 : 144;
+      auto add = [&](const std::vector<double>& values, const char* what, Triplets& target) {
+        if (values.empty()) return;
+        if (values.size() != expected) {
+          throw InputError(coupling.where, key + "." + what,
+                           fmt::format("{} numbers ({} row-major)", expected,
+                                       ground ? "6x6" : "12x12"),
+                           std::to_string(values.size()));
+        }
+        if (ground) {
+          const Matrix6d a = coupling_to_ground(values, dofs().node(node1).frame);
+          require_finite(a, coupling.where, key + "." + what);
+          scatter(target, dofs().node_dofs(node1), a);
+        } else {
+          const Matrix12d a =
+              coupling_between_nodes(values, dofs().node(node1).frame, dofs().node(node2).frame);
+          require_finite(a, coupling.where, key + "." + what);
+          scatter(target, concat(dofs().node_dofs(node1), dofs().node_dofs(node2)), a);
+        }
+      };
+      add(coupling.stiffness, "stiffness", K);
+      add(coupling.damping, "damping", C);
+      add(coupling.mass, "mass", M);
+    }
+  }
+
+  void gear_meshes() {
+    for (std::size_t i = 0; i < model.gear_meshes.size(); ++i) {
+      const model::GearMesh& mesh = model.gear_meshes[i];
+      const std::string key = fmt::format("gear_meshes[{}]", i);
+      const int node1 = require_node(dofs(), mesh.gear1, mesh.where, key + ".gear1");
+      const int node2 = require_node(dofs(), mesh.gear2, mesh.where, key + ".gear2");
+      if (node1 == node2) {
+        throw InputError(mesh.where, key + ".gear2", "a node other than gear1",
+                         fmt::format("'{}' twice", mesh.gear1));
+      }
+      if (!(mesh.stiffness > 0) || !std::isfinite(mesh.stiffness)) {
+        throw InputError(mesh.where, key + ".stiffness", "a positive mesh stiffness [N/m]",
+                         fmt::format("{}", mesh.stiffness));
+      }
+      require_finite_non_negative(mesh.damping, mesh.where, key + ".damping",
+                                  "a non-negative mesh damping [N s/m]");
+      const NodeInfo& gear1 = dofs().node(node1);
+      const NodeInfo& gear2 = dofs().node(node2);
+      const GearMeshGeometry geometry = gear_mesh_geometry(mesh, gear1, gear2, key);
+      const Vector12d v = gear_mesh_vector(geometry, gear1, gear2);
+      const Matrix12d vvT = v * v.transpose();
+      const auto eq = concat(dofs().node_dofs(node1), dofs().node_dofs(node2));
+      scatter(K, eq, vvT, mesh.stiffness);
+      if (mesh.damping > 0) scatter(C, eq, vvT, mesh.damping);
+    }
+  }
+};
+
+}  // namespace
+
+LinearSystem assemble(const model::Model& model, [[maybe_unused]] const AssemblyOptions& options) {
+  LinearSystem system;
+  system.dofs = DofMap::build(model);
+  const model::Damping& damping = model.damping;
+  require_finite_non_negative(damping.loss_factor, {}, "damping.loss_factor",
+                              "a non-negative loss factor");
+  if (!std::isfinite(damping.rayleigh_alpha) || !std::isfinite(damping.rayleigh_beta)) {
+    throw InputError({}, "damping.rayleigh", "finite Rayleigh coefficients",
+                     fmt::format("alpha {}, beta {}", damping.rayleigh_alpha, damping.rayleigh_beta));
+  }
+
+  Assembler a{model, system, {}, {}, {}, {}, {}};
+  a.shafts();
+  a.masses();
+  a.bearings();
+  a.couplings();
+  a.gear_meshes();
+
+  const int n = system.size();
+  system.M = from_triplets(n, a.M);
+  system.K = from_triplets(n, a.K);
+  system.G = from_triplets(n, a.G);
+  system.K_loss = from_triplets(n, a.K_loss);
+  system.C = from_triplets(n, a.C);
+  // Structural damping of the whole (speed-independent) structure: K_loss += eta K.
+  if (damping.loss_factor != 0.0) system.K_loss += damping.loss_factor * system.K;
+  // Rayleigh damping on the speed-independent matrices (speed-dependent bearings excluded).
+  if (damping.rayleigh_alpha != 0.0) system.C += damping.rayleigh_alpha * system.M;
+  if (damping.rayleigh_beta != 0.0) system.C += damping.rayleigh_beta * system.K;
+  system.C.makeCompressed();
+  system.K_loss.makeCompressed();
+  return system;
+}
+
+namespace {
+
+SparseMatrix add_speed_bearings(const LinearSystem& system, const SparseMatrix& base, double speed,
+                                bool stiffness) {
+  if (system.speed_bearings.empty()) return base;
+  Triplets triplets;
+  for (const SpeedDependentBearing& b : system.speed_bearings) {
+    const Matrix12d m = interpolate_by_speed(b.speeds, stiffness ? b.stiffness : b.damping, speed);
+    scatter(triplets, b.equations, m);
+  }
+  SparseMatrix out = base + from_triplets(system.size(), triplets);
+  out.makeCompressed();
+  return out;
+}
+
+}  // namespace
+
+SparseMatrix LinearSystem::K_at(double speed) const {
+  return add_speed_bearings(*this, K, speed, true);
+}
+
+SparseMatrix LinearSystem::C_at(double speed) const {
+  return add_speed_bearings(*this, C, speed, false);
+}
+
+Eigen::MatrixXd LinearSystem::damping_dense(double speed) const {
+  Eigen::MatrixXd d = Eigen::MatrixXd(C_at(speed));
+  if (speed != 0.0) d += speed * Eigen::MatrixXd(G);
+  if (has_modal_damping()) {
+    d += modal_basis * modal_coefficients.asDiagonal() * modal_basis.transpose();
+  }
+  return d;
+}
+
+Eigen::VectorXd LinearSystem::unit_load(int node, model::Component c) const {
+  const int equation = dofs.dof(node, c);
+  if (equation < 0) {
+    throw InputError({}, fmt::format("node '{}'", dofs.node(node).name),
+                     "a load on an unconstrained DOF",
+                     fmt::format("a load on constrained DOF {}",
+                                 model::kComponentNames[static_cast<std::size_t>(c)]));
+  }
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(size());
+  f(equation) = 1.0;
+  return f;
+}
+
+namespace {
+
+// The unbalances selected by name (all when `selected` is empty), with their node index.
+std::vector<std::pair<const model::Unbalance*, int>> selected_unbalances(
+    const model::Model& model, const LinearSystem& system, const std::vector<std::string>& selected) {
+  std::vector<std::pair<const model::Unbalance*, int>> out;
+  for (const std::string& name : selected) {
+    const bool known = std::any_of(model.unbalances.begin(), model.unbalances.end(),
+                                   [&](const model::Unbalance& u) { return u.name == name; });
+    if (!known) {
+      throw InputError({}, "unbalances", "the name of an unbalance in the model",
+                       fmt::format("'{}'", name));
+    }
+  }
+  for (std::size_t i = 0; i < model.unbalances.size(); ++i) {
+    const model::Unbalance& u = model.unbalances[i];
+    if (!selected.empty() && std::find(selected.begin(), selected.end(), u.name) == selected.end())
+      continue;
+    const int node = require_node(system.dofs, u.node, u.where, fmt::format("unbalances[{}].node", i));
+    out.emplace_back(&u, node);
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system,
+                                double speed, double order,
+                                const std::vector<std::string>& selected) {
+  using namespace std::complex_literals;
+  Eigen::VectorXcd f = Eigen::VectorXcd::Zero(system.size());
+  for (const auto& [unbalance, node] : selected_unbalances(model, system, selected)) {
+    const double ratio = system.dofs.node(node).speed_ratio;
+    if (ratio == 0.0 || std::abs(std::abs(ratio) - order) > 1e-12) continue;
+    const double omega = std::abs(ratio) * speed;
+    // Forward-rotating force in the spin sense: F_x = m e w^2 e^{i phi}, F_y = -i F_x for spin
+    // about +e3 (F_y(t) = m e w^2 sin(w t + phi)), mirrored (F_y = +i F_x) for negative spin.
+    const std::complex<double> fx = unbalance->mass_eccentricity * omega * omega *
+                                    std::exp(1i * unbalance->phase);
+    const std::complex<double> fy = (ratio > 0 ? -1i : 1i) * fx;
+    const int ex = system.dofs.dof(node, model::Component::Ux);
+    const int ey = system.dofs.dof(node, model::Component::Uy);
+    if (ex >= 0) f(ex) += fx;
+    if (ey >= 0) f(ey) += fy;
+  }
+  return f;
+}
+
+std::vector<double> unbalance_orders(const model::Model& model, const LinearSystem& system,
+                                     const std::vector<std::string>& selected) {
+  std::vector<double> orders;
+  for (const auto& [unbalance, node] : selected_unbalances(model, system, selected)) {
+    const double order = std::abs(system.dofs.node(node).speed_ratio);
+    if (order == 0.0) continue;
+    const bool seen = std::any_of(orders.begin(), orders.end(),
+                                  [&](double o) { return std::abs(o - order) <= 1e-12; });
+    if (!seen) orders.push_back(order);
+  }
+  std::sort(orders.begin(), orders.end());
+  return orders;
+}
+
+ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& shape) {
+  ModeFamilies f;
+  const Eigen::VectorXd mass = system.M.diagonal();
+  for (int i = 0; i < system.size() && i < shape.size(); ++i) {
+    const double energy = mass(i) * std::norm(shape(i));
+    switch (system.dofs.dof_component(i)) {
+      case model::Component::Uz: f.axial += energy; break;
+      case model::Component::Rz: f.torsional += energy; break;
+      default: f.lateral += energy; break;
+    }
+  }
+  const double total = f.lateral + f.axial + f.torsional;
+  if (total > 0) {
+    f.lateral /= total;
+    f.axial /= total;
+    f.torsional /= total;
+  }
+  return f;
+}
+
+}  // namespace geardyn::fe
