@@ -11,6 +11,7 @@
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/io/results_writer.hpp"
+#include "geardyn/io/sha256.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/report/html_report.hpp"
 #include "geardyn/study/run_analysis.hpp"
@@ -78,8 +79,9 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   else
     progress = std::make_unique<StderrProgress>();
 
-  io::RunInfo info;
+  RunInfo info;
   info.model_path = options.model_path;
+  info.model_sha256 = io::sha256_file(options.model_path);
   for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
 
   std::vector<AnalysisOutput> outputs;

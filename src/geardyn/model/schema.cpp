@@ -1266,9 +1266,11 @@ Section make_schema() {
               choice("flank", {"drive", "coast"}, "Loaded flank.")
                   .def("\"drive\"")
                   .to_enum(&GearMesh::flank, {Flank::Drive, Flank::Coast}),
-              number("stiffness", kStiffness, "Mesh stiffness along the line of action.")
+              number("stiffness", kStiffness,
+                     "Mesh stiffness along the line of action (0: gears not coupled, e.g. a "
+                     "variant without the mesh).")
                   .required()
-                  .gt(0)
+                  .ge(0)
                   .to(&GearMesh::stiffness),
               number("damping", kDampingCoefficient, "Mesh damping along the line of action.")
                   .def("0.0")

@@ -1,12 +1,18 @@
 #include "geardyn/study/run_analysis.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <chrono>
+#include <stdexcept>
 
 #include "geardyn/analysis/campbell.hpp"
 #include "geardyn/analysis/harmonic.hpp"
 #include "geardyn/analysis/modal.hpp"
+#include "geardyn/analysis/system_builder.hpp"
 #include "geardyn/analysis/unbalance.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/model/parse.hpp"
 #include "geardyn/study/sweep.hpp"
 #include "geardyn/transient/transient_analysis.hpp"
 
@@ -26,6 +32,33 @@ std::string analysis_type_name(model::AnalysisType type) {
 
 AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& system,
                             const model::Analysis& analysis, const RunContext& context) {
+  if (!analysis.overrides.empty()) {
+    // A variant of the model for this analysis only: rebuild it from the document with the
+    // analysis's `set` entries applied (checked by the parser before any computation).
+    if (context.document == nullptr)
+      throw std::logic_error("run_analysis: an analysis with `set` needs the model document");
+    model::ModelDocument variant = *context.document;
+    for (const auto& o : analysis.overrides) model::apply_override(variant, o);
+    const model::Model variant_model = model::build_model(variant);
+    model::Analysis plain = analysis;
+    plain.overrides.clear();
+    RunContext variant_context = context;
+    variant_context.document = &variant;
+    try {
+      const fe::LinearSystem variant_system = analysis::build_system(variant_model);
+      AnalysisOutput out = run_analysis(variant_model, variant_system, plain, variant_context);
+      out.notes.push_back(fmt::format("Model variant for this analysis: {}.",
+                                      fmt::join(analysis.overrides, ", ")));
+      return out;
+    } catch (const NumericalError& e) {
+      AnalysisOutput out;
+      out.name = analysis.name;
+      out.type = analysis_type_name(analysis.type);
+      out.status = Status::Failed;
+      out.message = e.what();
+      return out;
+    }
+  }
   Progress& progress = context.progress != nullptr ? *context.progress : null_progress();
   const auto start = std::chrono::steady_clock::now();
   AnalysisOutput out;

@@ -171,6 +171,8 @@ SweepResult run_sweep(const model::ModelDocument& document, const model::SweepSe
       try {
         model::ModelDocument point = document;
         model::set_number(point, settings.parameter, settings.values[i]);
+        for (const auto& linked : settings.linked_parameters)
+          model::set_number(point, linked, settings.values[i]);
         const model::Model m = model::build_model(point);
         const model::Analysis* a = m.find_analysis(settings.analysis);
         if (a == nullptr) throw std::runtime_error("analysis '" + settings.analysis + "' not found");
