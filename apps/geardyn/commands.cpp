@@ -13,6 +13,7 @@
 #include "geardyn/io/results_writer.hpp"
 #include "geardyn/io/sha256.hpp"
 #include "geardyn/model/parse.hpp"
+#include "geardyn/model/schema.hpp"
 #include "geardyn/report/html_report.hpp"
 #include "geardyn/study/run_analysis.hpp"
 

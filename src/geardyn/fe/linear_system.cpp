@@ -271,8 +271,9 @@ struct Assembler {
         throw InputError(mesh.where, key + ".gear2", "a node other than gear1",
                          fmt::format("'{}' twice", mesh.gear1));
       }
-      if (!(mesh.stiffness > 0) || !std::isfinite(mesh.stiffness)) {
-        throw InputError(mesh.where, key + ".stiffness", "a positive mesh stiffness [N/m]",
+      // Zero is allowed: a variant of the model with the gears uncoupled.
+      if (!(mesh.stiffness >= 0) || !std::isfinite(mesh.stiffness)) {
+        throw InputError(mesh.where, key + ".stiffness", "a non-negative mesh stiffness [N/m]",
                          fmt::format("{}", mesh.stiffness));
       }
       require_finite_non_negative(mesh.damping, mesh.where, key + ".damping",

@@ -1,0 +1,137 @@
+// Benchmarks of the linear rotor analyses on banded rotor models of growing size.
+// Figures and growth exponents are recorded in docs/performance.md.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "geardyn/analysis/campbell.hpp"
+#include "geardyn/analysis/harmonic.hpp"
+#include "geardyn/analysis/modal.hpp"
+#include "geardyn/analysis/system_builder.hpp"
+#include "geardyn/analysis/unbalance.hpp"
+
+namespace {
+
+using namespace geardyn;
+
+// A steel shaft of n_elements Timoshenko elements (1 m per 100 elements), a disk every tenth of
+// its length, isotropic bearings at both ends and at mid-span, light Rayleigh damping, one
+// unbalance and two sensors.
+model::Model rotor(int n_elements) {
+  model::Model m;
+  m.title = "benchmark rotor";
+  model::Material steel;
+  steel.name = "steel";
+  steel.youngs_modulus = 211e9;
+  steel.shear_modulus = 81.2e9;
+  steel.density = 7810;
+  m.materials.push_back(steel);
+  model::Shaft s;
+  s.name = "s";
+  s.material = "steel";
+  model::ShaftElement e;
+  e.length = 0.01 * n_elements;
+  e.outer_diameter = 0.05;
+  e.divisions = n_elements;
+  s.elements.push_back(e);
+  m.shafts.push_back(s);
+  for (int k = 1; k < 10; ++k) {
+    model::Disk d;
+    d.name = "d" + std::to_string(k);
+    d.node = "s." + std::to_string(k * n_elements / 10);
+    d.mass = 10;
+    d.polar_inertia = 0.1;
+    d.diametral_inertia = 0.05;
+    m.disks.push_back(d);
+  }
+  for (int station : {0, n_elements / 2, n_elements}) {
+    model::Bearing b;
+    b.name = "b" + std::to_string(station);
+    b.node = "s." + std::to_string(station);
+    model::Bearing::Matrix6 k{}, c{};
+    k[0] = k[7] = 1e7;
+    k[14] = 1e8;   // axial
+    k[35] = 1e5;   // torsional, keeps the rotor from spinning freely in the model
+    c[0] = c[7] = 1e3;
+    b.stiffness = {k};
+    b.damping = {c};
+    m.bearings.push_back(b);
+  }
+  m.damping.rayleigh_beta = 1e-5;
+  model::Unbalance u;
+  u.name = "u";
+  u.node = "s." + std::to_string(n_elements / 4);
+  u.mass_eccentricity = 1e-4;
+  m.unbalances.push_back(u);
+  for (int station : {n_elements / 4, n_elements / 3}) {
+    model::Sensor sensor;
+    sensor.name = "x" + std::to_string(station);
+    sensor.node = "s." + std::to_string(station);
+    sensor.dof = model::Component::Ux;
+    m.sensors.push_back(sensor);
+  }
+  return m;
+}
+
+void BM_Assemble(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(analysis::build_system(m));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Assemble)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
+
+void BM_Modal(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = analysis::build_system(m);
+  model::ModalSettings settings;
+  settings.n_modes = 10;
+  settings.speed = 3000 * 2 * std::numbers::pi / 60;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analysis::run_modal(system, settings, null_progress()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Modal)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
+
+void BM_Campbell100(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = analysis::build_system(m);
+  model::CampbellSettings settings;
+  settings.n_modes = 6;
+  for (int i = 0; i < 100; ++i) settings.speeds.push_back(i * 100.0 * 2 * std::numbers::pi / 60);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analysis::run_campbell(m, system, settings, null_progress()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Campbell100)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)
+    ->Complexity()->Iterations(1);
+
+void BM_Frf10k(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = analysis::build_system(m);
+  model::HarmonicSettings settings;
+  settings.f_min = 2 * std::numbers::pi * 1.0;
+  settings.f_max = 2 * std::numbers::pi * 2000.0;
+  settings.n_points = 10000;
+  settings.adaptive = false;
+  settings.input_node = "s." + std::to_string(state.range(0) / 4);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analysis::run_harmonic(m, system, settings, null_progress()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Frf10k)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->Complexity()
+    ->Iterations(1);
+
+void BM_Unbalance1k(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = analysis::build_system(m);
+  model::UnbalanceSettings settings;
+  for (int i = 1; i <= 1000; ++i) settings.speeds.push_back(i * 10.0 * 2 * std::numbers::pi / 60);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analysis::run_unbalance(m, system, settings, null_progress()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Unbalance1k)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)
+    ->Complexity()->Iterations(1);
+
+}  // namespace
