@@ -1027,7 +1027,7 @@ Section make_schema() {
               number("shear_coefficient", kNoUnit, "Timoshenko shear coefficient kappa.")
                   .gt(0)
                   .le(1.0)
-                  .note("Hutchinson's value for each element's (hollow) circle")
+                  .note("Cowper's (1966) value for each element's (hollow) circle")
                   .to(&Shaft::shear_coefficient),
               choice("theory", {"timoshenko", "euler_bernoulli"},
                      "Beam theory: Timoshenko (shear deformation) or Euler-Bernoulli.")
