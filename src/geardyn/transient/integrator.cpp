@@ -1,0 +1,255 @@
+#include "geardyn/transient/integrator.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "geardyn/transient/tangent_solver.hpp"
+
+namespace geardyn::transient {
+
+SchemeParameters SchemeParameters::newmark_average_acceleration() { return {0.0, 0.0, 0.25, 0.5}; }
+
+SchemeParameters SchemeParameters::generalized_alpha(double rho_infinity) {
+  if (!(rho_infinity >= 0.0 && rho_infinity <= 1.0))
+    throw std::invalid_argument(
+        fmt::format("rho_infinity must lie in [0, 1], got {}", rho_infinity));
+  SchemeParameters p;
+  p.alpha_m = (2.0 * rho_infinity - 1.0) / (rho_infinity + 1.0);
+  p.alpha_f = rho_infinity / (rho_infinity + 1.0);
+  p.gamma = 0.5 - p.alpha_m + p.alpha_f;
+  const double s = 1.0 - p.alpha_m + p.alpha_f;
+  p.beta = 0.25 * s * s;
+  return p;
+}
+
+std::vector<std::string> IntegratorOptions::validate() const {
+  std::vector<std::string> problems;
+  if (scheme == Scheme::GeneralizedAlpha && !(rho_infinity >= 0.0 && rho_infinity <= 1.0))
+    problems.push_back(fmt::format("rho_infinity must lie in [0, 1], got {}", rho_infinity));
+  if (!(time_step > 0.0) || !std::isfinite(time_step))
+    problems.push_back(fmt::format("time_step must be positive and finite, got {}", time_step));
+  if (num_steps < 1) problems.push_back(fmt::format("num_steps must be >= 1, got {}", num_steps));
+  if (!std::isfinite(start_time))
+    problems.push_back(fmt::format("start_time must be finite, got {}", start_time));
+  if (!(newton_tolerance > 0.0 && newton_tolerance < 1.0))
+    problems.push_back(
+        fmt::format("newton_tolerance must lie in (0, 1), got {}", newton_tolerance));
+  if (max_newton_iterations < 1)
+    problems.push_back(
+        fmt::format("max_newton_iterations must be >= 1, got {}", max_newton_iterations));
+  if (!(refactor_ratio > 0.0 && refactor_ratio < 1.0))
+    problems.push_back(fmt::format("refactor_ratio must lie in (0, 1), got {}", refactor_ratio));
+  if (!(max_growth_per_step > 1.0))
+    problems.push_back(
+        fmt::format("max_growth_per_step must be > 1, got {}", max_growth_per_step));
+  return problems;
+}
+
+SchemeParameters IntegratorOptions::parameters() const {
+  return scheme == Scheme::Newmark ? SchemeParameters::newmark_average_acceleration()
+                                   : SchemeParameters::generalized_alpha(rho_infinity);
+}
+
+std::string IntegrationSummary::brief_report() const {
+  std::string s = fmt::format(
+      "{} (am={:.4g}, af={:.4g}, beta={:.4g}, gamma={:.4g}), h={:.4g} s: {}/{} steps to "
+      "t={:.6g} s, {} factorisation(s), {} Newton iteration(s) (max {} per step), {}",
+      to_string(scheme), parameters.alpha_m, parameters.alpha_f, parameters.beta,
+      parameters.gamma, time_step, steps_taken, steps_requested, end_time, factorizations,
+      newton_iterations, max_iterations_in_step, to_string(status));
+  if (!message.empty()) s += ": " + message;
+  return s;
+}
+
+namespace {
+
+double state_size(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a,
+                  double h) {
+  return q.lpNorm<Eigen::Infinity>() + h * v.lpNorm<Eigen::Infinity>() +
+         h * h * a.lpNorm<Eigen::Infinity>();
+}
+
+bool all_finite(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen::VectorXd& a) {
+  return q.allFinite() && v.allFinite() && a.allFinite();
+}
+
+// Factorises c_m M + c_c C_t + c_k K_t (+ low-rank part) at the given point.
+bool factor_tangent(SecondOrderSystem& system, TangentSolver& solver, double t,
+                    const Eigen::VectorXd& q, const Eigen::VectorXd& v, double c_m, double c_c,
+                    double c_k) {
+  SparseMatrix S;
+  system.tangent(t, q, v, c_m, c_c, c_k, S);
+  Eigen::MatrixXd U;
+  Eigen::VectorXd d;
+  if (system.tangent_low_rank(t, q, v, c_m, c_c, c_k, U, d) && U.cols() > 0 &&
+      d.cwiseAbs().maxCoeff() > 0.0)
+    return solver.factorize(S, U, d);
+  return solver.factorize(S);
+}
+
+}  // namespace
+
+IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions& options,
+                             Eigen::VectorXd& q, Eigen::VectorXd& v, const StepObserver& observer,
+                             Progress& progress) {
+  if (const auto problems = options.validate(); !problems.empty()) {
+    std::string text = "invalid integrator options:";
+    for (const auto& p : problems) text += " " + p + ";";
+    throw std::invalid_argument(text);
+  }
+  const int n = system.size();
+  if (n < 1) throw std::invalid_argument("the system has no unknowns");
+  if (q.size() != n || v.size() != n)
+    throw std::invalid_argument(fmt::format(
+        "initial q and v have sizes {} and {}, the system has {} unknowns", q.size(), v.size(), n));
+  if (options.initial_acceleration && options.initial_acceleration->size() != n)
+    throw std::invalid_argument(fmt::format("initial acceleration has size {}, expected {}",
+                                            options.initial_acceleration->size(), n));
+
+  const SchemeParameters p = options.parameters();
+  const double h = options.time_step;
+  IntegrationSummary summary;
+  summary.scheme = options.scheme;
+  summary.parameters = p;
+  summary.time_step = h;
+  summary.steps_requested = options.num_steps;
+  summary.end_time = options.start_time;
+  summary.linear_time_invariant = system.is_linear_time_invariant();
+
+  auto fail = [&](Status status, std::string message) {
+    summary.status = status;
+    summary.message = std::move(message);
+    progress.finish();
+    return summary;
+  };
+
+  double t = options.start_time;
+  Eigen::VectorXd a(n), r(n), dq(n);
+  progress.start("time integration", static_cast<std::size_t>(options.num_steps));
+
+  if (options.initial_acceleration) {
+    a = *options.initial_acceleration;
+    summary.consistent_initial_acceleration = false;
+  } else {
+    // M a_0 = -r(t_0, q_0, v_0, 0): the tangent with c_m = 1, c_c = c_k = 0 is M.
+    TangentSolver mass_solver;
+    if (!factor_tangent(system, mass_solver, t, q, v, 1.0, 0.0, 0.0))
+      return fail(Status::Singular,
+                  fmt::format("initial acceleration at t = {} s: the mass matrix could not be "
+                              "factorised ({}); every unconstrained DOF needs mass (add rotary "
+                              "inertia or a small point mass, or constrain the DOF)",
+                              t, mass_solver.failure()));
+    system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
+    ++summary.residual_evaluations;
+    mass_solver.solve(-r, a);
+  }
+  if (!all_finite(q, v, a))
+    return fail(Status::Diverged,
+                fmt::format("the initial state at t = {} s has non-finite entries", t));
+  if (observer) observer(0, t, q, v, a);
+
+  const double c_m = (1.0 - p.alpha_m) / (p.beta * h * h);
+  const double c_c = (1.0 - p.alpha_f) * p.gamma / (p.beta * h);
+  const double c_k = 1.0 - p.alpha_f;
+  const double dv_dq = p.gamma / (p.beta * h);
+  const double da_dq = 1.0 / (p.beta * h * h);
+
+  TangentSolver solver;
+  bool need_factor = true;
+  double q_scale = q.lpNorm<Eigen::Infinity>();
+  double largest_state = state_size(q, v, a, h);
+
+  Eigen::VectorXd q1(n), v1(n), a1(n), qa(n), va(n), aa(n);
+  for (int step = 1; step <= options.num_steps; ++step) {
+    const double t1 = options.start_time + step * h;
+    const double ta = t1 - p.alpha_f * h;  // t_{n+1-af} = (1 - af) t_{n+1} + af t_n
+    // Predictor: constant acceleration.
+    a1 = a;
+    q1 = q + h * v + (h * h * (0.5 - p.beta)) * a + (h * h * p.beta) * a1;
+    v1 = v + (h * (1.0 - p.gamma)) * a + (h * p.gamma) * a1;
+
+    bool converged = false;
+    double previous_correction = 0.0;
+    int iteration = 0;
+    while (iteration < options.max_newton_iterations) {
+      qa = (1.0 - p.alpha_f) * q1 + p.alpha_f * q;
+      va = (1.0 - p.alpha_f) * v1 + p.alpha_f * v;
+      aa = (1.0 - p.alpha_m) * a1 + p.alpha_m * a;
+      system.residual(ta, qa, va, aa, r);
+      ++summary.residual_evaluations;
+      if (!r.allFinite())
+        return fail(Status::Diverged,
+                    fmt::format("non-finite residual at step {} (t = {:.6g} s, h = {:.3g} s); "
+                                "usually the time step is too large for the nonlinearity",
+                                step, t1, h));
+      if (need_factor) {
+        if (!factor_tangent(system, solver, ta, qa, va, c_m, c_c, c_k))
+          return fail(Status::Singular,
+                      fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
+                                  "unconstrained rigid-body motion without mass",
+                                  step, t1, solver.failure()));
+        ++summary.factorizations;
+        summary.solver = solver.description();
+        need_factor = false;
+      }
+      solver.solve(-r, dq);
+      q1 += dq;
+      v1 += dv_dq * dq;
+      a1 += da_dq * dq;
+      ++iteration;
+      if (summary.linear_time_invariant) {  // exact tangent, linear equations: one correction
+        converged = true;
+        break;
+      }
+      const double correction = dq.lpNorm<Eigen::Infinity>();
+      const double scale = std::max(q_scale, q1.lpNorm<Eigen::Infinity>());
+      if (correction <= options.newton_tolerance * scale || correction == 0.0) {
+        converged = true;
+        break;
+      }
+      // Modified Newton: keep the factor while the corrections shrink fast enough.
+      if (iteration > 1 && correction > options.refactor_ratio * previous_correction)
+        need_factor = true;
+      previous_correction = correction;
+    }
+    summary.newton_iterations += iteration;
+    summary.max_iterations_in_step = std::max(summary.max_iterations_in_step, iteration);
+    if (!converged)
+      return fail(Status::NotConverged,
+                  fmt::format("Newton did not converge at step {} (t = {:.6g} s) in {} "
+                              "iterations (last correction {:.3g}, tolerance {:.3g}); reduce "
+                              "the time step or raise max_newton_iterations",
+                              step, t1, iteration, previous_correction,
+                              options.newton_tolerance * std::max(q_scale, q1.norm())));
+    if (!all_finite(q1, v1, a1))
+      return fail(Status::Diverged,
+                  fmt::format("non-finite state at step {} (t = {:.6g} s, h = {:.3g} s)", step,
+                              t1, h));
+    const double size = state_size(q1, v1, a1, h);
+    if (largest_state > 0.0 && size > options.max_growth_per_step * largest_state)
+      return fail(Status::Diverged,
+                  fmt::format("the state grew by a factor {:.3g} in one step at step {} "
+                              "(t = {:.6g} s, h = {:.3g} s); usually the time step is too large "
+                              "for the nonlinearity",
+                              size / largest_state, step, t1, h));
+    largest_state = std::max(largest_state, size);
+    q_scale = std::max(q_scale, q1.lpNorm<Eigen::Infinity>());
+
+    q.swap(q1);
+    v.swap(v1);
+    a.swap(a1);
+    t = t1;
+    summary.steps_taken = step;
+    summary.end_time = t;
+    system.commit_step(t, q, v, a);
+    if (observer) observer(step, t, q, v, a);
+    progress.update(static_cast<std::size_t>(step));
+  }
+  progress.finish();
+  return summary;
+}
+
+}  // namespace geardyn::transient
