@@ -18,7 +18,7 @@ constexpr double kPi = std::numbers::pi;
 
 // Jeffcott rotor (see modal_test): omega_n = sqrt(k/m) = 316.227766 rad/s at every speed, so the
 // synchronous line f = Omega / 2pi meets both lateral modes at Omega = omega_n, i.e.
-// 3019.7577 rpm. f(Omega) is constant and the line is linear, so the interpolated crossing is
+// 3019.7527 rpm. f(Omega) is constant and the line is linear, so the interpolated crossing is
 // exact up to rounding (1e-9).
 TEST(Campbell, JeffcottCriticalSpeedEqualsNaturalFrequency) {
   const double m = 10.0, k = 1e6, zeta = 0.02;
