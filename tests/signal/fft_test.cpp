@@ -1,5 +1,7 @@
 // Real FFT: checked against the defining sum (a direct O(n^2) DFT), round trip, and concurrent
 // use from several threads (plans are shared; execution must be thread-safe and deterministic).
+#include "geardyn/signal/fft.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,8 +10,6 @@
 #include <random>
 #include <thread>
 #include <vector>
-
-#include "geardyn/signal/fft.hpp"
 
 namespace geardyn::signal {
 namespace {

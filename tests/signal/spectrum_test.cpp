@@ -2,13 +2,13 @@
 // correction, scalloping loss between bins, Parseval. The references are analytic: a sinusoid
 // a cos(2 pi f t + phi) must read a on its bin (Harris 1978, Proc. IEEE 66(1):51, sections
 // III-IV; coherent gain, ENBW and scalloping loss from its Table 1).
+#include "geardyn/signal/spectrum.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
-
-#include "geardyn/signal/spectrum.hpp"
 
 namespace geardyn::signal {
 namespace {
@@ -18,7 +18,8 @@ constexpr double kPi = std::numbers::pi;
 Eigen::VectorXd sampled(int n, double fs, double mean, double amplitude, double frequency_hz,
                         double phase) {
   Eigen::VectorXd x(n);
-  for (int j = 0; j < n; ++j) x[j] = mean + amplitude * std::cos(2 * kPi * frequency_hz * j / fs + phase);
+  for (int j = 0; j < n; ++j)
+    x[j] = mean + amplitude * std::cos(2 * kPi * frequency_hz * j / fs + phase);
   return x;
 }
 

@@ -7,16 +7,16 @@
 // Hulbert, J. Appl. Mech. 60 (1993) 371 (second order, spectral radius rho_inf at infinite
 // frequency) and Hughes, The Finite Element Method, 1987, sec. 9.1 (trapezoidal rule: energy
 // conserving, period elongation (omega h)^2 / 12).
+#include "geardyn/transient/integrator.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <random>
 
-#include <fmt/format.h>
-
 #include "geardyn/core/progress.hpp"
-#include "geardyn/transient/integrator.hpp"
 #include "matrix_system.hpp"
 
 namespace geardyn::transient {
@@ -48,9 +48,10 @@ double free_vibration_error(Scheme scheme, double rho, double h) {
   const int steps = static_cast<int>(std::lround(duration / h));
   const auto summary = integrate(
       system, options_for(scheme, rho, h, steps), q, v,
-      [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&, const Eigen::VectorXd&) {
-        const double exact = std::exp(-zeta * wn * t) *
-                             (std::cos(wd * t) + zeta * wn / wd * std::sin(wd * t));
+      [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&,
+          const Eigen::VectorXd&) {
+        const double exact =
+            std::exp(-zeta * wn * t) * (std::cos(wd * t) + zeta * wn / wd * std::sin(wd * t));
         error = std::max(error, std::abs(qs[0] - exact));
       },
       null_progress());
@@ -74,8 +75,8 @@ TEST(Integrator, ObservedConvergenceOrderIsTwo) {
     const double e2 = free_vibration_error(c.scheme, c.rho, 0.01);
     const double e3 = free_vibration_error(c.scheme, c.rho, 0.005);
     const double p1 = std::log2(e1 / e2), p2 = std::log2(e2 / e3);
-    EXPECT_NEAR(p1, 2.0, 0.1) << to_string(c.scheme) << " rho " << c.rho << " errors " << e1
-                              << " " << e2 << " " << e3;
+    EXPECT_NEAR(p1, 2.0, 0.1) << to_string(c.scheme) << " rho " << c.rho << " errors " << e1 << " "
+                              << e2 << " " << e3;
     EXPECT_NEAR(p2, 2.0, 0.1) << to_string(c.scheme) << " rho " << c.rho;
     RecordProperty(std::string(to_string(c.scheme)) + "_rho" + std::to_string(c.rho) + "_order",
                    fmt::format("{:.4f} {:.4f}", p1, p2));
@@ -94,10 +95,12 @@ double spectral_radius(Scheme scheme, double rho, double wh) {
     IntegratorOptions o = options_for(scheme, rho, h, 1);
     o.initial_acceleration = Eigen::VectorXd::Constant(1, j == 2 ? 1.0 / (h * h) : 0.0);
     Eigen::VectorXd a_end;
-    integrate(system, o, q, v,
-              [&](int, double, const Eigen::VectorXd&, const Eigen::VectorXd&,
-                  const Eigen::VectorXd& a) { a_end = a; },
-              null_progress());
+    integrate(
+        system, o, q, v,
+        [&](int, double, const Eigen::VectorXd&, const Eigen::VectorXd&, const Eigen::VectorXd& a) {
+          a_end = a;
+        },
+        null_progress());
     A.col(j) << q[0], h * v[0], h * h * a_end[0];
   }
   return A.eigenvalues().cwiseAbs().maxCoeff();
@@ -148,8 +151,9 @@ TEST(Integrator, ForcedSdofSteadyAmplitudeMatchesAnalytic) {
   const double k = m * wn * wn, c = 2 * zeta * m * wn;
   const double X = F / std::hypot(k - m * W * W, c * W);
   for (Scheme scheme : {Scheme::Newmark, Scheme::GeneralizedAlpha}) {
-    MatrixSystem system(scalar(m), scalar(c), scalar(k),
-                        [&](double t) { return Eigen::VectorXd::Constant(1, F * std::cos(W * t)); });
+    MatrixSystem system(scalar(m), scalar(c), scalar(k), [&](double t) {
+      return Eigen::VectorXd::Constant(1, F * std::cos(W * t));
+    });
     Eigen::VectorXd q = Eigen::VectorXd::Zero(1), v = Eigen::VectorXd::Zero(1);
     std::vector<double> ts, xs;
     const double h = 1e-3;
@@ -157,7 +161,8 @@ TEST(Integrator, ForcedSdofSteadyAmplitudeMatchesAnalytic) {
     const double fit_from = 12.0 - 2.0;  // last 2 s = 6 whole periods
     const auto summary = integrate(
         system, options_for(scheme, 0.8, h, steps), q, v,
-        [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+        [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&,
+            const Eigen::VectorXd&) {
           if (t > fit_from + 1e-9) {
             ts.push_back(t);
             xs.push_back(qs[0]);
@@ -195,7 +200,8 @@ TEST(Integrator, TrapezoidalRuleConservesEnergyOfUndampedSystem) {
   Eigen::VectorXd q = q0, v = v0;
   auto summary = integrate(
       system, options_for(Scheme::Newmark, 1.0, 0.02, 20000), q, v,
-      [&](int, double, const Eigen::VectorXd& qs, const Eigen::VectorXd& vs, const Eigen::VectorXd&) {
+      [&](int, double, const Eigen::VectorXd& qs, const Eigen::VectorXd& vs,
+          const Eigen::VectorXd&) {
         worst = std::max(worst, std::abs(system.energy(qs, vs) - e0) / e0);
       },
       null_progress());
@@ -281,12 +287,13 @@ TEST(Integrator, ConsistentInitialAccelerationSolvesTheEquationOfMotion) {
   Eigen::VectorXd q = Eigen::Vector2d(0.1, -0.2), v = Eigen::Vector2d(1.0, 0.5);
   const Eigen::VectorXd expected = M.inverse() * (Eigen::Vector2d(3.0, -1.0) - C * v - K * q);
   Eigen::VectorXd a0;
-  integrate(system, options_for(Scheme::Newmark, 1, 1e-3, 1), q, v,
-            [&](int step, double, const Eigen::VectorXd&, const Eigen::VectorXd&,
-                const Eigen::VectorXd& a) {
-              if (step == 0) a0 = a;
-            },
-            null_progress());
+  integrate(
+      system, options_for(Scheme::Newmark, 1, 1e-3, 1), q, v,
+      [&](int step, double, const Eigen::VectorXd&, const Eigen::VectorXd&,
+          const Eigen::VectorXd& a) {
+        if (step == 0) a0 = a;
+      },
+      null_progress());
   EXPECT_LT((a0 - expected).norm(), 1e-14 * expected.norm());
 }
 
@@ -295,8 +302,8 @@ TEST(Integrator, ReportsDivergenceWithStepAndTime) {
   // trapezoidal rule amplifies the growing root by (1 + wh/2) / (1 - wh/2) ~ 4000 per step.
   MatrixSystem unstable(scalar(1.0), scalar(0.0), scalar(-1.999 * 1.999));
   Eigen::VectorXd q = Eigen::VectorXd::Ones(1), v = Eigen::VectorXd::Zero(1);
-  auto summary = integrate(unstable, options_for(Scheme::Newmark, 1, 1.0, 10), q, v, {},
-                           null_progress());
+  auto summary =
+      integrate(unstable, options_for(Scheme::Newmark, 1, 1.0, 10), q, v, {}, null_progress());
   EXPECT_EQ(summary.status, Status::Diverged);
   EXPECT_EQ(summary.steps_taken, 0);
   EXPECT_NE(summary.message.find("step 1"), std::string::npos) << summary.message;
@@ -317,8 +324,8 @@ TEST(Integrator, ReportsDivergenceWithStepAndTime) {
 TEST(Integrator, SingularMassIsReported) {
   MatrixSystem massless(scalar(0.0), scalar(0.0), scalar(1.0));
   Eigen::VectorXd q = Eigen::VectorXd::Ones(1), v = Eigen::VectorXd::Zero(1);
-  const auto summary = integrate(massless, options_for(Scheme::Newmark, 1, 0.1, 10), q, v, {},
-                                 null_progress());
+  const auto summary =
+      integrate(massless, options_for(Scheme::Newmark, 1, 0.1, 10), q, v, {}, null_progress());
   EXPECT_EQ(summary.status, Status::Singular);
   EXPECT_NE(summary.message.find("mass"), std::string::npos);
 }

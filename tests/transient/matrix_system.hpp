@@ -31,8 +31,8 @@ class MatrixSystem : public SecondOrderSystem {
     ++tangent_calls;
     S = tangent_scale * (c_m * M_ + c_c * C_ + c_k * K_);
   }
-  bool tangent_low_rank(double, const Eigen::VectorXd&, const Eigen::VectorXd&, double,
-                        double c_c, double, Eigen::MatrixXd& U, Eigen::VectorXd& d) override {
+  bool tangent_low_rank(double, const Eigen::VectorXd&, const Eigen::VectorXd&, double, double c_c,
+                        double, Eigen::MatrixXd& U, Eigen::VectorXd& d) override {
     if (U_.cols() == 0) return false;
     U = U_;
     d = c_c * c_;

@@ -28,7 +28,8 @@ inline model::Bearing::Matrix6 diagonal6(double xx, double yy) {
 ///
 ///        k, c               x, y: lateral motion of the disk centre
 ///   ///--/\/\/--( m )        unbalance m_e rotating with the disk
-inline model::Model jeffcott(double m, double k, double zeta, double m_e, double speed_ratio = 1.0) {
+inline model::Model jeffcott(double m, double k, double zeta, double m_e,
+                             double speed_ratio = 1.0) {
   model::Model model;
   model.title = "jeffcott";
   model::Node node;

@@ -155,9 +155,10 @@ TEST(LinearRotorSystem, SteadyStateMatchesDirectHarmonicSolution) {
     ASSERT_GT(system.G.norm(), 0.0) << "the disk must bring gyroscopic coupling";
     const double W = 300.0, w = W;
     const Eigen::VectorXcd F = fe::unbalance_load(model, system, W, 1.0);
-    const Eigen::MatrixXcd D = Eigen::MatrixXcd(system.K.cast<std::complex<double>>()) -
-                               w * w * Eigen::MatrixXcd(system.M.cast<std::complex<double>>()) +
-                               1i * w * Eigen::MatrixXcd((system.C + W * system.G).cast<std::complex<double>>());
+    const Eigen::MatrixXcd D =
+        Eigen::MatrixXcd(system.K.cast<std::complex<double>>()) -
+        w * w * Eigen::MatrixXcd(system.M.cast<std::complex<double>>()) +
+        1i * w * Eigen::MatrixXcd((system.C + W * system.G).cast<std::complex<double>>());
     const Eigen::VectorXcd X = D.partialPivLu().solve(F);
 
     LinearRotorSystem rotor(model, system, SpeedProfile::constant(W));
@@ -165,15 +166,17 @@ TEST(LinearRotorSystem, SteadyStateMatchesDirectHarmonicSolution) {
     o.scheme = Scheme::Newmark;
     o.time_step = 5e-5;
     o.num_steps = 120000;
-    const std::vector<int> outputs = {system.dofs.dof(system.dofs.node_index("s.2"), model::Component::Ux),
-                                      system.dofs.dof(system.dofs.node_index("s.2"), model::Component::Uy),
-                                      system.dofs.dof(system.dofs.node_index("s.1"), model::Component::Ry)};
+    const std::vector<int> outputs = {
+        system.dofs.dof(system.dofs.node_index("s.2"), model::Component::Ux),
+        system.dofs.dof(system.dofs.node_index("s.2"), model::Component::Uy),
+        system.dofs.dof(system.dofs.node_index("s.1"), model::Component::Ry)};
     std::vector<double> ts;
     std::vector<std::vector<double>> xs(outputs.size());
     Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size()), v = q;
     const auto summary = integrate(
         rotor, o, q, v,
-        [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+        [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&,
+            const Eigen::VectorXd&) {
           if (t < 5.5) return;
           ts.push_back(t);
           for (std::size_t i = 0; i < outputs.size(); ++i) xs[i].push_back(qs[outputs[i]]);
@@ -214,7 +217,8 @@ TEST(LinearRotorSystem, GyroscopicRunUpReusesTheFactorisationAndTracksTheHarmoni
   Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size()), v = q;
   const auto summary = integrate(
       rotor, o, q, v,
-      [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+      [&](int, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&,
+          const Eigen::VectorXd&) {
         ts.push_back(t);
         xs.push_back(qs[ex]);
         ys.push_back(qs[ey]);

@@ -1,10 +1,10 @@
 // TangentSolver: residual of the defining equation (S + U diag(d) U^T) x = b for symmetric
 // positive definite, indefinite and unsymmetric S, with and without a low-rank part.
+#include "geardyn/transient/tangent_solver.hpp"
+
 #include <gtest/gtest.h>
 
 #include <random>
-
-#include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
 namespace {

@@ -12,7 +12,6 @@
 // (fftw_execute_dft_r2c on buffers of the plan's alignment) is thread-safe, so these functions
 // may be called concurrently from the threads of a study.
 #include <Eigen/Dense>
-
 #include <complex>
 
 namespace geardyn::signal {

@@ -22,7 +22,7 @@ struct AmplitudeSpectrum {
   Eigen::VectorXd phase;         ///< arg X_k [rad] of the windowed signal (cosine phase
                                  ///< at t = 0 for a rectangular window, on-bin)
   double sample_rate_hz = 0.0;
-  double resolution_hz = 0.0;    ///< fs / n
+  double resolution_hz = 0.0;  ///< fs / n
   int samples = 0;
   Window window = Window::Hann;
 };

@@ -24,8 +24,9 @@ Eigen::VectorXd cosine_sum(const std::array<double, N>& a, int n) {
     double value = 0.0;
     for (std::size_t k = 0; k < N; ++k) {
       const double sign = (k % 2 == 0) ? 1.0 : -1.0;
-      value += sign * a[k] *
-               std::cos(2.0 * std::numbers::pi * static_cast<double>(k) * j / static_cast<double>(n));
+      value +=
+          sign * a[k] *
+          std::cos(2.0 * std::numbers::pi * static_cast<double>(k) * j / static_cast<double>(n));
     }
     w[j] = value;
   }
@@ -60,9 +61,12 @@ void check_length(int n) {
 Eigen::VectorXd window_coefficients(Window w, int n) {
   check_length(n);
   switch (w) {
-    case Window::Rectangular: return Eigen::VectorXd::Ones(n);
-    case Window::Hann: return cosine_sum(kHann, n);
-    case Window::FlatTop: return cosine_sum(kFlatTop, n);
+    case Window::Rectangular:
+      return Eigen::VectorXd::Ones(n);
+    case Window::Hann:
+      return cosine_sum(kHann, n);
+    case Window::FlatTop:
+      return cosine_sum(kFlatTop, n);
   }
   throw std::invalid_argument("unknown window");
 }
@@ -77,8 +81,10 @@ double equivalent_noise_bandwidth(Window w, int n) {
 
 double max_scalloping_loss(Window w) {
   switch (w) {
-    case Window::Rectangular: return 1.0 - response(kRectangular, 0.5);
-    case Window::Hann: return 1.0 - response(kHann, 0.5);
+    case Window::Rectangular:
+      return 1.0 - response(kRectangular, 0.5);
+    case Window::Hann:
+      return 1.0 - response(kHann, 0.5);
     case Window::FlatTop: {
       // The flat top's response is not monotonic between bins: take the worst deviation.
       double worst = 0.0;

@@ -7,7 +7,6 @@
 // correction. Reference: F. J. Harris, "On the use of windows for harmonic analysis with the
 // discrete Fourier transform", Proc. IEEE 66(1), 1978, pp. 51-83 (Table 1).
 #include <Eigen/Dense>
-
 #include <string_view>
 
 namespace geardyn::signal {
@@ -21,9 +20,12 @@ enum class Window {
 
 constexpr std::string_view to_string(Window w) {
   switch (w) {
-    case Window::Rectangular: return "rectangular";
-    case Window::Hann: return "hann";
-    case Window::FlatTop: return "flattop";
+    case Window::Rectangular:
+      return "rectangular";
+    case Window::Hann:
+      return "hann";
+    case Window::FlatTop:
+      return "flattop";
   }
   return "rectangular";
 }

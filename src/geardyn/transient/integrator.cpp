@@ -43,8 +43,7 @@ std::vector<std::string> IntegratorOptions::validate() const {
   if (!(refactor_ratio > 0.0 && refactor_ratio < 1.0))
     problems.push_back(fmt::format("refactor_ratio must lie in (0, 1), got {}", refactor_ratio));
   if (!(max_growth_per_step > 1.0))
-    problems.push_back(
-        fmt::format("max_growth_per_step must be > 1, got {}", max_growth_per_step));
+    problems.push_back(fmt::format("max_growth_per_step must be > 1, got {}", max_growth_per_step));
   return problems;
 }
 
@@ -57,9 +56,9 @@ std::string IntegrationSummary::brief_report() const {
   std::string s = fmt::format(
       "{} (am={:.4g}, af={:.4g}, beta={:.4g}, gamma={:.4g}), h={:.4g} s: {}/{} steps to "
       "t={:.6g} s, {} factorisation(s), {} Newton iteration(s) (max {} per step), {}",
-      to_string(scheme), parameters.alpha_m, parameters.alpha_f, parameters.beta,
-      parameters.gamma, time_step, steps_taken, steps_requested, end_time, factorizations,
-      newton_iterations, max_iterations_in_step, to_string(status));
+      to_string(scheme), parameters.alpha_m, parameters.alpha_f, parameters.beta, parameters.gamma,
+      time_step, steps_taken, steps_requested, end_time, factorizations, newton_iterations,
+      max_iterations_in_step, to_string(status));
   if (!message.empty()) s += ": " + message;
   return s;
 }
@@ -225,9 +224,9 @@ IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions&
                               step, t1, iteration, previous_correction,
                               options.newton_tolerance * std::max(q_scale, q1.norm())));
     if (!all_finite(q1, v1, a1))
-      return fail(Status::Diverged,
-                  fmt::format("non-finite state at step {} (t = {:.6g} s, h = {:.3g} s)", step,
-                              t1, h));
+      return fail(
+          Status::Diverged,
+          fmt::format("non-finite state at step {} (t = {:.6g} s, h = {:.3g} s)", step, t1, h));
     const double size = state_size(q1, v1, a1, h);
     if (largest_state > 0.0 && size > options.max_growth_per_step * largest_state)
       return fail(Status::Diverged,

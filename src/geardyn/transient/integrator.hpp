@@ -33,7 +33,6 @@
 // The acceleration a_0 is made consistent with the equation of motion, M a_0 = -r(t_0, q_0,
 // v_0, 0), unless given.
 #include <Eigen/Dense>
-
 #include <functional>
 #include <limits>
 #include <optional>
@@ -108,15 +107,15 @@ struct IntegrationSummary {
   SchemeParameters parameters;
   double time_step = IntegratorOptions::kNaN;
   int steps_requested = 0;
-  int steps_taken = 0;           ///< accepted steps
+  int steps_taken = 0;                        ///< accepted steps
   double end_time = IntegratorOptions::kNaN;  ///< time of the last accepted state
   bool linear_time_invariant = false;
   bool consistent_initial_acceleration = true;
-  int factorizations = 0;        ///< of the iteration matrix (the mass matrix for a_0 not counted)
+  int factorizations = 0;  ///< of the iteration matrix (the mass matrix for a_0 not counted)
   long long newton_iterations = 0;
   long long residual_evaluations = 0;
   int max_iterations_in_step = 0;
-  std::string solver;            ///< the factorisation used for the iteration matrix
+  std::string solver;  ///< the factorisation used for the iteration matrix
 
   /// One line: scheme, steps, factorisations, iterations, status.
   std::string brief_report() const;

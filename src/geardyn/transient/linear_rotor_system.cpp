@@ -24,7 +24,8 @@ double SpeedProfile::acceleration(double t) const {
 double SpeedProfile::angle(double t) const {
   if (is_constant() || t <= 0.0) return speed_start * t;
   const double ramp = std::min(t, duration);
-  const double theta = speed_start * ramp + 0.5 * (speed_end - speed_start) * ramp * ramp / duration;
+  const double theta =
+      speed_start * ramp + 0.5 * (speed_end - speed_start) * ramp * ramp / duration;
   return theta + speed_end * (t - ramp);
 }
 
@@ -154,7 +155,7 @@ void LinearRotorSystem::add_external_force(double t, Eigen::VectorXd& f) const {
   for (const auto& u : unbalances_) {
     const double sense = u.speed_ratio < 0.0 ? -1.0 : 1.0;
     const double psi = u.speed_ratio * theta + sense * u.phase;
-    const double rate = u.speed_ratio * w;        // psi'
+    const double rate = u.speed_ratio * w;          // psi'
     const double rate_dot = u.speed_ratio * w_dot;  // psi''
     const double c = std::cos(psi), s = std::sin(psi);
     if (u.equation_e1 >= 0)
@@ -186,8 +187,7 @@ void LinearRotorSystem::residual(double t, const Eigen::VectorXd& q, const Eigen
   }
   if (system_.has_modal_damping()) {
     const Eigen::VectorXd modal_velocity = system_.modal_basis.transpose() * v;
-    r.noalias() +=
-        system_.modal_basis * system_.modal_coefficients.cwiseProduct(modal_velocity);
+    r.noalias() += system_.modal_basis * system_.modal_coefficients.cwiseProduct(modal_velocity);
   }
   force_.setZero(size());
   add_external_force(t, force_);

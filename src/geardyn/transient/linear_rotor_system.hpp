@@ -18,7 +18,6 @@
 // Re(F exp(i |r| W t)) of fe::unbalance_load.
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-
 #include <string>
 #include <vector>
 
@@ -35,7 +34,9 @@ struct SpeedProfile {
   double duration = 1.0;     ///< T [s] > 0 (irrelevant for constant speed)
 
   static SpeedProfile constant(double speed) { return {speed, speed, 1.0}; }
-  static SpeedProfile run_up(double from, double to, double duration) { return {from, to, duration}; }
+  static SpeedProfile run_up(double from, double to, double duration) {
+    return {from, to, duration};
+  }
   bool is_constant() const { return speed_start == speed_end; }
   double speed(double t) const;         ///< W(t) [rad/s]
   double acceleration(double t) const;  ///< W'(t) [rad/s^2] ((W1 - W0) / T inside the ramp)
@@ -63,8 +64,8 @@ class LinearRotorSystem final : public SecondOrderSystem {
   int size() const override { return system_.size(); }
   void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                 const Eigen::VectorXd& a, Eigen::VectorXd& r) override;
-  void tangent(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double c_m,
-               double c_c, double c_k, SparseMatrix& S) override;
+  void tangent(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double c_m, double c_c,
+               double c_k, SparseMatrix& S) override;
   bool tangent_low_rank(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v, double c_m,
                         double c_c, double c_k, Eigen::MatrixXd& U, Eigen::VectorXd& d) override;
   /// True at constant speed: then K(W), C(W) + W G are constant.

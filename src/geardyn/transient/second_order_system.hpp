@@ -46,8 +46,8 @@ class SecondOrderSystem {
   /// Called once a step has converged, with the accepted state at its end. A system with history
   /// (friction stick/slip, bolt preload sequence) commits its internal variables here; the
   /// residual calls of the next step see them.
-  virtual void commit_step(double /*t*/, const Eigen::VectorXd& /*q*/,
-                           const Eigen::VectorXd& /*v*/, const Eigen::VectorXd& /*a*/) {}
+  virtual void commit_step(double /*t*/, const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& /*v*/,
+                           const Eigen::VectorXd& /*a*/) {}
 };
 
 }  // namespace geardyn::transient

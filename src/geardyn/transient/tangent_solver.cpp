@@ -1,8 +1,9 @@
 #include "geardyn/transient/tangent_solver.hpp"
 
+#include <fmt/format.h>
+
 #include <Eigen/SparseCholesky>
 #include <Eigen/UmfPackSupport>
-#include <fmt/format.h>
 
 namespace geardyn::transient {
 namespace {
@@ -85,15 +86,19 @@ bool TangentSolver::factorize(const Eigen::SparseMatrix<double>& S_in, const Eig
     impl_->factored = S;
     impl_->lu.factorize(impl_->factored);
     if (impl_->lu.info() != Eigen::Success) {
-      failure_ = fmt::format("sparse LU (UMFPACK) of the {} x {} iteration matrix failed: "
-                             "the matrix is singular", n_, n_);
+      failure_ = fmt::format(
+          "sparse LU (UMFPACK) of the {} x {} iteration matrix failed: "
+          "the matrix is singular",
+          n_, n_);
       return false;
     }
     // UMFPACK reports an exactly zero pivot as success with a warning; check the pivots.
     const double rcond = impl_->lu.reciprocal_pivot_ratio();
     if (!(rcond > 1e-15)) {
-      failure_ = fmt::format("iteration matrix of size {} is singular to working precision "
-                             "(UMFPACK reciprocal pivot ratio {:.3g})", n_, rcond);
+      failure_ = fmt::format(
+          "iteration matrix of size {} is singular to working precision "
+          "(UMFPACK reciprocal pivot ratio {:.3g})",
+          n_, rcond);
       return false;
     }
     method_ = Method::LU;
@@ -117,8 +122,8 @@ bool TangentSolver::factorize(const Eigen::SparseMatrix<double>& S_in, const Eig
       impl_->solve_sparse(method_, U.col(j), column);
       impl_->W.col(j) = column;
     }
-    const Eigen::MatrixXd cap = Eigen::MatrixXd::Identity(U.cols(), U.cols()) +
-                                (U.transpose() * impl_->W) * d.asDiagonal();
+    const Eigen::MatrixXd cap =
+        Eigen::MatrixXd::Identity(U.cols(), U.cols()) + (U.transpose() * impl_->W) * d.asDiagonal();
     impl_->capacitance.compute(cap);
     if (!(std::abs(impl_->capacitance.determinant()) > 0.0)) {
       failure_ = "the low-rank (modal damping) update makes the iteration matrix singular";

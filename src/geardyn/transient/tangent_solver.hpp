@@ -8,7 +8,6 @@
 // which needs no inverse of D (modal damping coefficients may be zero).
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-
 #include <memory>
 #include <string>
 

@@ -57,7 +57,8 @@ void validate(const model::Model& model, const model::TransientSettings& s, cons
     fail("rho_infinity", "a value in [0, 1]", fmt::format("{}", s.rho_infinity));
   if (!(s.steady_fraction > 0.0 && s.steady_fraction <= 1.0))
     fail("steady_fraction", "a fraction in (0, 1]", fmt::format("{}", s.steady_fraction));
-  if (s.output_every < 1) fail("output_every", "an integer >= 1", fmt::format("{}", s.output_every));
+  if (s.output_every < 1)
+    fail("output_every", "an integer >= 1", fmt::format("{}", s.output_every));
   const double steps = std::ceil(s.duration / s.time_step * (1.0 - 1e-9));
   if (s.output_every > steps)
     fail("output_every",
@@ -118,15 +119,16 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
   result.sample_interval = settings.time_step * settings.output_every;
 
   // Sensors.
+  std::vector<const model::Sensor*> selected;
   for (const auto& sensor : model.sensors) {
-    if (!settings.sensors.empty() &&
-        std::find(settings.sensors.begin(), settings.sensors.end(), sensor.name) ==
-            settings.sensors.end())
+    if (!settings.sensors.empty() && std::find(settings.sensors.begin(), settings.sensors.end(),
+                                               sensor.name) == settings.sensors.end())
       continue;
     const int node = system.dofs.find_node(sensor.node);
     if (node < 0)
       throw InputError(sensor.where, "sensors." + sensor.name + ".node", "a node of the model",
                        "'" + sensor.node + "'");
+    selected.push_back(&sensor);
     result.sensor_names.push_back(sensor.name);
     result.sensor_rotational.push_back(is_rotation(sensor.dof));
     result.sensor_equations.push_back(system.dofs.dof(node, sensor.dof));
@@ -169,9 +171,9 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
       progress);
 
   const Eigen::Index rows = static_cast<Eigen::Index>(result.time.size());
-  result.values = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                                                 Eigen::RowMajor>>(
-      samples.data(), rows, static_cast<Eigen::Index>(n_sensors));
+  result.values =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          samples.data(), rows, static_cast<Eigen::Index>(n_sensors));
 
   result.status = result.integration.status;
   if (result.status != Status::Ok) {
@@ -182,8 +184,8 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
   // Steady part: the last steady_fraction of the record.
   const double t0 = result.time.front(), t1 = result.time.back();
   const double start = t1 - settings.steady_fraction * (t1 - t0);
-  const auto first = std::lower_bound(result.time.begin(), result.time.end(),
-                                      start - 1e-9 * settings.time_step);
+  const auto first =
+      std::lower_bound(result.time.begin(), result.time.end(), start - 1e-9 * settings.time_step);
   result.steady_first = static_cast<int>(first - result.time.begin());
   result.steady_start = result.time[static_cast<std::size_t>(result.steady_first)];
   const Eigen::Index steady_rows = rows - result.steady_first;
@@ -191,8 +193,7 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
   if (steady_rows >= kMinSpectrumSamples && n_sensors > 0) {
     const double fs = 1.0 / result.sample_interval;
     for (std::size_t s = 0; s < n_sensors; ++s) {
-      const Eigen::VectorXd x =
-          result.values.col(static_cast<Eigen::Index>(s)).tail(steady_rows);
+      const Eigen::VectorXd x = result.values.col(static_cast<Eigen::Index>(s)).tail(steady_rows);
       const auto spectrum = signal::amplitude_spectrum(x, fs, signal::Window::Hann);
       if (s == 0) {
         result.spectrum_frequency_hz = spectrum.frequency_hz;
@@ -204,30 +205,25 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
     }
   }
 
-  // Orbits: nodes with both a ux and a uy sensor (first of each, in sensor order).
+  // Orbits: nodes with both a ux and a uy sensor (the first of each, in sensor order).
   if (steady_rows >= 3) {
     std::vector<std::string> done;
-    for (std::size_t i = 0; i < model.sensors.size(); ++i) {
-      const auto& sx = model.sensors[i];
-      if (sx.dof != model::Component::Ux) continue;
-      if (std::find(done.begin(), done.end(), sx.node) != done.end()) continue;
-      const auto index_of = [&](const std::string& name) {
-        const auto it = std::find(result.sensor_names.begin(), result.sensor_names.end(), name);
-        return it == result.sensor_names.end() ? -1
-                                                : static_cast<int>(it - result.sensor_names.begin());
-      };
-      const int ix = index_of(sx.name);
-      if (ix < 0) continue;
+    for (std::size_t ix = 0; ix < selected.size(); ++ix) {
+      const model::Sensor& sx = *selected[ix];
+      if (sx.dof != model::Component::Ux ||
+          std::find(done.begin(), done.end(), sx.node) != done.end())
+        continue;
       int iy = -1;
-      for (const auto& sy : model.sensors)
-        if (sy.node == sx.node && sy.dof == model::Component::Uy && (iy = index_of(sy.name)) >= 0)
-          break;
+      for (std::size_t j = 0; j < selected.size() && iy < 0; ++j)
+        if (selected[j]->node == sx.node && selected[j]->dof == model::Component::Uy)
+          iy = static_cast<int>(j);
       if (iy < 0) continue;
       done.push_back(sx.node);
-      TransientOrbit orbit = estimate_orbit(result.values.col(ix).tail(steady_rows),
-                                            result.values.col(iy).tail(steady_rows));
+      TransientOrbit orbit =
+          estimate_orbit(result.values.col(static_cast<Eigen::Index>(ix)).tail(steady_rows),
+                         result.values.col(iy).tail(steady_rows));
       orbit.node = sx.node;
-      orbit.sensor_x = ix;
+      orbit.sensor_x = static_cast<int>(ix);
       orbit.sensor_y = iy;
       orbit.speed_ratio = system.dofs.node(system.dofs.node_index(sx.node)).speed_ratio;
       if (orbit.speed_ratio < 0.0) orbit.whirl = signal::reversed(orbit.whirl);
@@ -317,8 +313,8 @@ AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearS
   if (result.spectrum_frequency_hz.size() > 0) {
     Table spectrum;
     spectrum.name = "spectrum";
-    spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s",
-                                 result.steady_start);
+    spectrum.title = fmt::format(
+        "Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s", result.steady_start);
     const Eigen::VectorXd& f = result.spectrum_frequency_hz;
     const std::vector<double> fv(f.data(), f.data() + f.size());
     spectrum.add("frequency_hz", "Hz", fv);
@@ -366,7 +362,8 @@ AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearS
       trace.name = o.node;
       const Eigen::Index stride =
           std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
-      for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows; k += stride) {
+      for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows;
+           k += stride) {
         trace.x.push_back(result.values(k, o.sensor_x));
         trace.y.push_back(result.values(k, o.sensor_y));
       }
@@ -387,7 +384,8 @@ AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearS
   if (result.status == Status::Ok) {
     const double w_max = std::isnan(s.speed_end) ? s.speed : std::max(s.speed, s.speed_end);
     double ratio_max = 0.0;
-    for (const auto& node : system.dofs.nodes()) ratio_max = std::max(ratio_max, std::abs(node.speed_ratio));
+    for (const auto& node : system.dofs.nodes())
+      ratio_max = std::max(ratio_max, std::abs(node.speed_ratio));
     const double w_exc = w_max * std::max(ratio_max, 1.0);
     if (w_exc > 0.0) {
       const double wh = w_exc * s.time_step;
@@ -409,8 +407,7 @@ AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearS
           "bins reads up to {:.1f} % low",
           result.steady_start, result.time.back(),
           static_cast<long>(result.time.size()) - result.steady_first,
-          result.spectrum_resolution_hz,
-          100 * signal::max_scalloping_loss(signal::Window::Hann)));
+          result.spectrum_resolution_hz, 100 * signal::max_scalloping_loss(signal::Window::Hann)));
     else
       out.notes.push_back(fmt::format("the steady part holds fewer than {} samples: no spectra",
                                       kMinSpectrumSamples));

@@ -9,7 +9,6 @@
 //        signal/spectrum.hpp) and orbits of the nodes with both ux and uy sensors.
 // The record starts from rest (q = v = 0) at t = 0 with a consistent acceleration.
 #include <Eigen/Dense>
-
 #include <limits>
 #include <string>
 #include <vector>
@@ -56,8 +55,8 @@ struct TransientResult {
   std::vector<double> speed;            ///< reference speed at each sample [rad/s]
   Eigen::MatrixXd values;               ///< samples x sensors [m or rad]
 
-  int steady_first = 0;       ///< first sample of the steady part
-  double steady_start = kNaN; ///< its time [s]
+  int steady_first = 0;        ///< first sample of the steady part
+  double steady_start = kNaN;  ///< its time [s]
   Eigen::VectorXd spectrum_frequency_hz;
   Eigen::MatrixXd spectrum_amplitude;  ///< bins x sensors, 0-peak, Hann, coherent-gain corrected
   double spectrum_resolution_hz = kNaN;
