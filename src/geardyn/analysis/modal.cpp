@@ -217,6 +217,30 @@ ModalResult run_modal(const fe::LinearSystem& system, const model::ModalSettings
 
 namespace {
 
+// Relative amplitude of each sensor in each mode: |phi at the sensor| divided by the largest
+// amplitude of the same kind (translation or rotation, whose units differ) anywhere in the
+// mode. It answers "which modes carry this DOF" (e.g. the swing of a driven gear, as in Wang
+// et al. 2020, Table 3). A constrained sensor DOF reads 0.
+void add_sensor_columns(Table& t, const model::Model& model, const fe::LinearSystem& system,
+                        const std::vector<Mode>& modes) {
+  const auto& dofs = system.dofs;
+  for (const auto& sensor : model.sensors) {
+    const int node = dofs.find_node(sensor.node);
+    if (node < 0) continue;
+    const int eq = dofs.dof(node, sensor.dof);
+    const bool rotation = static_cast<int>(sensor.dof) >= 3;
+    std::vector<double> relative;
+    for (const Mode& m : modes) {
+      double largest = 0.0;
+      for (int k = 0; k < m.shape.size(); ++k)
+        if ((static_cast<int>(dofs.dof_component(k)) >= 3) == rotation)
+          largest = std::max(largest, std::abs(m.shape[k]));
+      relative.push_back(eq < 0 || largest == 0.0 ? 0.0 : std::abs(m.shape[eq]) / largest);
+    }
+    t.add(sensor.name + "_relative", "", relative);
+  }
+}
+
 Table modes_table(const ModalResult& r) {
   Table t;
   t.name = "modes";
@@ -375,11 +399,16 @@ AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& s
   out.message = result.message;
   out.run_time_s = result.run_time_s;
   out.tables.push_back(modes_table(result));
+  add_sensor_columns(out.tables.back(), model, system, result.primary());
   out.tables.push_back(undamped_table(result));
   out.tables.push_back(shapes_table(model, system, result.primary()));
   out.plots = shape_plots(model, system, result.primary());
 
   out.notes.push_back(fmt::format("Undamped modes: {}.", result.undamped_report));
+  if (!model.sensors.empty())
+    out.notes.push_back(
+        "Columns <sensor>_relative: the sensor's amplitude in the mode divided by the largest "
+        "amplitude of the same kind (translation or rotation) in that mode.");
   if (result.complex_requested)
     out.notes.push_back(fmt::format("Complex modes at {:.6g} rpm: {}.", result.speed * kRpmPerRadS,
                                     result.complex_report));
