@@ -21,23 +21,6 @@ constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 /// Eigenvalues closer than this (relative) count as one repeated eigenvalue when tracking.
 constexpr double kRepeatedTolerance = 1e-6;
 
-int severity(Status s) {
-  switch (s) {
-    case Status::Ok:
-      return 0;
-    case Status::NotConverged:
-      return 1;
-    case Status::FewerModes:
-      return 2;
-    case Status::Diverged:
-      return 3;
-    case Status::Singular:
-      return 4;
-    case Status::Failed:
-      return 5;
-  }
-  return 5;
-}
 
 void add_line(std::vector<EngineOrderLine>& lines, const std::string& label, double order) {
   for (auto& l : lines) {
@@ -220,7 +203,7 @@ CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& s
     if (s == Status::FewerModes && cx.converged - found_rigid >= n_tracks) s = Status::Ok;
     if (s != Status::Ok) {
       ++problem_speeds;
-      if (severity(s) > severity(status)) status = s;
+      status = worse(status, s);
       if (first_problem.empty())
         first_problem = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, cx.message);
     }

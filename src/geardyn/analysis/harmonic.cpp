@@ -1,4 +1,5 @@
 #include "geardyn/analysis/harmonic.hpp"
+#include "geardyn/analysis/settings_location.hpp"
 
 #include <fmt/format.h>
 #include <umfpack.h>
@@ -439,23 +440,6 @@ std::string unit_slug(const std::string& unit) {
   return out;
 }
 
-// The analysis whose settings these are (by address): its name, location and key path
-// ("analyses[i]", as the parser names it).
-SourceLocation analysis_location(const model::Model& model, const void* settings,
-                                 std::string& name, std::string& key) {
-  for (std::size_t i = 0; i < model.analyses.size(); ++i) {
-    const model::Analysis& a = model.analyses[i];
-    const void* p = std::visit([](const auto& s) -> const void* { return &s; }, a.settings);
-    if (p == settings) {
-      name = a.name;
-      key = fmt::format("analyses[{}]", i);
-      return a.where;
-    }
-  }
-  key = "analysis";
-  name = "harmonic";
-  return SourceLocation{model.source_file, 0, 0};
-}
 
 void validate_grid(const model::HarmonicSettings& s, const SourceLocation& where,
                    const std::string& key) {
@@ -752,7 +736,7 @@ FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system
                        const model::HarmonicSettings& settings, Progress& progress,
                        const AdaptiveGridOptions& options) {
   std::string name, key;
-  const SourceLocation where = analysis_location(model, &settings, name, key);
+  const SourceLocation where = analysis_location(model, &settings, "harmonic", name, key);
   validate_grid(settings, where, key);
   const fe::DofMap& dofs = system.dofs;
 

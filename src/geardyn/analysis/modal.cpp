@@ -20,24 +20,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 constexpr int kPlottedModes = 6;
 
-// Severity order used to combine the statuses of the undamped and complex solves.
-int severity(Status s) {
-  switch (s) {
-    case Status::Ok:
-      return 0;
-    case Status::NotConverged:
-      return 1;
-    case Status::FewerModes:
-      return 2;
-    case Status::Diverged:
-      return 3;
-    case Status::Singular:
-      return 4;
-    case Status::Failed:
-      return 5;
-  }
-  return 5;
-}
 
 }  // namespace
 
@@ -199,7 +181,7 @@ ModalResult run_modal(const fe::LinearSystem& system, const model::ModalSettings
       result.complex.push_back(describe_mode(system, cx.eigenvalues[j], cx.eigenvectors.col(j),
                                              cx.residuals[j], settings.speed, rigid));
     if (cx.status != Status::Ok) {
-      if (severity(cx.status) > severity(status)) status = cx.status;
+      status = worse(status, cx.status);
       message += (message.empty() ? "" : "; ") + std::string("complex modes: ") + cx.message;
     }
     progress.update(2);

@@ -1,4 +1,5 @@
 #include "geardyn/analysis/unbalance.hpp"
+#include "geardyn/analysis/settings_location.hpp"
 
 #include <fmt/format.h>
 
@@ -16,23 +17,6 @@ using Complex = std::complex<double>;
 constexpr double kPi = std::numbers::pi;
 constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
 
-// The analysis whose settings these are (by address): its name, location and key path
-// ("analyses[i]", as the parser names it).
-SourceLocation analysis_location(const model::Model& model, const void* settings,
-                                 std::string& name, std::string& key) {
-  for (std::size_t i = 0; i < model.analyses.size(); ++i) {
-    const model::Analysis& a = model.analyses[i];
-    const void* p = std::visit([](const auto& s) -> const void* { return &s; }, a.settings);
-    if (p == settings) {
-      name = a.name;
-      key = fmt::format("analyses[{}]", i);
-      return a.where;
-    }
-  }
-  key = "analysis";
-  name = "unbalance";
-  return SourceLocation{model.source_file, 0, 0};
-}
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
@@ -52,7 +36,7 @@ double UnbalanceResult::phase_lag_deg(std::complex<double> x) {
 UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem& system,
                               const model::UnbalanceSettings& settings, Progress& progress) {
   std::string name, key;
-  const SourceLocation where = analysis_location(model, &settings, name, key);
+  const SourceLocation where = analysis_location(model, &settings, "unbalance", name, key);
   const fe::DofMap& dofs = system.dofs;
 
   if (settings.speeds.empty())

@@ -25,4 +25,21 @@ constexpr std::string_view to_string(Status s) {
   return "failed";
 }
 
+/// Rank of a status for combining the outcomes of several solves: the worse one wins
+/// (Ok < NotConverged < FewerModes < Diverged < Singular < Failed).
+constexpr int severity(Status s) {
+  switch (s) {
+    case Status::Ok: return 0;
+    case Status::NotConverged: return 1;
+    case Status::FewerModes: return 2;
+    case Status::Diverged: return 3;
+    case Status::Singular: return 4;
+    case Status::Failed: return 5;
+  }
+  return 5;
+}
+
+/// The worse of two statuses.
+constexpr Status worse(Status a, Status b) { return severity(b) > severity(a) ? b : a; }
+
 }  // namespace geardyn
