@@ -2,7 +2,10 @@
 # Both install the dependencies (scripts/install-deps, idempotent), configure and build.
 BUILD ?= build
 JOBS ?= $(shell nproc)
-WERROR ?= OFF
+# WERROR=ON|OFF sets GEARDYN_WERROR; when not given the build folder keeps its setting (so
+# `make demo` after `make test WERROR=ON` does not rebuild everything).
+WERROR ?=
+WERROR_FLAG = $(if $(WERROR),-DGEARDYN_WERROR=$(WERROR),)
 CMAKE_FLAGS ?=
 DEMO_MODEL ?= examples/geared_rotor_hcf/model.toml
 DEMO_OUT ?= results/geared_rotor_hcf
@@ -15,10 +18,10 @@ deps:
 	./scripts/install-deps
 
 $(BUILD)/build.ninja:
-	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release -DGEARDYN_WERROR=$(WERROR) $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(WERROR_FLAG) $(CMAKE_FLAGS)
 
 build: deps $(BUILD)/build.ninja
-	cmake -DGEARDYN_WERROR=$(WERROR) $(BUILD) >/dev/null
+	cmake $(WERROR_FLAG) $(BUILD) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
