@@ -24,9 +24,9 @@ build: deps $(BUILD)/build.ninja
 	cmake $(WERROR_FLAG) $(BUILD) >/dev/null
 	cmake --build $(BUILD) -j $(JOBS)
 
+# The program's last line is "Report: <absolute path>/report.html".
 demo: build
 	$(BUILD)/apps/geardyn/geardyn run $(DEMO_MODEL) -o $(DEMO_OUT)
-	@echo "Report: $(abspath $(DEMO_OUT))/report.html"
 
 # Default test run: unit + validation (slow tests excluded).
 test: build
