@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <variant>
 
 namespace geardyn::analysis {
@@ -21,6 +22,25 @@ SourceLocation analysis_location(const model::Model& model, const void* settings
   key = "analysis";
   name = fallback_name;
   return SourceLocation{model.source_file, 0, 0};
+}
+
+std::vector<const model::Sensor*> select_sensors(const model::Model& model,
+                                                 const std::vector<std::string>& names,
+                                                 const SourceLocation& where,
+                                                 const std::string& key) {
+  std::vector<const model::Sensor*> sensors;
+  if (names.empty()) {
+    for (const auto& s : model.sensors) sensors.push_back(&s);
+    return sensors;
+  }
+  for (const auto& sensor_name : names) {
+    auto it = std::find_if(model.sensors.begin(), model.sensors.end(),
+                           [&](const model::Sensor& s) { return s.name == sensor_name; });
+    if (it == model.sensors.end())
+      throw InputError(where, key + ".sensors", "the name of a sensor", "'" + sensor_name + "'");
+    sensors.push_back(&*it);
+  }
+  return sensors;
 }
 
 }  // namespace geardyn::analysis

@@ -1,6 +1,7 @@
 #pragma once
 // Where an analysis's settings came from, for error messages of the analyses.
 #include <string>
+#include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/model/model.hpp"
@@ -14,5 +15,12 @@ namespace geardyn::analysis {
 SourceLocation analysis_location(const model::Model& model, const void* settings,
                                  const std::string& fallback_name, std::string& name,
                                  std::string& key);
+
+/// The sensors an analysis reports: all of the model's when `names` is empty, else those named
+/// (in that order). An unknown name is an InputError at `key`.sensors.
+std::vector<const model::Sensor*> select_sensors(const model::Model& model,
+                                                 const std::vector<std::string>& names,
+                                                 const SourceLocation& where,
+                                                 const std::string& key);
 
 }  // namespace geardyn::analysis

@@ -65,18 +65,8 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   result.modal_damping = system.has_modal_damping();
 
   // Sensors.
-  std::vector<const model::Sensor*> sensors;
-  if (settings.sensors.empty()) {
-    for (const auto& s : model.sensors) sensors.push_back(&s);
-  } else {
-    for (const auto& sensor_name : settings.sensors) {
-      auto it = std::find_if(model.sensors.begin(), model.sensors.end(),
-                             [&](const model::Sensor& s) { return s.name == sensor_name; });
-      if (it == model.sensors.end())
-        throw InputError(where, key + ".sensors", "the name of a sensor", "'" + sensor_name + "'");
-      sensors.push_back(&*it);
-    }
-  }
+  const std::vector<const model::Sensor*> sensors =
+      select_sensors(model, settings.sensors, where, key);
   std::vector<int> sensor_eq;
   for (const auto* s : sensors) {
     const int node = dofs.find_node(s->node);
