@@ -16,8 +16,8 @@ namespace {
 using namespace geardyn;
 
 // A 1.5 m steel shaft refined into n_elements Timoshenko elements (the same rotor at every size,
-// so only the discretisation grows), a disk every tenth of its length, isotropic bearings at both ends and at mid-span, light Rayleigh damping, one
-// unbalance and two sensors.
+// so only the discretisation grows), a disk every tenth of its length, isotropic bearings at both
+// ends and at mid-span, light Rayleigh damping, one unbalance and two sensors.
 model::Model rotor(int n_elements) {
   model::Model m;
   m.title = "benchmark rotor";
@@ -51,8 +51,8 @@ model::Model rotor(int n_elements) {
     b.node = "s." + std::to_string(station);
     model::Bearing::Matrix6 k{}, c{};
     k[0] = k[7] = 1e7;
-    k[14] = 1e8;   // axial
-    k[35] = 1e5;   // torsional, keeps the rotor from spinning freely in the model
+    k[14] = 1e8;  // axial
+    k[35] = 1e5;  // torsional, keeps the rotor from spinning freely in the model
     c[0] = c[7] = 1e3;
     b.stiffness = {k};
     b.damping = {c};
@@ -79,7 +79,12 @@ void BM_Assemble(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(analysis::build_system(m));
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_Assemble)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
+BENCHMARK(BM_Assemble)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity();
 
 void BM_Modal(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
@@ -103,8 +108,13 @@ void BM_Campbell100(benchmark::State& state) {
     benchmark::DoNotOptimize(analysis::run_campbell(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_Campbell100)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)
-    ->Complexity()->Iterations(1);
+BENCHMARK(BM_Campbell100)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity()
+    ->Iterations(1);
 
 void BM_Frf10k(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
@@ -119,7 +129,11 @@ void BM_Frf10k(benchmark::State& state) {
     benchmark::DoNotOptimize(analysis::run_harmonic(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_Frf10k)->Arg(100)->Arg(1000)->Unit(benchmark::kMillisecond)->Complexity()
+BENCHMARK(BM_Frf10k)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity()
     ->Iterations(1);
 
 void BM_Unbalance1k(benchmark::State& state) {
@@ -131,7 +145,12 @@ void BM_Unbalance1k(benchmark::State& state) {
     benchmark::DoNotOptimize(analysis::run_unbalance(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_Unbalance1k)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)
-    ->Complexity()->Iterations(1);
+BENCHMARK(BM_Unbalance1k)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity()
+    ->Iterations(1);
 
 }  // namespace

@@ -105,10 +105,10 @@ int command_run(const RunOptions& options, int argc, char** argv) {
               system.dofs.num_nodes(), system.size());
   if (!failed) {
     for (const auto& a : m.analyses) {
-      const bool selected = options.only.empty()
-                                ? a.enabled
-                                : std::find(options.only.begin(), options.only.end(), a.name) !=
-                                      options.only.end();
+      const bool selected =
+          options.only.empty()
+              ? a.enabled
+              : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end();
       if (!selected) continue;
       study::RunContext context;
       context.document = &document;
@@ -140,10 +140,11 @@ int command_check(const std::string& model_path, const std::vector<std::string>&
   std::size_t elements = 0;
   for (const auto& s : m.shafts)
     for (const auto& e : s.elements) elements += static_cast<std::size_t>(e.divisions);
-  std::printf("%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
-              "%zu analyses\n",
-              model_path.c_str(), m.shafts.size(), elements, m.disks.size(), m.bearings.size(),
-              m.gear_meshes.size(), m.analyses.size());
+  std::printf(
+      "%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
+      "%zu analyses\n",
+      model_path.c_str(), m.shafts.size(), elements, m.disks.size(), m.bearings.size(),
+      m.gear_meshes.size(), m.analyses.size());
   return 0;
 }
 

@@ -1,8 +1,8 @@
 // geardyn: command-line program. Sub-commands: run, check, schema.
 // Exit codes: 0 success, 1 an analysis failed numerically, 2 bad input or usage.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>

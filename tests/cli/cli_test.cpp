@@ -2,7 +2,6 @@
 // the CSV files they write; exit codes (0 ok, 1 numerical failure, 2 bad input); bad input
 // leaves no results folder; a numerical failure leaves a manifest that says so.
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <array>
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -30,14 +30,16 @@ struct ProcessResult {
 };
 
 ProcessResult run(const std::string& args) {
-  const fs::path err_file = fs::temp_directory_path() / ("geardyn_cli_err_" + std::to_string(::getpid()));
+  const fs::path err_file =
+      fs::temp_directory_path() / ("geardyn_cli_err_" + std::to_string(::getpid()));
   const std::string command = kExe + " " + args + " 2> " + err_file.string();
   ProcessResult r;
   FILE* pipe = ::popen(command.c_str(), "r");
   EXPECT_NE(pipe, nullptr);
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) r.out.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
+    r.out.append(buffer.data(), n);
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   std::ifstream in(err_file);
@@ -94,8 +96,8 @@ TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_NE(v.out.find("geardyn 0."), std::string::npos) << v.out;
   EXPECT_EQ(run("--help").exit_code, 0);
-  EXPECT_EQ(run("").exit_code, 2);             // a sub-command is required
-  EXPECT_EQ(run("frobnicate").exit_code, 2);   // unknown sub-command
+  EXPECT_EQ(run("").exit_code, 2);            // a sub-command is required
+  EXPECT_EQ(run("frobnicate").exit_code, 2);  // unknown sub-command
 }
 
 TEST(Cli, SchemaIsTheCheckedInModelReference) {
@@ -114,7 +116,8 @@ TEST(Cli, SchemaIsTheCheckedInModelReference) {
 // the discretisation-consistent agreement (the model is the book's 6-element model).
 TEST(Cli, FriswellExample591ReproducesTheBook) {
   const fs::path out = fresh_dir("friswell");
-  const ProcessResult r = run("run -q " + kSource + "/examples/friswell_5_9_1/model.toml -o " + out.string());
+  const ProcessResult r =
+      run("run -q " + kSource + "/examples/friswell_5_9_1/model.toml -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<double> at0 = {86.658, 86.658, 274.313, 274.313, 716.786, 716.786};
   const std::vector<double> at4000 = {85.389, 87.796, 251.785, 294.713, 600.179, 827.075};
@@ -188,8 +191,8 @@ TEST(Cli, GearedRotorDemoRunsAndTheMeshCarriesTheSwing) {
     return with_swing;
   };
   int hpr_uncoupled = 0, hpr_coupled = 0;
-  EXPECT_EQ(count_hpr_modes_with_swing(out / "modes_without_mesh" / "modes.csv", 1e-9,
-                                       hpr_uncoupled), 0);
+  EXPECT_EQ(
+      count_hpr_modes_with_swing(out / "modes_without_mesh" / "modes.csv", 1e-9, hpr_uncoupled), 0);
   EXPECT_GT(hpr_uncoupled, 0);
   EXPECT_GT(count_hpr_modes_with_swing(out / "modes" / "modes.csv", 1e-3, hpr_coupled), 0);
 }
@@ -213,16 +216,19 @@ TEST(Cli, UndefinedNodeIsBadInput) {
 
 TEST(Cli, MissingFileAndBadOverrideAreBadInput) {
   EXPECT_EQ(run("check /nonexistent/model.toml").exit_code, 2);
-  const ProcessResult r = run("check " + kSource + "/examples/friswell_5_9_1/model.toml --set bearings[0].kxx=-5");
+  const ProcessResult r =
+      run("check " + kSource + "/examples/friswell_5_9_1/model.toml --set bearings[0].kxx=-5");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bearings[0].kxx"), std::string::npos) << r.err;
-  const ProcessResult ok = run("check " + kSource + "/examples/friswell_5_9_1/model.toml --set bearings[0].kxx=2e6");
+  const ProcessResult ok =
+      run("check " + kSource + "/examples/friswell_5_9_1/model.toml --set bearings[0].kxx=2e6");
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
-  const ProcessResult r = run("run -q " + kSource + "/tests/cli/data/free_rotor_frf.toml -o " + out.string());
+  const ProcessResult r =
+      run("run -q " + kSource + "/tests/cli/data/free_rotor_frf.toml -o " + out.string());
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("frf"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("rigid-body"), std::string::npos) << r.err;

@@ -65,7 +65,8 @@ Eigen::VectorXd rigid_motion(const LinearSystem& s, int i) {
 }
 
 TEST(Assembly, FreeRotorHasSixRigidBodyModesInAnyOrientation) {
-  for (const model::Vec3& axis : {model::Vec3{0, 0, 1}, model::Vec3{1, 0, 0}, model::Vec3{0.3, -0.5, 0.8}}) {
+  for (const model::Vec3& axis :
+       {model::Vec3{0, 0, 1}, model::Vec3{1, 0, 0}, model::Vec3{0.3, -0.5, 0.8}}) {
     const LinearSystem s = assemble(free_rotor(axis));
     ASSERT_EQ(s.size(), 5 * 6);
     const Eigen::MatrixXd K = Eigen::MatrixXd(s.K);
@@ -75,7 +76,8 @@ TEST(Assembly, FreeRotorHasSixRigidBodyModesInAnyOrientation) {
     }
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(K);
     int zero = 0;
-    for (int i = 0; i < K.rows(); ++i) zero += std::abs(eig.eigenvalues()(i)) < 1e-10 * K.norm() ? 1 : 0;
+    for (int i = 0; i < K.rows(); ++i)
+      zero += std::abs(eig.eigenvalues()(i)) < 1e-10 * K.norm() ? 1 : 0;
     EXPECT_EQ(zero, 6);
     // Total mass seen by every global translation.
     const double total = shaft_mass() + 4.0 + 0.5;
@@ -92,10 +94,11 @@ TEST(Assembly, FreeRotorHasSixRigidBodyModesInAnyOrientation) {
     EXPECT_NEAR((G + G.transpose()).norm(), 0.0, 1e-15);
     const int rx = s.dofs.dof(2, Component::Rx), ry = s.dofs.dof(2, Component::Ry);
     const Eigen::MatrixXd G_shaft_only = Eigen::MatrixXd(assemble([&] {
-                                           model::Model m = free_rotor(axis);
-                                           m.disks.clear();
-                                           return m;
-                                         }()).G);
+                                                           model::Model m = free_rotor(axis);
+                                                           m.disks.clear();
+                                                           return m;
+                                                         }())
+                                                             .G);
     EXPECT_NEAR(G(rx, ry) - G_shaft_only(rx, ry), 1.5 * 0.02, 1e-15);
   }
 }
@@ -119,7 +122,8 @@ TEST(Assembly, RayleighAndStructuralDamping) {
   m.damping.rayleigh_beta = 1e-5;
   m.damping.loss_factor = 0.002;
   const LinearSystem s = assemble(m);
-  const Eigen::MatrixXd C = Eigen::MatrixXd(s.C), M = Eigen::MatrixXd(s.M), K = Eigen::MatrixXd(s.K);
+  const Eigen::MatrixXd C = Eigen::MatrixXd(s.C), M = Eigen::MatrixXd(s.M),
+                        K = Eigen::MatrixXd(s.K);
   EXPECT_NEAR((C - 2.0 * M - 1e-5 * K).norm(), 0.0, 1e-12 * C.norm());
   // K_loss = 0.002 K + 0.01 K_shaft; the bearing only gets the global part.
   m.shafts[0].elements[0].loss_factor = 0.0;
@@ -156,7 +160,8 @@ TEST(Assembly, SpeedDependentBearingInterpolates) {
   EXPECT_NEAR(s.C_at(150.0).coeff(uy, uy), 150.0, 1e-9);
   // damping_dense adds speed x G.
   const Eigen::MatrixXd D = s.damping_dense(250.0);
-  EXPECT_NEAR((D - Eigen::MatrixXd(s.C_at(250.0)) - 250.0 * Eigen::MatrixXd(s.G)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((D - Eigen::MatrixXd(s.C_at(250.0)) - 250.0 * Eigen::MatrixXd(s.G)).norm(), 0.0,
+              1e-9);
 }
 
 TEST(Assembly, NodeToNodeBearingActsOnRelativeMotion) {
@@ -187,8 +192,10 @@ TEST(Assembly, ModalDampingTermInDenseDamping) {
   s.modal_basis = Eigen::MatrixXd::Random(s.size(), 2);
   s.modal_coefficients = Eigen::Vector2d(3.0, 4.0);
   const Eigen::MatrixXd extra = s.damping_dense(0.0) - Eigen::MatrixXd(s.C);
-  EXPECT_NEAR((extra - s.modal_basis * Eigen::Vector2d(3, 4).asDiagonal() * s.modal_basis.transpose()).norm(),
-              0.0, 1e-12);
+  EXPECT_NEAR(
+      (extra - s.modal_basis * Eigen::Vector2d(3, 4).asDiagonal() * s.modal_basis.transpose())
+          .norm(),
+      0.0, 1e-12);
 }
 
 TEST(Loads, UnitLoadAndConstrainedDof) {

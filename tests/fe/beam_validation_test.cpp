@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
-
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -121,8 +120,8 @@ TEST(BeamValidation, EulerBernoulliClosedFormsAllSupports) {
     for (int i = 0; i < 3; ++i) {
       const double exact = euler_bernoulli_frequency(c.beta_L(i), L, d);
       EXPECT_LT(test::relative_error(w(c.rigid + i), exact), 1e-5)
-          << "support " << static_cast<int>(c.support) << " mode " << i + 1 << ": " << w(c.rigid + i)
-          << " vs " << exact;
+          << "support " << static_cast<int>(c.support) << " mode " << i + 1 << ": "
+          << w(c.rigid + i) << " vs " << exact;
     }
   }
 }
@@ -138,14 +137,16 @@ TEST(BeamValidation, EulerBernoulliConvergenceOrderIsFour) {
     const Eigen::VectorXd w = elastic_frequencies(
         planar_beam(Support::PinnedPinned, model::BeamTheory::EulerBernoulli, false, L, d, n), 0);
     Eigen::VectorXd e(3);
-    for (int i = 0; i < 3; ++i) e(i) = test::relative_error(w(i), euler_bernoulli_frequency((i + 1) * kPi, L, d));
+    for (int i = 0; i < 3; ++i)
+      e(i) = test::relative_error(w(i), euler_bernoulli_frequency((i + 1) * kPi, L, d));
     errors.push_back(e);
   }
   for (int i = 0; i < 3; ++i) {
     const double order = std::log2(errors[1](i) / errors[2](i));
     RecordProperty("eb_order_mode" + std::to_string(i + 1), std::to_string(order));
     // Asymptotic range reached from n = 8 on; +-0.15 allows the pre-asymptotic tail of mode 3.
-    EXPECT_NEAR(order, 4.0, 0.15) << "mode " << i + 1 << " errors " << errors[1](i) << " -> " << errors[2](i);
+    EXPECT_NEAR(order, 4.0, 0.15) << "mode " << i + 1 << " errors " << errors[1](i) << " -> "
+                                  << errors[2](i);
   }
 }
 
@@ -161,7 +162,8 @@ TEST(BeamValidation, TimoshenkoPinnedPinnedWithShearAndRotaryInertia) {
   std::vector<Eigen::VectorXd> frequencies;
   for (int n : {16, 32, 64}) {
     frequencies.push_back(elastic_frequencies(
-        planar_beam(Support::PinnedPinned, model::BeamTheory::Timoshenko, true, L, d, n, kappa), 0));
+        planar_beam(Support::PinnedPinned, model::BeamTheory::Timoshenko, true, L, d, n, kappa),
+        0));
   }
   // The shear correction matters: the Euler-Bernoulli value is far off for mode 3.
   EXPECT_GT(test::relative_error(euler_bernoulli_frequency(3 * kPi, L, d),
@@ -174,7 +176,8 @@ TEST(BeamValidation, TimoshenkoPinnedPinnedWithShearAndRotaryInertia) {
     const double e64 = test::relative_error(frequencies[2](i), exact);
     const double order = std::log2(e32 / e64);
     RecordProperty("timoshenko_order_mode" + std::to_string(i + 1), std::to_string(order));
-    EXPECT_NEAR(order, 2.0, 0.05) << "mode " << i + 1 << " errors " << e16 << ", " << e32 << ", " << e64;
+    EXPECT_NEAR(order, 2.0, 0.05) << "mode " << i + 1 << " errors " << e16 << ", " << e32 << ", "
+                                  << e64;
     // Upper bound from the Rayleigh-Ritz principle: the FE frequencies lie above the exact ones.
     EXPECT_GT(frequencies[2](i), exact);
     // Richardson extrapolation with order 2 removes the leading error term; the remainder is
@@ -203,14 +206,14 @@ TEST(BeamValidation, CantileverStaticTipDeflectionIsExact) {
       s.shear_coefficient = kappa;
       s.axis = {0.2, 0.3, 0.9};  // oblique: exercises the node frames as well
       m.shafts.push_back(s);
-      m.constraints.push_back(test::constrain("b.0", {Component::Ux, Component::Uy, Component::Uz,
-                                                      Component::Rx, Component::Ry, Component::Rz}));
+      m.constraints.push_back(
+          test::constrain("b.0", {Component::Ux, Component::Uy, Component::Uz, Component::Rx,
+                                  Component::Ry, Component::Rz}));
       const LinearSystem sys = assemble(m);
       const int tip = n;
-      const Eigen::VectorXd f = P * sys.unit_load(tip, Component::Ux) +
-                                P * sys.unit_load(tip, Component::Uy) +
-                                T * sys.unit_load(tip, Component::Rz) +
-                                N * sys.unit_load(tip, Component::Uz);
+      const Eigen::VectorXd f =
+          P * sys.unit_load(tip, Component::Ux) + P * sys.unit_load(tip, Component::Uy) +
+          T * sys.unit_load(tip, Component::Rz) + N * sys.unit_load(tip, Component::Uz);
       Eigen::SimplicialLDLT<SparseMatrix> ldlt(sys.K);
       ASSERT_EQ(ldlt.info(), Eigen::Success);
       const Eigen::VectorXd u = ldlt.solve(f);

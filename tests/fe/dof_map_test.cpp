@@ -62,8 +62,9 @@ TEST(DofMap, ShaftStationsThenFreeNodes) {
 TEST(DofMap, ConstraintsEliminateDofs) {
   model::Model m = two_shafts();
   m.constraints.push_back(test::constrain("a.0", {Component::Ux, Component::Rz}));
-  m.constraints.push_back(test::constrain("housing", {Component::Ux, Component::Uy, Component::Uz,
-                                                      Component::Rx, Component::Ry, Component::Rz}));
+  m.constraints.push_back(test::constrain(
+      "housing",
+      {Component::Ux, Component::Uy, Component::Uz, Component::Rx, Component::Ry, Component::Rz}));
   const DofMap map = DofMap::build(m);
   EXPECT_EQ(map.num_dofs(), 9 * 6 - 8);
   EXPECT_EQ(map.dof(0, Component::Ux), -1);
@@ -72,7 +73,8 @@ TEST(DofMap, ConstraintsEliminateDofs) {
   EXPECT_EQ(map.dof(1, Component::Ux), 4);
   for (int c = 0; c < 6; ++c) EXPECT_EQ(map.node_dofs(8)[static_cast<std::size_t>(c)], -1);
   // The inverse map agrees with the forward map for every equation.
-  for (int e = 0; e < map.num_dofs(); ++e) EXPECT_EQ(map.dof(map.dof_node(e), map.dof_component(e)), e);
+  for (int e = 0; e < map.num_dofs(); ++e)
+    EXPECT_EQ(map.dof(map.dof_node(e), map.dof_component(e)), e);
 }
 
 TEST(DofMap, UnknownConstraintNodeIsInputError) {
@@ -94,8 +96,8 @@ TEST(DofMap, ZeroAxisIsInputError) {
 }
 
 TEST(FrameFromAxis, OrthonormalRightHandedWithAxisAsE3) {
-  const std::vector<Eigen::Vector3d> axes = {
-      {0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, {1, 1, 1}, {0.9, 0.1, -0.3}, {-1, 0.2, 0}};
+  const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {0, 0, -1},       {1, 0, 0},   {0, 1, 0},
+                                             {1, 1, 1}, {0.9, 0.1, -0.3}, {-1, 0.2, 0}};
   for (const Eigen::Vector3d& axis : axes) {
     const Eigen::Matrix3d R = frame_from_axis(axis);
     EXPECT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 0.0, 1e-14);

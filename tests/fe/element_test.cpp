@@ -47,8 +47,7 @@ TEST(TimoshenkoBeam, SymmetryAndRigidBodyNullSpace) {
     const BeamMatrices b = timoshenko_beam(p);
     EXPECT_NEAR((b.stiffness - b.stiffness.transpose()).norm(), 0.0, 1e-12 * b.stiffness.norm());
     EXPECT_NEAR((b.mass - b.mass.transpose()).norm(), 0.0, 1e-14 * b.mass.norm());
-    EXPECT_NEAR((b.gyroscopic + b.gyroscopic.transpose()).norm(), 0.0,
-                1e-14 * b.gyroscopic.norm());
+    EXPECT_NEAR((b.gyroscopic + b.gyroscopic.transpose()).norm(), 0.0, 1e-14 * b.gyroscopic.norm());
     EXPECT_GT(b.gyroscopic.norm(), 0.0);
     // K annihilates the six rigid motions; K has exactly six zero eigenvalues; M is positive.
     EXPECT_LT((b.stiffness * element_rigid_modes(p.length)).norm(), 1e-9 * b.stiffness.norm());
@@ -107,7 +106,8 @@ TEST(TimoshenkoBeam, MatchesPublishedClosedForms) {
   const std::array<int, 4> xz = {0, 4, 6, 10};
   Eigen::Matrix4d m_xz;
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 4; ++j) m_xz(i, j) = b.mass(xz[static_cast<std::size_t>(i)], xz[static_cast<std::size_t>(j)]);
+    for (int j = 0; j < 4; ++j)
+      m_xz(i, j) = b.mass(xz[static_cast<std::size_t>(i)], xz[static_cast<std::size_t>(j)]);
   EXPECT_NEAR((m_xz - (mt + mr)).norm(), 0.0, 1e-13 * m_xz.norm());
   // e2-e3 plane: (uy1, rx1, uy2, rx2) with theta = -rx: same matrix with signs flipped.
   const std::array<int, 4> yz = {1, 3, 7, 9};
@@ -141,7 +141,8 @@ TEST(TimoshenkoBeam, EulerBernoulliLimitAndFlags) {
   p.gyroscopic = false;
   const BeamMatrices c = timoshenko_beam(p);
   EXPECT_EQ(c.gyroscopic.norm(), 0.0);
-  EXPECT_NEAR(c.mass(4, 4), 7800 * std::numbers::pi * (0.06 * 0.06 - 0.02 * 0.02) / 4 * L * L * L / 105,
+  EXPECT_NEAR(c.mass(4, 4),
+              7800 * std::numbers::pi * (0.06 * 0.06 - 0.02 * 0.02) / 4 * L * L * L / 105,
               1e-12 * c.mass(4, 4));
 }
 
@@ -227,7 +228,7 @@ TEST(CouplingElement, GlobalToNodeFrames) {
   EXPECT_NEAR(a(2, 8), -1e6, 1e-9);
   EXPECT_NEAR(a(0, 0), 0.0, 1e-9);
   std::vector<double> g(36, 0.0);
-  g[6 * 4 + 4] = 5.0;  // global ry
+  g[6 * 4 + 4] = 5.0;                                       // global ry
   EXPECT_NEAR(coupling_to_ground(g, R)(3, 3), 5.0, 1e-14);  // e1 = global y
   EXPECT_THROW((void)coupling_to_ground(k, R), std::invalid_argument);
 }
@@ -297,8 +298,8 @@ TEST(GearMeshElement, HelicalThrustFollowsHandAndFlank) {
   // Right-hand driver turning positively: thrust on gear 1 along +e_a (screw analogy), so the
   // force on gear 2 has a negative z component; ratio to the tangential part is tan(beta).
   EXPECT_NEAR(-right.line_of_action.z() / right.line_of_action.y(), std::tan(0.3), 1e-14);
-  EXPECT_NEAR(right.line_of_action.x() / right.line_of_action.y(),
-              std::tan(0.35) / std::cos(0.3), 1e-14);
+  EXPECT_NEAR(right.line_of_action.x() / right.line_of_action.y(), std::tan(0.35) / std::cos(0.3),
+              1e-14);
   EXPECT_NEAR(right.transverse_pressure_angle, std::atan(std::tan(0.35) / std::cos(0.3)), 1e-15);
   pair.mesh.hand = model::Hand::Left;
   const GearMeshGeometry left = gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m");

@@ -1,7 +1,6 @@
 #pragma once
 // Shared helpers for the fe tests: model builders and small dense reference eigensolvers.
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <complex>
 #include <limits>
@@ -102,8 +101,9 @@ inline std::vector<ComplexMode> complex_modes(const LinearSystem& s, double spee
     if (lambda.imag() < 0) continue;
     modes.push_back({lambda, solver.eigenvectors().col(i).head(n)});
   }
-  std::sort(modes.begin(), modes.end(),
-            [](const ComplexMode& a, const ComplexMode& b) { return std::abs(a.lambda) < std::abs(b.lambda); });
+  std::sort(modes.begin(), modes.end(), [](const ComplexMode& a, const ComplexMode& b) {
+    return std::abs(a.lambda) < std::abs(b.lambda);
+  });
   return modes;
 }
 

@@ -47,8 +47,8 @@ TEST(GearMeshValidation, SpurPairTorsionalFrequency) {
       model::Node n;
       n.name = name;
       m.nodes.push_back(n);
-      m.constraints.push_back(test::constrain(name, {Component::Ux, Component::Uy, Component::Uz,
-                                                     Component::Rx, Component::Ry}));
+      m.constraints.push_back(test::constrain(
+          name, {Component::Ux, Component::Uy, Component::Uz, Component::Rx, Component::Ry}));
     }
     m.nodes[0].speed_ratio = ratio;
     m.nodes[1].speed_ratio = -ratio * r_p1 / r_p2;
@@ -61,7 +61,8 @@ TEST(GearMeshValidation, SpurPairTorsionalFrequency) {
       d.polar_inertia = i == 0 ? J1 : J2;
       m.disks.push_back(d);
     }
-    m.gear_meshes.push_back(spur_mesh("g1", "g2", r_p1 * std::cos(alpha), r_p2 * std::cos(alpha), alpha, k));
+    m.gear_meshes.push_back(
+        spur_mesh("g1", "g2", r_p1 * std::cos(alpha), r_p2 * std::cos(alpha), alpha, k));
     const model::GearMesh& mesh = m.gear_meshes.back();
     const LinearSystem s = assemble(m);
     ASSERT_EQ(s.size(), 2);
@@ -115,7 +116,8 @@ TEST(GearMeshValidation, StraightBevelLineOfActionMatchesToothForces) {
   BevelPair pair(model::GearType::StraightBevel);
   pair.set_base_radius(pair.mesh.pressure_angle);
   const GearMeshGeometry g = gear_mesh_geometry(pair.mesh, pair.pinion, pair.gear, "m");
-  EXPECT_NEAR((g.pitch_point - Eigen::Vector3d(BevelPair::r_m1, 0, -BevelPair::r_m2)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((g.pitch_point - Eigen::Vector3d(BevelPair::r_m1, 0, -BevelPair::r_m2)).norm(), 0.0,
+              1e-15);
   EXPECT_NEAR((g.axial - Eigen::Vector3d(0, 0, -1)).norm(), 0.0, 1e-15);  // apex -> pinion
   const double Ft = 5000.0, Fa = 813.862186, Fr = 1627.724371;
   const double F = std::sqrt(Ft * Ft + Fa * Fa + Fr * Fr);
@@ -154,7 +156,8 @@ TEST(GearMeshValidation, SpiralBevelLineOfActionIsNormalToTheTooth) {
       pair.pinion.speed_ratio = rotation;
       pair.set_base_radius(std::atan(std::tan(alpha) / std::cos(beta)));
       const GearMeshGeometry g = gear_mesh_geometry(pair.mesh, pair.pinion, pair.gear, "m");
-      EXPECT_NEAR((g.pitch_point - Eigen::Vector3d(BevelPair::r_m1, 0, -BevelPair::r_m2)).norm(), 0.0, 1e-14);
+      EXPECT_NEAR((g.pitch_point - Eigen::Vector3d(BevelPair::r_m1, 0, -BevelPair::r_m2)).norm(),
+                  0.0, 1e-14);
       const double delta = pair.mesh.pitch_cone_angle1;
       const Eigen::Vector3d u_a = g.axial, e_r = g.radial;
       const Eigen::Vector3d e_t_ua = u_a.cross(e_r);
@@ -171,10 +174,12 @@ TEST(GearMeshValidation, SpiralBevelLineOfActionIsNormalToTheTooth) {
       // this selects the sign in DESIGN 4.4.
       const double s = h * rotation * u_a.dot(pair.pinion.frame.col(2));
       EXPECT_NEAR(g.axial_force,
-                  (std::tan(alpha) * std::sin(delta) + s * std::sin(beta) * std::cos(delta)) / std::cos(beta),
+                  (std::tan(alpha) * std::sin(delta) + s * std::sin(beta) * std::cos(delta)) /
+                      std::cos(beta),
                   1e-14);
       EXPECT_NEAR(g.radial_force,
-                  (std::tan(alpha) * std::cos(delta) - s * std::sin(beta) * std::sin(delta)) / std::cos(beta),
+                  (std::tan(alpha) * std::cos(delta) - s * std::sin(beta) * std::sin(delta)) /
+                      std::cos(beta),
                   1e-14);
       // Tangential part opposes the pinion's rotation.
       EXPECT_NEAR(n.dot(g.tangential) * rotation, std::cos(alpha) * std::cos(beta), 1e-14);

@@ -103,7 +103,8 @@ TEST(FriswellExample591, LateralNaturalFrequenciesAt0And4000Rpm) {
 
 // Exact free-free torsional frequencies of the continuous shaft with the two rigid disks, by
 // transfer matrices of (twist theta, internal torque T): a uniform segment of length l gives
-//   theta(l) = cos(b l) theta0 + sin(b l) / (G J b) T0,  T(l) = -G J b sin(b l) theta0 + cos(b l) T0,
+//   theta(l) = cos(b l) theta0 + sin(b l) / (G J b) T0,  T(l) = -G J b sin(b l) theta0 + cos(b l)
+//   T0,
 // b = omega sqrt(rho / G); a disk gives T+ = T- - Ip omega^2 theta. Free ends: T = 0.
 double exact_torsional_frequency(const model::Model& m, double omega_min) {
   const model::Material& steel = m.materials.front();
@@ -117,7 +118,8 @@ double exact_torsional_frequency(const model::Model& m, double omega_min) {
       const double t2 = c * theta + s / (GJ * b) * torque;
       torque = -GJ * b * s * theta + c * torque;
       theta = t2;
-      if (piece < 2) torque -= m.disks[static_cast<std::size_t>(piece)].polar_inertia * omega * omega * theta;
+      if (piece < 2)
+        torque -= m.disks[static_cast<std::size_t>(piece)].polar_inertia * omega * omega * theta;
     }
     return torque;
   };
@@ -171,7 +173,8 @@ TEST(FriswellExample591, FreeFreeTorsionalMode) {
     refined.disks[1].node = "shaft." + std::to_string(2 * n / 3);
     refined.bearings[0].node = "shaft.0";
     refined.bearings[1].node = "shaft." + std::to_string(n);
-    errors.push_back(test::relative_error(test::first_torsional_undamped(assemble(refined), 1.0), exact));
+    errors.push_back(
+        test::relative_error(test::first_torsional_undamped(assemble(refined), 1.0), exact));
   }
   EXPECT_LT(errors.back(), 1e-6);
   EXPECT_NEAR(std::log2(errors[1] / errors[2]), 2.0, 0.1)
@@ -200,8 +203,8 @@ TEST(FriswellExample971, TorsionalChainFrequencies) {
     d.diametral_inertia = 1.0;
     d.polar_inertia = J[i];
     m.disks.push_back(d);
-    m.constraints.push_back(test::constrain(n.name, {Component::Ux, Component::Uy, Component::Uz,
-                                                     Component::Rx, Component::Ry}));
+    m.constraints.push_back(test::constrain(
+        n.name, {Component::Ux, Component::Uy, Component::Uz, Component::Rx, Component::Ry}));
   }
   for (int i = 0; i < 4; ++i) {
     model::Bearing b;

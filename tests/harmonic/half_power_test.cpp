@@ -1,11 +1,11 @@
 // Unit tests of signal/half_power: parabolic vertex, peak prominence, half-power crossings.
+#include "geardyn/signal/half_power.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 #include <vector>
-
-#include "geardyn/signal/half_power.hpp"
 
 namespace geardyn::signal {
 namespace {

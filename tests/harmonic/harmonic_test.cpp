@@ -1,12 +1,13 @@
 // Unit tests of the harmonic analysis: grid, quantities, adaptive refinement, name resolution,
 // input errors, output tables.
+#include "geardyn/analysis/harmonic.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "geardyn/analysis/harmonic.hpp"
 #include "geardyn/core/error.hpp"
 #include "harmonic_test_support.hpp"
 
@@ -46,9 +47,8 @@ TEST(FrequencyResponse, AdaptiveGridMeetsItsCriteria) {
   const double m = 1.0, k = 1e6, zeta = 0.005;
   const double wn = std::sqrt(k / m);
   const fe::LinearSystem s = sdof(m, k, 2.0 * zeta * std::sqrt(k * m));
-  const FrfResult r =
-      frequency_response(s, Eigen::VectorXcd::Ones(1), {0}, grid(10.0, 3000.0, 40, true),
-                         null_progress());
+  const FrfResult r = frequency_response(s, Eigen::VectorXcd::Ones(1), {0},
+                                         grid(10.0, 3000.0, 40, true), null_progress());
   EXPECT_EQ(r.status, Status::Ok) << r.message;
   EXPECT_TRUE(r.grid.converged);
   EXPECT_GT(r.grid.final_points, r.grid.initial_points);
@@ -156,7 +156,8 @@ TEST(RunHarmonic, FrfAndForcedResponseByName) {
   const Eigen::MatrixXcd v = r.response();
   for (Eigen::Index i = 0; i < r.frequencies.size(); ++i) {
     const double w = r.frequencies[i];
-    const Complex ref = Complex(0, w) * std::polar(3.0, 0.5) / Complex(1e6 - w * w * 10.0, 50.0 * w);
+    const Complex ref =
+        Complex(0, w) * std::polar(3.0, 0.5) / Complex(1e6 - w * w * 10.0, 50.0 * w);
     EXPECT_LE(std::abs(v(i, 0) - ref), 1e-13 * std::abs(ref) + 1e-300);
   }
 }

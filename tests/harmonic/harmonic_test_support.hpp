@@ -3,7 +3,6 @@
 // (LinearSystem without a DOF map) and plain-data models assembled by fe.
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>

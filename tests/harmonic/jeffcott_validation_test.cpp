@@ -64,7 +64,8 @@ TEST(JeffcottValidation, AmplitudePhaseAndOrbitAtAnalyticPoints) {
     EXPECT_LE(std::abs(x - ref), 1e-12 * std::abs(ref)) << W[i];
     EXPECT_LE(std::abs(y - Complex(0.0, -1.0) * ref), 1e-12 * std::abs(ref)) << W[i];
     const double lag = UnbalanceResult::phase_lag_deg(x);
-    const double lag_ref = std::atan2(damping() * W[i], kStiffness - kMass * W[i] * W[i]) * 180 / kPi;
+    const double lag_ref =
+        std::atan2(damping() * W[i], kStiffness - kMass * W[i] * W[i]) * 180 / kPi;
     EXPECT_NEAR(lag, lag_ref, 1e-9) << W[i];
     const NodeOrbit& o = r.orbits[0][i][0];
     EXPECT_LE(relative_error(o.orbit.major, std::abs(ref)), 1e-12);

@@ -1,11 +1,11 @@
 // Unit tests of signal/orbit against orbits traced in the time domain.
+#include "geardyn/signal/orbit.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <complex>
 #include <numbers>
-
-#include "geardyn/signal/orbit.hpp"
 
 namespace geardyn::signal {
 namespace {

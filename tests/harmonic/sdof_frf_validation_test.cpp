@@ -13,8 +13,8 @@
 // Viscous: H(w) = X / F = 1 / (k - w^2 m + i w c), c = 2 zeta sqrt(k m), w_n = sqrt(k / m).
 //   Peak of |H| at w_p = w_n sqrt(1 - 2 zeta^2), |H|max = 1 / (2 zeta k sqrt(1 - zeta^2)).
 //   Half-power points |H| = |H|max / sqrt(2): with u = w^2 / w_n^2,
-//   (1 - u)^2 + 4 zeta^2 u = 8 zeta^2 (1 - zeta^2)  =>  u = 1 - 2 zeta^2 -/+ 2 zeta sqrt(1 - zeta^2),
-//   so the exact Q = w_p / (w_2 - w_1), which tends to 1 / (2 zeta) for light damping.
+//   (1 - u)^2 + 4 zeta^2 u = 8 zeta^2 (1 - zeta^2)  =>  u = 1 - 2 zeta^2 -/+ 2 zeta sqrt(1 -
+//   zeta^2), so the exact Q = w_p / (w_2 - w_1), which tends to 1 / (2 zeta) for light damping.
 //   Source: S. S. Rao, Mechanical Vibrations, 5th ed., Prentice Hall 2011, sec. 3.4 and 3.6
 //   (magnification factor, its peak, quality factor and bandwidth); the exact crossings above are
 //   the roots of Rao's |H| = |H|max / sqrt(2) solved without the light-damping approximation.
@@ -41,7 +41,8 @@ struct ViscousSdof {
   double w_peak() const { return wn() * std::sqrt(1.0 - 2.0 * zeta * zeta); }
   double h_max() const { return 1.0 / (2.0 * zeta * k * std::sqrt(1.0 - zeta * zeta)); }
   double w_half(double sign) const {
-    return wn() * std::sqrt(1.0 - 2.0 * zeta * zeta + sign * 2.0 * zeta * std::sqrt(1.0 - zeta * zeta));
+    return wn() *
+           std::sqrt(1.0 - 2.0 * zeta * zeta + sign * 2.0 * zeta * std::sqrt(1.0 - zeta * zeta));
   }
   double q_exact() const { return w_peak() / (w_half(+1) - w_half(-1)); }
   Complex H(double w) const { return 1.0 / Complex(k - w * w * m, w * c()); }
@@ -81,15 +82,13 @@ TEST(SdofFrfValidation, AdaptiveGridCatchesAVerySharpPeak) {
   // spacing of 51 points over [0, 2000] rad/s, and w_n = 777.7 rad/s lies between samples.
   const ViscousSdof sys{1.0, 777.7 * 777.7, 1e-4};
   const Eigen::VectorXcd load = Eigen::VectorXcd::Ones(1);
-  const FrfResult coarse =
-      frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0}, grid(0.0, 2000.0, 51, false),
-                         null_progress());
+  const FrfResult coarse = frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0},
+                                              grid(0.0, 2000.0, 51, false), null_progress());
   const double coarse_max = coarse.displacement.cwiseAbs().maxCoeff();
   EXPECT_LT(coarse_max, 0.01 * sys.h_max()) << "the coarse grid should clip the peak";
 
-  const FrfResult fine =
-      frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0}, grid(0.0, 2000.0, 51, true),
-                         null_progress());
+  const FrfResult fine = frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0},
+                                            grid(0.0, 2000.0, 51, true), null_progress());
   ASSERT_EQ(fine.status, Status::Ok) << fine.message;
   ASSERT_EQ(fine.peaks.size(), 1u);
   const FrfPeak& p = fine.peaks[0];
@@ -103,9 +102,8 @@ TEST(SdofFrfValidation, AdaptiveGridCatchesAVerySharpPeak) {
 TEST(SdofFrfValidation, HysteresisPeakIsOneOverKEta) {
   const double m = 2.0, k = 5e4, eta = 0.03;
   const double wn = std::sqrt(k / m);
-  const FrfResult r =
-      frequency_response(sdof(m, k, 0.0, eta), Eigen::VectorXcd::Ones(1), {0},
-                         grid(0.1 * wn, 3.0 * wn, 45, true), null_progress());
+  const FrfResult r = frequency_response(sdof(m, k, 0.0, eta), Eigen::VectorXcd::Ones(1), {0},
+                                         grid(0.1 * wn, 3.0 * wn, 45, true), null_progress());
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   for (Eigen::Index i = 0; i < r.frequencies.size(); ++i) {
     const double w = r.frequencies[i];

@@ -1,12 +1,13 @@
 // Unit tests of the unbalance analysis: input checks, orbit nodes, whirl sense relative to the
 // spin, phase-lag convention, output tables.
+#include "geardyn/analysis/unbalance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
 
-#include "geardyn/analysis/unbalance.hpp"
 #include "geardyn/core/error.hpp"
 #include "harmonic_test_support.hpp"
 

@@ -28,7 +28,8 @@ TEST(AnalysisVariant, SetEntriesAreReadAndValidated) {
   ASSERT_EQ(m.analyses[0].overrides.size(), 2u);
   EXPECT_EQ(m.analyses[0].overrides[0], "gear_meshes[0].stiffness=0");
   // The base model is unchanged: the variant applies to this analysis only.
-  EXPECT_EQ(m.gear_meshes[0].stiffness, build_model(load_document(kFullModel)).gear_meshes[0].stiffness);
+  EXPECT_EQ(m.gear_meshes[0].stiffness,
+            build_model(load_document(kFullModel)).gear_meshes[0].stiffness);
 }
 
 TEST(AnalysisVariant, UnknownKeyInSetIsAnInputErrorAtTheAnalysis) {

@@ -1,11 +1,12 @@
 // Parameter sweeps: values against closed forms, and threads give the same answer as serial.
+#include "geardyn/study/sweep.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "geardyn/model/parse.hpp"
-#include "geardyn/study/sweep.hpp"
 
 namespace geardyn::study {
 namespace {

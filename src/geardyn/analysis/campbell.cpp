@@ -21,7 +21,6 @@ constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 /// Eigenvalues closer than this (relative) count as one repeated eigenvalue when tracking.
 constexpr double kRepeatedTolerance = 1e-6;
 
-
 void add_line(std::vector<EngineOrderLine>& lines, const std::string& label, double order) {
   for (auto& l : lines) {
     if (std::abs(l.order - order) <= 1e-9 * std::max(1.0, order)) {

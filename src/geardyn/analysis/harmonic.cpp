@@ -1,5 +1,4 @@
 #include "geardyn/analysis/harmonic.hpp"
-#include "geardyn/analysis/settings_location.hpp"
 
 #include <fmt/format.h>
 #include <umfpack.h>
@@ -10,6 +9,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "geardyn/analysis/settings_location.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/signal/half_power.hpp"
 
@@ -56,7 +56,8 @@ class UmfpackLu {
     return status;
   }
   /// Solves A x = b column by column (with UMFPACK's iterative refinement against A).
-  bool solve(const fe::ComplexSparseMatrix& A, const Eigen::MatrixXcd& b, Eigen::MatrixXcd& x) const {
+  bool solve(const fe::ComplexSparseMatrix& A, const Eigen::MatrixXcd& b,
+             Eigen::MatrixXcd& x) const {
     x.resize(b.rows(), b.cols());
     for (Eigen::Index j = 0; j < b.cols(); ++j) {
       const int status = umfpack_zi_solve(
@@ -94,8 +95,8 @@ bool is_empty(const fe::SparseMatrix& X) { return X.rows() == 0 && X.cols() == 0
 
 void check_square(const fe::SparseMatrix& X, int n, const char* name) {
   if (!is_empty(X) && (X.rows() != n || X.cols() != n))
-    throw std::logic_error(fmt::format("LinearSystem::{} is {}x{}, expected {}x{}", name, X.rows(),
-                                       X.cols(), n, n));
+    throw std::logic_error(
+        fmt::format("LinearSystem::{} is {}x{}, expected {}x{}", name, X.rows(), X.cols(), n, n));
 }
 
 void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<Complex>>& triplets) {
@@ -126,8 +127,7 @@ bool map_term(const fe::SparseMatrix& X, const fe::ComplexSparseMatrix& D, Term&
 }
 
 void scatter(const Term& term, Complex factor, Complex* values) {
-  for (std::size_t k = 0; k < term.slot.size(); ++k)
-    values[term.slot[k]] += factor * term.value[k];
+  for (std::size_t k = 0; k < term.slot.size(); ++k) values[term.slot[k]] += factor * term.value[k];
 }
 
 // Absolute row sums of a real sparse matrix (zero vector for an empty one).
@@ -277,14 +277,16 @@ void DynamicStiffness::factorize(double omega) {
         modal ? " + i w C_modal" : "", omega * kHzPerRadS, omega, speed_ * kRpmPerRadS, measure);
     std::string cause;
     if (omega == 0.0)
-      cause = "model has rigid-body motion: add bearings or constraints (a rotor free in "
-              "torsion or axially needs a spring or constraint there), or start the frequency "
-              "range above 0";
+      cause =
+          "model has rigid-body motion: add bearings or constraints (a rotor free in "
+          "torsion or axially needs a spring or constraint there), or start the frequency "
+          "range above 0";
     else
-      cause = "this frequency is at (or, relative to the stiffness, very near) a natural "
-              "frequency of an undamped model, or near 0 Hz with rigid-body motion: add damping "
-              "(bearing, Rayleigh, structural or modal), bearings or constraints, or shift the "
-              "frequencies";
+      cause =
+          "this frequency is at (or, relative to the stiffness, very near) a natural "
+          "frequency of an undamped model, or near 0 Hz with rigid-body motion: add damping "
+          "(bearing, Rayleigh, structural or modal), bearings or constraints, or shift the "
+          "frequencies";
     return NumericalError(analysis_, head + ": " + cause);
   };
 
@@ -310,7 +312,8 @@ void DynamicStiffness::factorize(double omega) {
     const int status = m.lu.analyze(m.D);
     if (status != UMFPACK_OK)
       throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of D(w) "
-                                                  "(status {})", status));
+                                                  "(status {})",
+                                                  status));
     m.analysed = true;
   }
   const int status = m.lu.factorize(m.D);
@@ -327,15 +330,16 @@ void DynamicStiffness::factorize(double omega) {
     // |D| <= |A_s| + |i w s0| |M| + |B| |S| |B|^T, row by row.
     const Eigen::MatrixXd B_abs = system_.modal_basis.cwiseAbs();
     const Eigen::VectorXd modal_rows =
-        B_abs * (omega * m.c.cwiseAbs()).cwiseProduct(B_abs.transpose() * Eigen::VectorXd::Ones(n_));
+        B_abs *
+        (omega * m.c.cwiseAbs()).cwiseProduct(B_abs.transpose() * Eigen::VectorXd::Ones(n_));
     m.norm_inf += std::abs(m.shift) * m.row_mass.maxCoeff() + modal_rows.maxCoeff();
   }
   if (m.modal_path) {
     m.s = iw * (m.c.array() - m.s0).matrix().cast<Complex>();
     if (!m.lu.solve(m.D, m.B, m.Y)) throw singular("UMFPACK solve failed");
     const Eigen::Index r = m.B.cols();
-    const Eigen::MatrixXcd cap = Eigen::MatrixXcd::Identity(r, r) +
-                                 m.s.asDiagonal() * (m.B.transpose() * m.Y);
+    const Eigen::MatrixXcd cap =
+        Eigen::MatrixXcd::Identity(r, r) + m.s.asDiagonal() * (m.B.transpose() * m.Y);
     m.capacitance.compute(cap);
     // The capacitance matrix is singular exactly when P is (A_s is regular).
     if (!(m.capacitance.rcond() >= kSingularPivotRatio))
@@ -388,7 +392,8 @@ Eigen::MatrixXcd DynamicStiffness::solve(const Eigen::MatrixXcd& F) const {
   }
   if (!X.allFinite())
     throw NumericalError(analysis_, fmt::format("the response at f = {:.6g} Hz is not finite "
-                                                "(overflow near an undamped resonance?)", f_hz));
+                                                "(overflow near an undamped resonance?)",
+                                                f_hz));
   return X;
 }
 
@@ -440,15 +445,16 @@ std::string unit_slug(const std::string& unit) {
   return out;
 }
 
-
 void validate_grid(const model::HarmonicSettings& s, const SourceLocation& where,
                    const std::string& key) {
   auto fail = [&](const std::string& field, const std::string& expected, double found) {
     throw InputError(where, key + "." + field, expected, fmt::format("{}", found));
   };
-  if (!std::isfinite(s.f_min) || s.f_min < 0.0) fail("frequency_start_hz", "a finite value >= 0", s.f_min * kHzPerRadS);
+  if (!std::isfinite(s.f_min) || s.f_min < 0.0)
+    fail("frequency_start_hz", "a finite value >= 0", s.f_min * kHzPerRadS);
   if (!std::isfinite(s.f_max) || s.f_max <= s.f_min)
-    fail("frequency_stop_hz", fmt::format("a finite value > frequency_start_hz = {}", s.f_min * kHzPerRadS),
+    fail("frequency_stop_hz",
+         fmt::format("a finite value > frequency_start_hz = {}", s.f_min * kHzPerRadS),
          s.f_max * kHzPerRadS);
   if (s.n_points < 2) fail("frequency_count", "an integer >= 2", s.n_points);
   if (s.spacing == model::Spacing::Log && s.f_min <= 0.0)
@@ -501,9 +507,7 @@ std::vector<FrfPeak> analyse_peaks(const std::vector<double>& f,
       const std::size_t i = p.index;
       // The true maximum of a peak lies between the neighbours of the sampled maximum, so
       // their distance bounds the location error; the parabolic vertex is then much closer.
-      auto bracket = [&](double bw) {
-        return std::max(f[i] - f[i - 1], f[i + 1] - f[i]) / bw;
-      };
+      auto bracket = [&](double bw) { return std::max(f[i] - f[i - 1], f[i + 1] - f[i]) / bw; };
       // Samples at the vertex and tol/2 band widths either side of it: if the vertex is right,
       // the next pass sees the peak bracketed to tol; if not, the new samples move the maximum
       // and the parabola through them is much closer.
@@ -534,7 +538,7 @@ std::vector<FrfPeak> analyse_peaks(const std::vector<double>& f,
       } else if (i > 0 && i + 1 < n) {
         // The band is cut by the end of the range or runs into a higher peak: resolve the top
         // with the half-band that is there; no Q is reported.
-        const double half = hp.has_lower() ? hp.frequency - hp.f1
+        const double half = hp.has_lower()   ? hp.frequency - hp.f1
                             : hp.has_upper() ? hp.f2 - hp.frequency
                                              : std::numeric_limits<double>::quiet_NaN();
         if (std::isfinite(half) && half > 0.0) {
@@ -560,8 +564,8 @@ void jump_points(const std::vector<double>& f, const std::vector<std::vector<dou
   for (std::size_t k = 0; k + 1 < f.size(); ++k) {
     const double mid = 0.5 * (f[k] + f[k + 1]);
     auto it = std::upper_bound(initial.begin(), initial.end(), mid);
-    const std::size_t j = std::clamp<std::size_t>(
-        static_cast<std::size_t>(it - initial.begin()), 1, initial.size() - 1);
+    const std::size_t j = std::clamp<std::size_t>(static_cast<std::size_t>(it - initial.begin()), 1,
+                                                  initial.size() - 1);
     const double floor = (initial[j] - initial[j - 1]) * floor_factor;
     if (f[k + 1] - f[k] <= floor * 1.000001) continue;
     for (const auto& a : amplitude) {
@@ -598,8 +602,7 @@ void set_grid_status(FrfResult& result) {
       "(add damping, e.g. more modal damping modes, Rayleigh or structural), or raise the limit "
       "or narrow the frequency range",
       grid.limit_hit, grid.final_points, unresolved,
-      result.sensors[static_cast<std::size_t>(first->sensor)].name,
-      first->frequency * kHzPerRadS);
+      result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
 }
 
 }  // namespace
@@ -607,13 +610,12 @@ void set_grid_status(FrfResult& result) {
 FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
                              const std::vector<int>& outputs,
                              const model::HarmonicSettings& settings, Progress& progress,
-                             const AdaptiveGridOptions& options,
-                             const std::string& analysis_name) {
+                             const AdaptiveGridOptions& options, const std::string& analysis_name) {
   validate_grid(settings, SourceLocation{}, analysis_name);
   const int n = static_cast<int>(system.M.rows());
   if (load.size() != n)
-    throw std::invalid_argument(fmt::format("frequency_response: load has {} entries, system {}",
-                                            load.size(), n));
+    throw std::invalid_argument(
+        fmt::format("frequency_response: load has {} entries, system {}", load.size(), n));
   if (outputs.empty()) throw std::invalid_argument("frequency_response: no outputs");
   for (int eq : outputs)
     if (eq < 0 || eq >= n)
@@ -723,7 +725,8 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
     }
   }
 
-  result.frequencies = Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
+  result.frequencies =
+      Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
   result.displacement.resize(static_cast<Eigen::Index>(f.size()), static_cast<Eigen::Index>(m));
   Eigen::Index row = 0;
   for (const auto& [w, x] : samples) result.displacement.row(row++) = x.transpose();
@@ -762,7 +765,8 @@ FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system
   Eigen::VectorXcd load = Eigen::VectorXcd::Zero(system.M.rows());
   FrfResult header;
   if (has_input) {
-    const auto [node, eq] = equation(settings.input_node, settings.input_dof, key + ".input_node", where);
+    const auto [node, eq] =
+        equation(settings.input_node, settings.input_dof, key + ".input_node", where);
     (void)eq;
     load = system.unit_load(node, settings.input_dof).cast<Complex>();
     header.input = settings.input_node + "." +
@@ -776,10 +780,10 @@ FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system
         throw InputError(where, key + ".forces", "the name of a harmonic force",
                          "'" + force_name + "'");
       const auto [node, eq] = equation(
-          it->node, it->dof,
-          fmt::format("forces[{}].node", it - model.forces.begin()), it->where);
+          it->node, it->dof, fmt::format("forces[{}].node", it - model.forces.begin()), it->where);
       (void)eq;
-      load += std::polar(it->amplitude, it->phase) * system.unit_load(node, it->dof).cast<Complex>();
+      load +=
+          std::polar(it->amplitude, it->phase) * system.unit_load(node, it->dof).cast<Complex>();
       header.input += (header.input.empty() ? "" : ", ") + force_name;
     }
     header.forced = true;
@@ -792,10 +796,9 @@ FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system
                      "add [[sensors]] to the model");
   std::vector<int> outputs;
   for (const auto* s : sensors)
-    outputs.push_back(
-        equation(s->node, s->dof, fmt::format("sensors[{}].node", s - model.sensors.data()),
-                 s->where)
-            .second);
+    outputs.push_back(equation(s->node, s->dof,
+                               fmt::format("sensors[{}].node", s - model.sensors.data()), s->where)
+                          .second);
 
   FrfResult result = frequency_response(system, load, outputs, settings, progress, options, name);
   result.forced = header.forced;
@@ -825,18 +828,18 @@ AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem
     f_hz[i] = result.frequencies[static_cast<Eigen::Index>(i)] * kHzPerRadS;
 
   const char* quantity_name = result.quantity == model::ResponseQuantity::Receptance ? "receptance"
-                              : result.quantity == model::ResponseQuantity::Mobility ? "mobility"
-                                                                                    : "accelerance";
-  const std::string what = result.forced ? fmt::format("forced response ({}) to {}",
-                                                       result.quantity == model::ResponseQuantity::Receptance
-                                                           ? "displacement"
-                                                       : result.quantity == model::ResponseQuantity::Mobility
-                                                           ? "velocity"
-                                                           : "acceleration",
-                                                       result.input)
-                                         : fmt::format("{} for a unit {} at {}", quantity_name,
-                                                       result.input_rotational ? "moment" : "force",
-                                                       result.input);
+                              : result.quantity == model::ResponseQuantity::Mobility
+                                  ? "mobility"
+                                  : "accelerance";
+  const std::string what =
+      result.forced
+          ? fmt::format("forced response ({}) to {}",
+                        result.quantity == model::ResponseQuantity::Receptance ? "displacement"
+                        : result.quantity == model::ResponseQuantity::Mobility ? "velocity"
+                                                                               : "acceleration",
+                        result.input)
+          : fmt::format("{} for a unit {} at {}", quantity_name,
+                        result.input_rotational ? "moment" : "force", result.input);
   Table frf;
   frf.name = "frf";
   frf.title = fmt::format("Frequency response: {} at {:.6g} rpm", what, result.speed * kRpmPerRadS);
@@ -926,7 +929,8 @@ AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem
   const GridSummary& g = result.grid;
   out.notes.push_back(fmt::format(
       "Direct solution of D(w) = K - w^2 M + i w (C + W G) + i K_loss{} at W = {:.6g} rpm with a "
-      "sparse complex LU (UMFPACK) per frequency; phase is arg of the response (x = Re(X e^(iwt))).",
+      "sparse complex LU (UMFPACK) per frequency; phase is arg of the response (x = Re(X "
+      "e^(iwt))).",
       system.has_modal_damping()
           ? fmt::format(" + i w C_modal ({} modes, applied by the Woodbury identity)",
                         system.modal_coefficients.size())
@@ -935,17 +939,17 @@ AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem
   if (g.adaptive) {
     std::string peaks_note =
         g.min_points_in_band > 0
-            ? fmt::format("every resonance with a half-power band in range has >= {} samples in it "
-                          "(fewest {}) and its maximum is bracketed by samples at most {:.2g} % of its "
-                          "bandwidth from the sampled peak (refined by a parabola through them)",
-                          g.required_points_in_band, g.min_points_in_band,
-                          100.0 * g.max_location_error)
+            ? fmt::format(
+                  "every resonance with a half-power band in range has >= {} samples in it "
+                  "(fewest {}) and its maximum is bracketed by samples at most {:.2g} % of its "
+                  "bandwidth from the sampled peak (refined by a parabola through them)",
+                  g.required_points_in_band, g.min_points_in_band, 100.0 * g.max_location_error)
             : std::string("no resonance with a complete half-power band in range");
-    out.notes.push_back(fmt::format("Adaptive frequency grid: {} initial points refined in {} "
-                                    "passes to {} points{}; {}.",
-                                    g.initial_points, g.passes, g.final_points,
-                                    g.converged ? "" : " (stopped at " + g.limit_hit + ")",
-                                    peaks_note));
+    out.notes.push_back(
+        fmt::format("Adaptive frequency grid: {} initial points refined in {} "
+                    "passes to {} points{}; {}.",
+                    g.initial_points, g.passes, g.final_points,
+                    g.converged ? "" : " (stopped at " + g.limit_hit + ")", peaks_note));
   } else {
     out.notes.push_back(fmt::format(
         "Fixed frequency grid of {} points (adaptive = false): a resonance narrower than the "

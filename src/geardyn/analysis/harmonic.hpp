@@ -9,7 +9,6 @@
 // samples and its peak is located to a fraction of that band (see AdaptiveGridOptions).
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-
 #include <complex>
 #include <limits>
 #include <memory>
@@ -101,8 +100,8 @@ struct ResponseSensor {
 struct FrfPeak {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   int sensor = 0;
-  double frequency = kNaN;  ///< refined peak frequency [rad/s]
-  double amplitude = kNaN;  ///< refined peak amplitude, in the sensor's amplitude unit
+  double frequency = kNaN;      ///< refined peak frequency [rad/s]
+  double amplitude = kNaN;      ///< refined peak amplitude, in the sensor's amplitude unit
   double f1 = kNaN, f2 = kNaN;  ///< half-power crossings [rad/s] (NaN: not in range)
   double q_factor = kNaN;       ///< f_r / (f2 - f1)
   int points_in_band = 0;
@@ -115,7 +114,7 @@ struct FrfPeak {
 
 /// What the grid refinement achieved.
 struct GridSummary {
-  int required_points_in_band = 5;   ///< AdaptiveGridOptions used
+  int required_points_in_band = 5;  ///< AdaptiveGridOptions used
   double required_location_error = 1e-3;
   int initial_points = 0;
   int final_points = 0;
@@ -132,14 +131,14 @@ struct FrfResult {
   std::string message;  ///< why status is not Ok, and what usually helps
   bool forced = false;  ///< true: response to the model's harmonic forces; false: unit force
   model::ResponseQuantity quantity = model::ResponseQuantity::Receptance;
-  double speed = 0.0;            ///< reference speed [rad/s]
-  std::string input;             ///< "node.dof" of the unit force, or the force names
-  bool input_rotational = false; ///< unit moment (N m) rather than force (N)
+  double speed = 0.0;             ///< reference speed [rad/s]
+  std::string input;              ///< "node.dof" of the unit force, or the force names
+  bool input_rotational = false;  ///< unit moment (N m) rather than force (N)
   std::vector<ResponseSensor> sensors;
-  Eigen::VectorXd frequencies;   ///< [rad/s], increasing
+  Eigen::VectorXd frequencies;  ///< [rad/s], increasing
   /// Displacement response per unit input (or to the forces), frequencies x sensors.
   Eigen::MatrixXcd displacement;
-  std::vector<FrfPeak> peaks;    ///< by sensor, then frequency
+  std::vector<FrfPeak> peaks;  ///< by sensor, then frequency
   GridSummary grid;
 
   /// The requested quantity: displacement x (i w)^p with p = 0, 1, 2.

@@ -20,7 +20,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 constexpr int kPlottedModes = 6;
 
-
 }  // namespace
 
 eig::Method to_eig_method(model::EigenMethod method) {

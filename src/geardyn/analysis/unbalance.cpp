@@ -1,5 +1,4 @@
 #include "geardyn/analysis/unbalance.hpp"
-#include "geardyn/analysis/settings_location.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +7,7 @@
 #include <numbers>
 
 #include "geardyn/analysis/harmonic.hpp"
+#include "geardyn/analysis/settings_location.hpp"
 #include "geardyn/core/error.hpp"
 
 namespace geardyn::analysis {
@@ -16,7 +16,6 @@ namespace {
 using Complex = std::complex<double>;
 constexpr double kPi = std::numbers::pi;
 constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
-
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
@@ -43,8 +42,10 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
     throw InputError(where, key + ".speed_rpm", "at least one speed", "none");
   for (double w : settings.speeds)
     if (!std::isfinite(w) || w <= 0.0)
-      throw InputError(where, key + ".speed_rpm", "speeds > 0 (reverse rotation: negative "
-                       "speed ratios)", fmt::format("{}", w * kRpmPerRadS));
+      throw InputError(where, key + ".speed_rpm",
+                       "speeds > 0 (reverse rotation: negative "
+                       "speed ratios)",
+                       fmt::format("{}", w * kRpmPerRadS));
 
   std::vector<const model::Unbalance*> unbalances;
   for (const auto& u : model.unbalances)
@@ -72,8 +73,7 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
     const int node = dofs.find_node(s->node);
     if (node < 0)
       throw InputError(s->where, fmt::format("sensors[{}].node", s - model.sensors.data()),
-                       "the name of a node",
-                       "'" + s->node + "'");
+                       "the name of a node", "'" + s->node + "'");
     const int eq = dofs.dof(node, s->dof);
     if (eq < 0)
       throw InputError(s->where, fmt::format("sensors[{}].dof", s - model.sensors.data()),
@@ -107,13 +107,15 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   result.orders = fe::unbalance_orders(model, system, selected);
   if (result.orders.empty())
     throw InputError(where, key + ".unbalances", "unbalance on a spinning node",
-                     "only nodes with speed ratio 0", "set spin_of for the node, or put the "
+                     "only nodes with speed ratio 0",
+                     "set spin_of for the node, or put the "
                      "unbalance on a shaft node");
 
   const std::size_t n_speeds = result.speeds.size();
   const std::size_t n_orders = result.orders.size();
   const auto n_sensors = static_cast<Eigen::Index>(sensors.size());
-  result.response.assign(n_orders, Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(n_speeds), n_sensors));
+  result.response.assign(n_orders,
+                         Eigen::MatrixXcd::Zero(static_cast<Eigen::Index>(n_speeds), n_sensors));
   result.orbits.assign(n_orders, std::vector<std::vector<NodeOrbit>>(
                                      n_speeds, std::vector<NodeOrbit>(orbit_nodes.size())));
 
@@ -128,7 +130,8 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
       D.factorize(order * speed);
       const Eigen::MatrixXcd X = D.solve(F);
       for (Eigen::Index s = 0; s < n_sensors; ++s)
-        result.response[o](static_cast<Eigen::Index>(i), s) = X(sensor_eq[static_cast<std::size_t>(s)], 0);
+        result.response[o](static_cast<Eigen::Index>(i), s) =
+            X(sensor_eq[static_cast<std::size_t>(s)], 0);
       for (std::size_t k = 0; k < orbit_nodes.size(); ++k) {
         const int node = orbit_nodes[k];
         const int ex = dofs.dof(node, model::Component::Ux);
@@ -137,8 +140,8 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
         const Complex y = ey >= 0 ? X(ey, 0) : Complex(0.0);
         NodeOrbit& no = result.orbits[o][i][k];
         no.orbit = signal::orbit_from_phasors(x, y);
-        no.whirl = dofs.node(node).speed_ratio < 0.0 ? signal::reversed(no.orbit.whirl)
-                                                      : no.orbit.whirl;
+        no.whirl =
+            dofs.node(node).speed_ratio < 0.0 ? signal::reversed(no.orbit.whirl) : no.orbit.whirl;
       }
     }
     progress.update(i + 1);
@@ -201,7 +204,8 @@ AnalysisOutput unbalance_output(const model::Model& model, const fe::LinearSyste
                                     : result.sensors[s].name;
       a.x = p.x = rpm;
       for (std::size_t i = 0; i < n_speeds; ++i) {
-        const Complex z = result.response[o](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s));
+        const Complex z =
+            result.response[o](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s));
         amp.push_back(std::abs(z));
         lag.push_back(UnbalanceResult::phase_lag_deg(z));
         a.y.push_back(amp.back());
@@ -248,8 +252,7 @@ AnalysisOutput unbalance_output(const model::Model& model, const fe::LinearSyste
   out.plots.push_back(std::move(phase_plot));
 
   std::string orders;
-  for (double r : result.orders)
-    orders += (orders.empty() ? "" : ", ") + order_label(r);
+  for (double r : result.orders) orders += (orders.empty() ? "" : ", ") + order_label(r);
   out.notes.push_back(fmt::format(
       "{} speed(s) from {:.6g} to {:.6g} rpm; unbalance orders {} (response at order x speed). "
       "Each point solves D(w; W) X = F_unb directly with K, C of speed-dependent bearings and "

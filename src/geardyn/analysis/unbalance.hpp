@@ -3,7 +3,8 @@
 // (r: the node's speed ratio, W the reference speed) is a force of magnitude m e (r W)^2 turning
 // with the shaft, at frequency |r| W. For every speed W and every order r (distinct |speed
 // ratio| of the nodes carrying unbalance), solve
-//   D(|r| W; W) X = F_unb(r, W),  D(w; W) = K(W) - w^2 M + i w (C(W) + W G) + i K_loss + i w C_modal
+//   D(|r| W; W) X = F_unb(r, W),  D(w; W) = K(W) - w^2 M + i w (C(W) + W G) + i K_loss + i w
+//   C_modal
 // with the speed-dependent bearing coefficients and the gyroscopic matrix at W.
 // Phase convention: x(t) = Re(X e^{i w t}); the reported phase is the LAG of the response behind
 // the shaft's reference mark, lag = -arg X in [0, 360) deg, where the reference mark is the
@@ -12,7 +13,6 @@
 // phase, 0 below and 180 deg far above the critical speed); a uy probe reads 90 deg more lag in
 // forward whirl, as a keyphasor-referenced probe at 90 deg does.
 #include <Eigen/Dense>
-
 #include <string>
 #include <vector>
 
@@ -36,8 +36,8 @@ struct NodeOrbit {
 struct UnbalanceResult {
   Status status = Status::Ok;
   std::string message;
-  std::vector<double> speeds;   ///< reference speeds [rad/s]
-  std::vector<double> orders;   ///< excitation orders (|speed ratio|), ascending
+  std::vector<double> speeds;  ///< reference speeds [rad/s]
+  std::vector<double> orders;  ///< excitation orders (|speed ratio|), ascending
   std::vector<ResponseSensor> sensors;
   /// response[o](i, s): complex amplitude of sensor s at speeds[i] for orders[o] [m or rad].
   std::vector<Eigen::MatrixXcd> response;
@@ -53,7 +53,8 @@ struct UnbalanceResult {
 /// Runs the unbalance response. Orbits are given for every node that has both a ux and a uy
 /// sensor among the selected sensors and for every node carrying a selected unbalance.
 /// Sensors are optional (empty list and no model sensors: orbits only). Throws InputError for
-/// unknown names, constrained sensor DOFs, no unbalance (on a spinning node) or a speed <= 0; NumericalError (naming speed and frequency) when D is singular.
+/// unknown names, constrained sensor DOFs, no unbalance (on a spinning node) or a speed <= 0;
+/// NumericalError (naming speed and frequency) when D is singular.
 UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem& system,
                               const model::UnbalanceSettings& settings, Progress& progress);
 

@@ -11,8 +11,8 @@ std::string format_input_error(const SourceLocation& where, const std::string& k
   std::string location = where.file.empty() ? std::string("<model>") : where.file;
   if (where.line > 0) location += fmt::format(":{}", where.line);
   if (where.line > 0 && where.column > 0) location += fmt::format(":{}", where.column);
-  std::string message = fmt::format("{}: key '{}': expected {}, found {}", location, key_path,
-                                    expected, found);
+  std::string message =
+      fmt::format("{}: key '{}': expected {}, found {}", location, key_path, expected, found);
   if (!hint.empty()) message += fmt::format(" ({})", hint);
   return message;
 }

@@ -15,8 +15,9 @@ struct SourceLocation {
   int column = 0;
 };
 
-/// Bad input: the message names the file:line:column, the key path (e.g. `shafts[0].elements[2].length`),
-/// what was expected and what was found, and optionally a hint ("did you mean ...?").
+/// Bad input: the message names the file:line:column, the key path (e.g.
+/// `shafts[0].elements[2].length`), what was expected and what was found, and optionally a hint
+/// ("did you mean ...?").
 class InputError : public std::runtime_error {
  public:
   InputError(SourceLocation where, std::string key_path, std::string expected, std::string found,

@@ -5,22 +5,28 @@ namespace geardyn {
 
 /// Outcome of a numerical step or an analysis. Anything but Ok is reported, never hidden.
 enum class Status {
-  Ok,             ///< converged / completed
-  NotConverged,   ///< an iterative solver stopped at its iteration limit
-  FewerModes,     ///< an eigen-solve returned fewer modes than asked for
-  Singular,       ///< a matrix that must be invertible was singular
-  Diverged,       ///< a time integration or iteration blew up
-  Failed          ///< any other failure; the message says what
+  Ok,            ///< converged / completed
+  NotConverged,  ///< an iterative solver stopped at its iteration limit
+  FewerModes,    ///< an eigen-solve returned fewer modes than asked for
+  Singular,      ///< a matrix that must be invertible was singular
+  Diverged,      ///< a time integration or iteration blew up
+  Failed         ///< any other failure; the message says what
 };
 
 constexpr std::string_view to_string(Status s) {
   switch (s) {
-    case Status::Ok: return "ok";
-    case Status::NotConverged: return "not_converged";
-    case Status::FewerModes: return "fewer_modes";
-    case Status::Singular: return "singular";
-    case Status::Diverged: return "diverged";
-    case Status::Failed: return "failed";
+    case Status::Ok:
+      return "ok";
+    case Status::NotConverged:
+      return "not_converged";
+    case Status::FewerModes:
+      return "fewer_modes";
+    case Status::Singular:
+      return "singular";
+    case Status::Diverged:
+      return "diverged";
+    case Status::Failed:
+      return "failed";
   }
   return "failed";
 }
@@ -29,12 +35,18 @@ constexpr std::string_view to_string(Status s) {
 /// (Ok < NotConverged < FewerModes < Diverged < Singular < Failed).
 constexpr int severity(Status s) {
   switch (s) {
-    case Status::Ok: return 0;
-    case Status::NotConverged: return 1;
-    case Status::FewerModes: return 2;
-    case Status::Diverged: return 3;
-    case Status::Singular: return 4;
-    case Status::Failed: return 5;
+    case Status::Ok:
+      return 0;
+    case Status::NotConverged:
+      return 1;
+    case Status::FewerModes:
+      return 2;
+    case Status::Diverged:
+      return 3;
+    case Status::Singular:
+      return 4;
+    case Status::Failed:
+      return 5;
   }
   return 5;
 }

@@ -45,13 +45,13 @@ struct Trace {
   std::string name;
   std::vector<double> x, y;
   Mode mode = Mode::Lines;
-  std::string dash;                 ///< "" solid, "dash", "dot"
-  std::vector<std::string> hover;   ///< optional per-point hover text
+  std::string dash;                ///< "" solid, "dash", "dot"
+  std::vector<std::string> hover;  ///< optional per-point hover text
 };
 
 /// A 2D plot, rendered by the report with plotly.js.
 struct Plot {
-  std::string name;     ///< id, unique within an analysis
+  std::string name;  ///< id, unique within an analysis
   std::string title;
   std::string x_label;  ///< with unit, e.g. "speed [rpm]"
   std::string y_label;
@@ -63,10 +63,10 @@ struct Plot {
 
 /// What one analysis hands to the writers: tables, plots, status and a trust statement.
 struct AnalysisOutput {
-  std::string name;        ///< the analysis name from the model (folder name)
-  std::string type;        ///< "modal", "campbell", ...
+  std::string name;  ///< the analysis name from the model (folder name)
+  std::string type;  ///< "modal", "campbell", ...
   Status status = Status::Ok;
-  std::string message;     ///< empty when ok; otherwise what failed and what usually helps
+  std::string message;  ///< empty when ok; otherwise what failed and what usually helps
   double run_time_s = 0.0;
   std::vector<std::string> notes;  ///< how far to trust the result (accuracy, checks done)
   std::vector<Table> tables;

@@ -140,7 +140,8 @@ int DofMap::node_index(const std::string& name) const {
 
 std::array<int, 6> DofMap::node_dofs(int node) const {
   std::array<int, 6> dofs{};
-  for (int c = 0; c < 6; ++c) dofs[static_cast<std::size_t>(c)] = dof(node, static_cast<model::Component>(c));
+  for (int c = 0; c < 6; ++c)
+    dofs[static_cast<std::size_t>(c)] = dof(node, static_cast<model::Component>(c));
   return dofs;
 }
 

@@ -3,7 +3,6 @@
 // frame (columns e1, e2, e3 of `frame`, e3 = spin axis). Constrained DOFs are eliminated: they
 // have no equation number. Nodes: shaft stations in model order ("<shaft>.<k>"), then free nodes.
 #include <Eigen/Dense>
-
 #include <string>
 #include <unordered_map>
 #include <vector>

@@ -100,8 +100,8 @@ GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo&
     g.radial_force = (tan_alpha * std::cos(delta) - s * sb * std::sin(delta)) / cb;
   }
 
-  const Eigen::Vector3d force1 = -g.sigma * g.tangential + g.axial_force * g.axial -
-                                 g.radial_force * g.radial;
+  const Eigen::Vector3d force1 =
+      -g.sigma * g.tangential + g.axial_force * g.axial - g.radial_force * g.radial;
   g.line_of_action = -force1.normalized();
   return g;
 }

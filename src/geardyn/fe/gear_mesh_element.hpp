@@ -47,14 +47,14 @@
 namespace geardyn::fe {
 
 struct GearMeshGeometry {
-  Eigen::Vector3d pitch_point;      ///< P [m], global
-  Eigen::Vector3d radial;           ///< e_r
-  Eigen::Vector3d tangential;       ///< e_t
-  Eigen::Vector3d axial;            ///< e_a (spur, helical) or u_a (bevel, hypoid)
-  Eigen::Vector3d line_of_action;   ///< n: unit direction of the force on gear 2
-  double pitch_radius1 = 0;         ///< r_p1 [m]
+  Eigen::Vector3d pitch_point;           ///< P [m], global
+  Eigen::Vector3d radial;                ///< e_r
+  Eigen::Vector3d tangential;            ///< e_t
+  Eigen::Vector3d axial;                 ///< e_a (spur, helical) or u_a (bevel, hypoid)
+  Eigen::Vector3d line_of_action;        ///< n: unit direction of the force on gear 2
+  double pitch_radius1 = 0;              ///< r_p1 [m]
   double transverse_pressure_angle = 0;  ///< alpha_t [rad]
-  double sigma = 1;                 ///< rotation sense x flank, see above
+  double sigma = 1;                      ///< rotation sense x flank, see above
   /// Tooth force on gear 1 per unit tangential force, along -sigma e_t, `axial` and -e_r:
   /// (1, F_a, F_r). The unnormalised force is -sigma e_t + F_a axial - F_r e_r.
   double tangential_force = 1, axial_force = 0, radial_force = 0;

@@ -183,9 +183,11 @@ struct Assembler {
       check_size(bearing.stiffness.size(), "stiffness");
       check_size(bearing.damping.size(), "damping");
       for (std::size_t k = 0; k < bearing.speeds.size(); ++k) {
-        if (!std::isfinite(bearing.speeds[k]) || (k > 0 && !(bearing.speeds[k] > bearing.speeds[k - 1]))) {
+        if (!std::isfinite(bearing.speeds[k]) ||
+            (k > 0 && !(bearing.speeds[k] > bearing.speeds[k - 1]))) {
           throw InputError(bearing.where, fmt::format("{}.speeds[{}]", key, k),
-                           "finite, strictly increasing speeds", fmt::format("{}", bearing.speeds[k]));
+                           "finite, strictly increasing speeds",
+                           fmt::format("{}", bearing.speeds[k]));
         }
       }
 
@@ -208,7 +210,8 @@ struct Assembler {
 
       if (bearing.speeds.size() <= 1) {
         // A one-row table is a constant bearing.
-        if (!bearing.stiffness.empty()) scatter(K, eq, element(bearing.stiffness.front(), "stiffness"));
+        if (!bearing.stiffness.empty())
+          scatter(K, eq, element(bearing.stiffness.front(), "stiffness"));
         if (!bearing.damping.empty()) scatter(C, eq, element(bearing.damping.front(), "damping"));
         continue;
       }
@@ -216,9 +219,10 @@ struct Assembler {
       table.speeds = bearing.speeds;
       table.equations = eq;
       for (std::size_t k = 0; k < n_table; ++k) {
-        table.stiffness.push_back(bearing.stiffness.empty()
-                                      ? Matrix12d::Zero().eval()
-                                      : element(bearing.stiffness[k], fmt::format("stiffness[{}]", k)));
+        table.stiffness.push_back(
+            bearing.stiffness.empty()
+                ? Matrix12d::Zero().eval()
+                : element(bearing.stiffness[k], fmt::format("stiffness[{}]", k)));
         table.damping.push_back(bearing.damping.empty()
                                     ? Matrix12d::Zero().eval()
                                     : element(bearing.damping[k], fmt::format("damping[{}]", k)));
@@ -239,10 +243,10 @@ struct Assembler {
       auto add = [&](const std::vector<double>& values, const char* what, Triplets& target) {
         if (values.empty()) return;
         if (values.size() != expected) {
-          throw InputError(coupling.where, key + "." + what,
-                           fmt::format("{} numbers ({} row-major)", expected,
-                                       ground ? "6x6" : "12x12"),
-                           std::to_string(values.size()));
+          throw InputError(
+              coupling.where, key + "." + what,
+              fmt::format("{} numbers ({} row-major)", expected, ground ? "6x6" : "12x12"),
+              std::to_string(values.size()));
         }
         if (ground) {
           const Matrix6d a = coupling_to_ground(values, dofs().node(node1).frame);
@@ -299,8 +303,9 @@ LinearSystem assemble(const model::Model& model, [[maybe_unused]] const Assembly
   require_finite_non_negative(damping.loss_factor, {}, "damping.loss_factor",
                               "a non-negative loss factor");
   if (!std::isfinite(damping.rayleigh_alpha) || !std::isfinite(damping.rayleigh_beta)) {
-    throw InputError({}, "damping.rayleigh", "finite Rayleigh coefficients",
-                     fmt::format("alpha {}, beta {}", damping.rayleigh_alpha, damping.rayleigh_beta));
+    throw InputError(
+        {}, "damping.rayleigh", "finite Rayleigh coefficients",
+        fmt::format("alpha {}, beta {}", damping.rayleigh_alpha, damping.rayleigh_beta));
   }
 
   Assembler a{model, system, {}, {}, {}, {}, {}};
@@ -377,7 +382,8 @@ namespace {
 
 // The unbalances selected by name (all when `selected` is empty), with their node index.
 std::vector<std::pair<const model::Unbalance*, int>> selected_unbalances(
-    const model::Model& model, const LinearSystem& system, const std::vector<std::string>& selected) {
+    const model::Model& model, const LinearSystem& system,
+    const std::vector<std::string>& selected) {
   std::vector<std::pair<const model::Unbalance*, int>> out;
   for (const std::string& name : selected) {
     const bool known = std::any_of(model.unbalances.begin(), model.unbalances.end(),
@@ -391,7 +397,8 @@ std::vector<std::pair<const model::Unbalance*, int>> selected_unbalances(
     const model::Unbalance& u = model.unbalances[i];
     if (!selected.empty() && std::find(selected.begin(), selected.end(), u.name) == selected.end())
       continue;
-    const int node = require_node(system.dofs, u.node, u.where, fmt::format("unbalances[{}].node", i));
+    const int node =
+        require_node(system.dofs, u.node, u.where, fmt::format("unbalances[{}].node", i));
     out.emplace_back(&u, node);
   }
   return out;
@@ -399,9 +406,8 @@ std::vector<std::pair<const model::Unbalance*, int>> selected_unbalances(
 
 }  // namespace
 
-Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system,
-                                double speed, double order,
-                                const std::vector<std::string>& selected) {
+Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system, double speed,
+                                double order, const std::vector<std::string>& selected) {
   using namespace std::complex_literals;
   Eigen::VectorXcd f = Eigen::VectorXcd::Zero(system.size());
   for (const auto& [unbalance, node] : selected_unbalances(model, system, selected)) {
@@ -410,8 +416,8 @@ Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& s
     const double omega = std::abs(ratio) * speed;
     // Forward-rotating force in the spin sense: F_x = m e w^2 e^{i phi}, F_y = -i F_x for spin
     // about +e3 (F_y(t) = m e w^2 sin(w t + phi)), mirrored (F_y = +i F_x) for negative spin.
-    const std::complex<double> fx = unbalance->mass_eccentricity * omega * omega *
-                                    std::exp(1i * unbalance->phase);
+    const std::complex<double> fx =
+        unbalance->mass_eccentricity * omega * omega * std::exp(1i * unbalance->phase);
     const std::complex<double> fy = (ratio > 0 ? -1i : 1i) * fx;
     const int ex = system.dofs.dof(node, model::Component::Ux);
     const int ey = system.dofs.dof(node, model::Component::Uy);
@@ -441,9 +447,15 @@ ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& s
   for (int i = 0; i < system.size() && i < shape.size(); ++i) {
     const double energy = mass(i) * std::norm(shape(i));
     switch (system.dofs.dof_component(i)) {
-      case model::Component::Uz: f.axial += energy; break;
-      case model::Component::Rz: f.torsional += energy; break;
-      default: f.lateral += energy; break;
+      case model::Component::Uz:
+        f.axial += energy;
+        break;
+      case model::Component::Rz:
+        f.torsional += energy;
+        break;
+      default:
+        f.lateral += energy;
+        break;
     }
   }
   const double total = f.lateral + f.axial + f.torsional;

@@ -6,7 +6,6 @@
 // cross-coupled bearing terms, in the DofMap's numbering (constrained DOFs removed).
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
-
 #include <string>
 #include <vector>
 
@@ -22,22 +21,22 @@ using ComplexSparseMatrix = Eigen::SparseMatrix<std::complex<double>>;
 /// (linear interpolation in the reference speed, held constant outside the table).
 /// Matrices are over (node 1 DOFs, node 2 DOFs) in the node frames.
 struct SpeedDependentBearing {
-  std::vector<double> speeds;                   ///< [rad/s], increasing
+  std::vector<double> speeds;                                     ///< [rad/s], increasing
   std::vector<Eigen::Matrix<double, 12, 12>> stiffness, damping;  ///< in equation space
-  std::array<int, 12> equations{};              ///< -1 for constrained or ground
+  std::array<int, 12> equations{};                                ///< -1 for constrained or ground
 };
 
 struct LinearSystem {
   DofMap dofs;
-  SparseMatrix M;           ///< mass
-  SparseMatrix K;           ///< stiffness without speed-dependent bearings
-  SparseMatrix C;           ///< viscous damping (bearings, couplings, meshes, Rayleigh) without
-                            ///< speed-dependent bearings and without gyroscopic terms;
-                            ///< Rayleigh alpha M + beta K uses this K (speed-independent part)
-  SparseMatrix G;           ///< gyroscopic matrix per unit reference speed (skew-symmetric)
-  SparseMatrix K_loss;      ///< hysteretic part: frequency-domain stiffness K + i K_loss, with
-                            ///< K_loss = sum_e eta_e K_e (shaft elements' loss_factor)
-                            ///<        + Damping::loss_factor x K
+  SparseMatrix M;       ///< mass
+  SparseMatrix K;       ///< stiffness without speed-dependent bearings
+  SparseMatrix C;       ///< viscous damping (bearings, couplings, meshes, Rayleigh) without
+                        ///< speed-dependent bearings and without gyroscopic terms;
+                        ///< Rayleigh alpha M + beta K uses this K (speed-independent part)
+  SparseMatrix G;       ///< gyroscopic matrix per unit reference speed (skew-symmetric)
+  SparseMatrix K_loss;  ///< hysteretic part: frequency-domain stiffness K + i K_loss, with
+                        ///< K_loss = sum_e eta_e K_e (shaft elements' loss_factor)
+                        ///<        + Damping::loss_factor x K
   std::vector<SpeedDependentBearing> speed_bearings;
 
   /// Modal damping (DESIGN 4.1) as a low-rank term C_modal = B diag(c) B^T with B = M Phi from
@@ -63,9 +62,8 @@ struct LinearSystem {
 /// node's speed ratio: m e (r Omega)^2 in the node's e1-e2 plane, turning in the spin sense.
 /// Only unbalances whose node has |speed_ratio| == `order` (within 1e-12) are included, so the
 /// result is one frequency component. `selected` empty: all unbalances.
-Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system,
-                                double speed, double order,
-                                const std::vector<std::string>& selected = {});
+Eigen::VectorXcd unbalance_load(const model::Model& model, const LinearSystem& system, double speed,
+                                double order, const std::vector<std::string>& selected = {});
 
 /// Distinct |speed ratios| of the nodes that carry the selected unbalances (the orders at which
 /// unbalance excites the system), ascending.

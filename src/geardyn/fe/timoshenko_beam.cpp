@@ -29,8 +29,7 @@ PlaneShape plane_shape(double xi, double L, double phi) {
   const double xi2 = xi * xi, xi3 = xi2 * xi;
   PlaneShape n;
   n.w << s * (2 * xi3 - 3 * xi2 - phi * xi + 1 + phi),
-      s * L * (xi3 - (2 + phi / 2) * xi2 + (1 + phi / 2) * xi),
-      -s * (2 * xi3 - 3 * xi2 - phi * xi),
+      s * L * (xi3 - (2 + phi / 2) * xi2 + (1 + phi / 2) * xi), -s * (2 * xi3 - 3 * xi2 - phi * xi),
       s * L * (xi3 - (1 - phi / 2) * xi2 - (phi / 2) * xi);
   n.theta << 6 * s / L * (xi2 - xi), s * (3 * xi2 - (4 + phi) * xi + 1 + phi),
       -6 * s / L * (xi2 - xi), s * (3 * xi2 - (2 - phi) * xi);
@@ -41,7 +40,8 @@ PlaneShape plane_shape(double xi, double L, double phi) {
 Vector12d scatter(const Eigen::Vector4d& v, const std::array<int, 4>& at,
                   const std::array<double, 4>& sign) {
   Vector12d out = Vector12d::Zero();
-  for (int j = 0; j < 4; ++j) out(at[static_cast<std::size_t>(j)]) = sign[static_cast<std::size_t>(j)] * v(j);
+  for (int j = 0; j < 4; ++j)
+    out(at[static_cast<std::size_t>(j)]) = sign[static_cast<std::size_t>(j)] * v(j);
   return out;
 }
 
@@ -60,7 +60,8 @@ double cowper_shear_coefficient(double poisson_ratio, double diameter_ratio) {
 
 BeamMatrices timoshenko_beam(const BeamProperties& p) {
   require(p.length > 0 && std::isfinite(p.length), "length must be positive");
-  require(p.outer_diameter > 0 && std::isfinite(p.outer_diameter), "outer diameter must be positive");
+  require(p.outer_diameter > 0 && std::isfinite(p.outer_diameter),
+          "outer diameter must be positive");
   require(p.inner_diameter >= 0 && p.inner_diameter < p.outer_diameter,
           "inner diameter must lie in [0, outer diameter)");
   require(p.youngs_modulus > 0 && p.shear_modulus > 0 && p.density >= 0,
@@ -89,9 +90,9 @@ BeamMatrices timoshenko_beam(const BeamProperties& p) {
 
   // Bending stiffness, closed form of integral(EI theta'^2 + kappa G A (w' - theta)^2).
   Eigen::Matrix4d kb;
-  kb << 12, 6 * L, -12, 6 * L,                                     //
-      6 * L, (4 + phi) * L * L, -6 * L, (2 - phi) * L * L,         //
-      -12, -6 * L, 12, -6 * L,                                     //
+  kb << 12, 6 * L, -12, 6 * L,                              //
+      6 * L, (4 + phi) * L * L, -6 * L, (2 - phi) * L * L,  //
+      -12, -6 * L, 12, -6 * L,                              //
       6 * L, (2 - phi) * L * L, -6 * L, (4 + phi) * L * L;
   kb *= E * I / (L * L * L * (1 + phi));
 

@@ -33,11 +33,11 @@ struct BeamProperties {
 };
 
 struct BeamMatrices {
-  Matrix12d stiffness = Matrix12d::Zero();    ///< K
-  Matrix12d mass = Matrix12d::Zero();         ///< translational + rotary + axial + torsional
-  Matrix12d gyroscopic = Matrix12d::Zero();   ///< G per unit spin speed (skew-symmetric)
-  double shear_parameter = 0.0;               ///< Phi (0 for Euler-Bernoulli)
-  double shear_coefficient = 0.0;             ///< kappa used (NaN for Euler-Bernoulli)
+  Matrix12d stiffness = Matrix12d::Zero();   ///< K
+  Matrix12d mass = Matrix12d::Zero();        ///< translational + rotary + axial + torsional
+  Matrix12d gyroscopic = Matrix12d::Zero();  ///< G per unit spin speed (skew-symmetric)
+  double shear_parameter = 0.0;              ///< Phi (0 for Euler-Bernoulli)
+  double shear_coefficient = 0.0;            ///< kappa used (NaN for Euler-Bernoulli)
 };
 
 /// Cowper's shear coefficient of a hollow circular section (G. R. Cowper, "The shear coefficient

@@ -56,7 +56,8 @@ struct Shaft {
   double speed_ratio = 1.0;
   std::string driven_by;
   double gear_ratio = kNaN;
-  double shear_coefficient = kNaN;  ///< NaN: Cowper's (1966) value for the (hollow) circle per element
+  double shear_coefficient =
+      kNaN;  ///< NaN: Cowper's (1966) value for the (hollow) circle per element
   BeamTheory theory = BeamTheory::Timoshenko;
   bool rotary_inertia = true;
   bool gyroscopic = true;
@@ -84,9 +85,9 @@ struct Disk {
   double diametral_inertia = kNaN;  ///< Id about a diameter [kg m^2]
   /// Geometry input (a steel blank etc.): when outer_diameter is not NaN, the parser computed
   /// mass and inertias from it with the material's density. Kept for drawing and reports.
-  double outer_diameter = kNaN;     ///< [m]
-  double inner_diameter = 0.0;      ///< [m]
-  double thickness = kNaN;          ///< [m]
+  double outer_diameter = kNaN;  ///< [m]
+  double inner_diameter = 0.0;   ///< [m]
+  double thickness = kNaN;       ///< [m]
   std::string material;
   SourceLocation where;
 };
@@ -119,7 +120,7 @@ struct Bearing {
 struct Coupling {
   std::string name;
   std::string node1;
-  std::string node2;  ///< empty: ground, matrices are 6x6
+  std::string node2;                             ///< empty: ground, matrices are 6x6
   std::vector<double> stiffness, damping, mass;  ///< empty: zero
   SourceLocation where;
 };
@@ -135,18 +136,18 @@ struct GearMesh {
   std::string name;
   std::string gear1, gear2;
   GearType type = GearType::Spur;
-  int teeth1 = 0, teeth2 = 0;            ///< for gear-mesh orders (0: unknown)
+  int teeth1 = 0, teeth2 = 0;                       ///< for gear-mesh orders (0: unknown)
   double base_radius1 = kNaN, base_radius2 = kNaN;  ///< [m]
-  double pressure_angle = kNaN;          ///< transverse (spur), normal (helical, bevel) [rad]
-  double helix_angle = 0.0;              ///< helix / mean spiral angle [rad]
-  double pitch_cone_angle1 = 0.0;        ///< bevel only [rad]
+  double pressure_angle = kNaN;    ///< transverse (spur), normal (helical, bevel) [rad]
+  double helix_angle = 0.0;        ///< helix / mean spiral angle [rad]
+  double pitch_cone_angle1 = 0.0;  ///< bevel only [rad]
   double pitch_cone_angle2 = 0.0;
-  Hand hand = Hand::Right;               ///< hand of gear1's helix / spiral
+  Hand hand = Hand::Right;  ///< hand of gear1's helix / spiral
   Flank flank = Flank::Drive;
-  double stiffness = kNaN;               ///< mesh stiffness along the line of action [N/m]
-  double damping = 0.0;                  ///< [N s/m]
-  std::optional<Vec3> mesh_direction;    ///< from gear1's centre towards the pitch point; default
-                                         ///< from the node positions
+  double stiffness = kNaN;             ///< mesh stiffness along the line of action [N/m]
+  double damping = 0.0;                ///< [N s/m]
+  std::optional<Vec3> mesh_direction;  ///< from gear1's centre towards the pitch point; default
+                                       ///< from the node positions
   SourceLocation where;
 };
 
@@ -190,13 +191,13 @@ struct DampingBand {
 };
 
 struct Damping {
-  double rayleigh_alpha = 0.0;    ///< C += alpha M [1/s]
-  double rayleigh_beta = 0.0;     ///< C += beta K [s]
-  double loss_factor = 0.0;       ///< global structural eta (frequency domain only)
-  double modal_ratio = 0.0;       ///< ratio for every mode not in modal_ratios / bands
+  double rayleigh_alpha = 0.0;       ///< C += alpha M [1/s]
+  double rayleigh_beta = 0.0;        ///< C += beta K [s]
+  double loss_factor = 0.0;          ///< global structural eta (frequency domain only)
+  double modal_ratio = 0.0;          ///< ratio for every mode not in modal_ratios / bands
   std::vector<double> modal_ratios;  ///< per mode, in order of undamped frequency
   std::vector<DampingBand> bands;
-  int modal_modes = 0;            ///< modes used to build modal damping (0: none used)
+  int modal_modes = 0;  ///< modes used to build modal damping (0: none used)
   bool any_modal() const { return modal_ratio > 0.0 || !modal_ratios.empty() || !bands.empty(); }
 };
 
@@ -209,20 +210,20 @@ enum class ResponseQuantity { Receptance, Mobility, Accelerance };
 enum class Integrator { Newmark, GeneralizedAlpha };
 
 struct ModalSettings {
-  double speed = 0.0;          ///< reference speed [rad/s]
+  double speed = 0.0;  ///< reference speed [rad/s]
   int n_modes = 10;
-  bool complex_modes = true;   ///< also the damped gyroscopic (complex) modes
+  bool complex_modes = true;  ///< also the damped gyroscopic (complex) modes
   EigenMethod method = EigenMethod::Auto;
-  double shift = 0.0;          ///< shift for shift-invert [rad/s]; modes nearest to it
+  double shift = 0.0;  ///< shift for shift-invert [rad/s]; modes nearest to it
 };
 
 struct CampbellSettings {
-  std::vector<double> speeds;        ///< reference speeds [rad/s]
+  std::vector<double> speeds;  ///< reference speeds [rad/s]
   int n_modes = 8;
   std::vector<double> engine_orders = {1.0};  ///< orders of the reference shaft
-  bool shaft_orders = true;          ///< add order 1 of every shaft (x its speed ratio)
-  bool mesh_orders = true;           ///< add teeth x shaft order of every mesh with teeth
-  double mac_threshold = 0.7;        ///< below this a tracking step is flagged ambiguous
+  bool shaft_orders = true;                   ///< add order 1 of every shaft (x its speed ratio)
+  bool mesh_orders = true;                    ///< add teeth x shaft order of every mesh with teeth
+  double mac_threshold = 0.7;                 ///< below this a tracking step is flagged ambiguous
   EigenMethod method = EigenMethod::Auto;
 };
 
@@ -231,51 +232,51 @@ struct HarmonicSettings {
   double f_min = kNaN, f_max = kNaN;  ///< [rad/s]
   int n_points = 200;
   Spacing spacing = Spacing::Linear;
-  bool adaptive = true;               ///< refine around peaks
-  std::string input_node;             ///< unit-force input (FRF) ...
+  bool adaptive = true;    ///< refine around peaks
+  std::string input_node;  ///< unit-force input (FRF) ...
   Component input_dof = Component::Ux;
-  std::vector<std::string> forces;    ///< ... or these named harmonic forces (forced response)
-  std::vector<std::string> sensors;   ///< empty: all sensors
+  std::vector<std::string> forces;   ///< ... or these named harmonic forces (forced response)
+  std::vector<std::string> sensors;  ///< empty: all sensors
   ResponseQuantity quantity = ResponseQuantity::Receptance;
 };
 
 struct UnbalanceSettings {
-  std::vector<double> speeds;         ///< [rad/s]
+  std::vector<double> speeds;           ///< [rad/s]
   std::vector<std::string> unbalances;  ///< empty: all
   std::vector<std::string> sensors;     ///< empty: all
 };
 
 struct TransientSettings {
-  double speed = 0.0;            ///< constant speed, or start of a run-up [rad/s]
-  double speed_end = kNaN;       ///< run-up end speed (NaN: constant speed)
-  double duration = kNaN;        ///< [s]
-  double time_step = kNaN;       ///< [s]
+  double speed = 0.0;       ///< constant speed, or start of a run-up [rad/s]
+  double speed_end = kNaN;  ///< run-up end speed (NaN: constant speed)
+  double duration = kNaN;   ///< [s]
+  double time_step = kNaN;  ///< [s]
   Integrator integrator = Integrator::GeneralizedAlpha;
-  double rho_infinity = 0.9;     ///< spectral radius at infinity (generalised-alpha)
-  double steady_fraction = 0.5;  ///< last fraction of the record used for spectra and orbits
+  double rho_infinity = 0.9;            ///< spectral radius at infinity (generalised-alpha)
+  double steady_fraction = 0.5;         ///< last fraction of the record used for spectra and orbits
   std::vector<std::string> unbalances;  ///< empty: all
   std::vector<std::string> sensors;     ///< empty: all
-  int output_every = 1;          ///< store every n-th step
+  int output_every = 1;                 ///< store every n-th step
 };
 
 /// Scalar results a sweep tabulates per point.
 struct SweepOutput {
   enum class Quantity { NaturalFrequency, CriticalSpeed, PeakAmplitude, PeakLocation, AmplitudeAt };
   Quantity quantity = Quantity::NaturalFrequency;
-  int mode = 1;             ///< NaturalFrequency / CriticalSpeed: 1-based index
-  std::string sensor;       ///< PeakAmplitude / PeakLocation / AmplitudeAt
-  double at = kNaN;         ///< AmplitudeAt: speed or frequency [rad/s]
-  std::string label;        ///< column name stem
+  int mode = 1;        ///< NaturalFrequency / CriticalSpeed: 1-based index
+  std::string sensor;  ///< PeakAmplitude / PeakLocation / AmplitudeAt
+  double at = kNaN;    ///< AmplitudeAt: speed or frequency [rad/s]
+  std::string label;   ///< column name stem
 };
 
 struct SweepSettings {
-  std::string parameter;          ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
+  std::string parameter;  ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
   std::vector<std::string> linked_parameters;  ///< further key paths set to the same value
-  std::vector<double> values;     ///< in the units of the key
-  std::string analysis;           ///< name of the analysis run per point
+  std::vector<double> values;                  ///< in the units of the key
+  std::string analysis;                        ///< name of the analysis run per point
   std::vector<SweepOutput> outputs;
-  bool log_x = false;             ///< plot with a log axis
-  int threads = 0;                ///< 0: all cores
+  bool log_x = false;  ///< plot with a log axis
+  int threads = 0;     ///< 0: all cores
 };
 
 enum class AnalysisType { Modal, Campbell, Harmonic, Unbalance, Transient, Sweep };

@@ -1193,8 +1193,8 @@ void Resolver::check_analysis_overrides(const std::string& base, const Analysis&
     (void)build_model(variant);
   } catch (const InputError& e) {
     --depth;
-    fail(base + ".set", fmt::format("changes giving a valid model ({}: expected {})", e.key_path(),
-                                    e.expected()),
+    fail(base + ".set",
+         fmt::format("changes giving a valid model ({}: expected {})", e.key_path(), e.expected()),
          e.found(), e.hint());
   }
   --depth;

@@ -54,16 +54,16 @@ struct Range {
 
 /// A value read from the file (or a default), checked and converted to SI.
 struct FieldValue {
-  bool given = false;           ///< false: the declared default
-  SourceLocation where;         ///< where the value is written (the table for defaults)
-  std::string path;             ///< key path, e.g. "shafts[0].elements[2].length"
-  double number = 0.0;          ///< Number, NumberOrArray given as a number
-  long long integer = 0;        ///< Integer
-  bool boolean = false;         ///< Boolean
-  std::string text;             ///< String, Enum
-  int choice = -1;              ///< Enum: index into Field::choices
-  std::vector<double> numbers;  ///< NumberArray, Vector3, NumberOrArray as array, Matrix
-                                ///< (row-major, matrices one after the other when tabulated)
+  bool given = false;                ///< false: the declared default
+  SourceLocation where;              ///< where the value is written (the table for defaults)
+  std::string path;                  ///< key path, e.g. "shafts[0].elements[2].length"
+  double number = 0.0;               ///< Number, NumberOrArray given as a number
+  long long integer = 0;             ///< Integer
+  bool boolean = false;              ///< Boolean
+  std::string text;                  ///< String, Enum
+  int choice = -1;                   ///< Enum: index into Field::choices
+  std::vector<double> numbers;       ///< NumberArray, Vector3, NumberOrArray as array, Matrix
+                                     ///< (row-major, matrices one after the other when tabulated)
   std::vector<std::string> strings;  ///< StringArray
   std::vector<int> indices;          ///< DofList: Component indices
   bool is_array = false;  ///< NumberOrArray given as array; Matrix given as a table of them

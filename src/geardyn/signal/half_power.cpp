@@ -70,9 +70,9 @@ HalfPower half_power(std::span<const double> f, std::span<const double> amplitud
   hp.frequency = f[peak_index];
   hp.amplitude = amplitude[peak_index];
   if (peak_index > 0 && peak_index + 1 < n) {
-    const auto v = parabolic_vertex(f[peak_index - 1], amplitude[peak_index - 1], f[peak_index],
-                                    amplitude[peak_index], f[peak_index + 1],
-                                    amplitude[peak_index + 1]);
+    const auto v =
+        parabolic_vertex(f[peak_index - 1], amplitude[peak_index - 1], f[peak_index],
+                         amplitude[peak_index], f[peak_index + 1], amplitude[peak_index + 1]);
     // A vertex below the sampled maximum cannot be the peak (the samples are exact values).
     if (v.valid && v.y >= amplitude[peak_index] && v.x > f[peak_index - 1] &&
         v.x < f[peak_index + 1]) {

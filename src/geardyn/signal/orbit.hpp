@@ -20,9 +20,12 @@ enum class Whirl { Forward, Backward, Straight };
 
 constexpr std::string_view to_string(Whirl w) {
   switch (w) {
-    case Whirl::Forward: return "forward";
-    case Whirl::Backward: return "backward";
-    case Whirl::Straight: return "straight";
+    case Whirl::Forward:
+      return "forward";
+    case Whirl::Backward:
+      return "backward";
+    case Whirl::Straight:
+      return "straight";
   }
   return "straight";
 }
@@ -34,12 +37,12 @@ constexpr Whirl reversed(Whirl w) {
 }
 
 struct Orbit {
-  double major = 0.0;            ///< major semi-axis, in the units of X and Y
-  double minor = 0.0;            ///< minor semi-axis (>= 0)
-  double inclination = 0.0;      ///< angle of the major axis from e1 towards e2 [rad], (-pi/2, pi/2]
-  double forward_radius = 0.0;   ///< |A_f|
-  double backward_radius = 0.0;  ///< |A_b|
-  Whirl whirl = Whirl::Straight; ///< geometric sense about e3
+  double major = 0.0;           ///< major semi-axis, in the units of X and Y
+  double minor = 0.0;           ///< minor semi-axis (>= 0)
+  double inclination = 0.0;     ///< angle of the major axis from e1 towards e2 [rad], (-pi/2, pi/2]
+  double forward_radius = 0.0;  ///< |A_f|
+  double backward_radius = 0.0;   ///< |A_b|
+  Whirl whirl = Whirl::Straight;  ///< geometric sense about e3
 };
 
 /// Orbit of the phasors X (along e1) and Y (along e2).

@@ -20,12 +20,18 @@ namespace geardyn::study {
 
 std::string analysis_type_name(model::AnalysisType type) {
   switch (type) {
-    case model::AnalysisType::Modal: return "modal";
-    case model::AnalysisType::Campbell: return "campbell";
-    case model::AnalysisType::Harmonic: return "harmonic";
-    case model::AnalysisType::Unbalance: return "unbalance";
-    case model::AnalysisType::Transient: return "transient";
-    case model::AnalysisType::Sweep: return "sweep";
+    case model::AnalysisType::Modal:
+      return "modal";
+    case model::AnalysisType::Campbell:
+      return "campbell";
+    case model::AnalysisType::Harmonic:
+      return "harmonic";
+    case model::AnalysisType::Unbalance:
+      return "unbalance";
+    case model::AnalysisType::Transient:
+      return "transient";
+    case model::AnalysisType::Sweep:
+      return "sweep";
   }
   return "unknown";
 }
@@ -47,8 +53,8 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
     try {
       const fe::LinearSystem variant_system = analysis::build_system(variant_model);
       AnalysisOutput out = run_analysis(variant_model, variant_system, plain, variant_context);
-      out.notes.push_back(fmt::format("Model variant for this analysis: {}.",
-                                      fmt::join(analysis.overrides, ", ")));
+      out.notes.push_back(
+          fmt::format("Model variant for this analysis: {}.", fmt::join(analysis.overrides, ", ")));
       return out;
     } catch (const NumericalError& e) {
       AnalysisOutput out;
@@ -72,30 +78,26 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
       }
       case model::AnalysisType::Campbell: {
         const auto& s = std::get<model::CampbellSettings>(analysis.settings);
-        out = analysis::campbell_output(model, system,
-                                        analysis::run_campbell(model, system, s, progress),
-                                        analysis.name);
+        out = analysis::campbell_output(
+            model, system, analysis::run_campbell(model, system, s, progress), analysis.name);
         break;
       }
       case model::AnalysisType::Harmonic: {
         const auto& s = std::get<model::HarmonicSettings>(analysis.settings);
-        out = analysis::harmonic_output(model, system,
-                                        analysis::run_harmonic(model, system, s, progress),
-                                        analysis.name);
+        out = analysis::harmonic_output(
+            model, system, analysis::run_harmonic(model, system, s, progress), analysis.name);
         break;
       }
       case model::AnalysisType::Unbalance: {
         const auto& s = std::get<model::UnbalanceSettings>(analysis.settings);
-        out = analysis::unbalance_output(model, system,
-                                         analysis::run_unbalance(model, system, s, progress),
-                                         analysis.name);
+        out = analysis::unbalance_output(
+            model, system, analysis::run_unbalance(model, system, s, progress), analysis.name);
         break;
       }
       case model::AnalysisType::Transient: {
         const auto& s = std::get<model::TransientSettings>(analysis.settings);
-        out = transient::transient_output(model, system,
-                                          transient::run_transient(model, system, s, progress),
-                                          analysis.name);
+        out = transient::transient_output(
+            model, system, transient::run_transient(model, system, s, progress), analysis.name);
         break;
       }
       case model::AnalysisType::Sweep: {
@@ -113,8 +115,7 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
   }
   out.name = analysis.name;
   out.type = analysis_type_name(analysis.type);
-  out.run_time_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.run_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 

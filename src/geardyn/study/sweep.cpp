@@ -78,7 +78,8 @@ double extract_scalar(const AnalysisOutput& output, const model::SweepOutput& sp
   switch (spec.quantity) {
     case Q::NaturalFrequency: {
       const Table* t = find_table(output, {"modes", "undamped_modes"});
-      if (t == nullptr) throw std::runtime_error("analysis has no modes table (use a modal analysis)");
+      if (t == nullptr)
+        throw std::runtime_error("analysis has no modes table (use a modal analysis)");
       unit = "Hz";
       const auto& f = t->column("frequency_hz").numbers;
       const auto row = static_cast<std::size_t>(spec.mode - 1);
@@ -175,7 +176,8 @@ SweepResult run_sweep(const model::ModelDocument& document, const model::SweepSe
           model::set_number(point, linked, settings.values[i]);
         const model::Model m = model::build_model(point);
         const model::Analysis* a = m.find_analysis(settings.analysis);
-        if (a == nullptr) throw std::runtime_error("analysis '" + settings.analysis + "' not found");
+        if (a == nullptr)
+          throw std::runtime_error("analysis '" + settings.analysis + "' not found");
         const fe::LinearSystem system = analysis::build_system(m);
         RunContext context;
         context.document = &point;
@@ -229,9 +231,9 @@ SweepResult run_sweep(const model::ModelDocument& document, const model::SweepSe
     result.status = Status::Failed;
     for (std::size_t i = 0; i < n; ++i)
       if (result.point_status[i] != Status::Ok) {
-        result.message = fmt::format("{} of {} points failed; first at {} = {}: {}", failed, n,
-                                     settings.parameter, settings.values[i],
-                                     result.point_message[i]);
+        result.message =
+            fmt::format("{} of {} points failed; first at {} = {}: {}", failed, n,
+                        settings.parameter, settings.values[i], result.point_message[i]);
         break;
       }
   }
@@ -267,8 +269,9 @@ AnalysisOutput sweep_output(const SweepResult& result, const model::SweepSetting
     plot.name = "sweep_" + result.labels[j];
     plot.title = fmt::format("{} versus {}", result.labels[j], settings.parameter);
     plot.x_label = settings.parameter;
-    plot.y_label = result.units[j].empty() ? result.labels[j]
-                                           : fmt::format("{} [{}]", result.labels[j], result.units[j]);
+    plot.y_label = result.units[j].empty()
+                       ? result.labels[j]
+                       : fmt::format("{} [{}]", result.labels[j], result.units[j]);
     plot.x_log = settings.log_x;
     // Amplitudes spanning decades read best on a log axis.
     double lo = INFINITY, hi = 0.0;
@@ -286,9 +289,10 @@ AnalysisOutput sweep_output(const SweepResult& result, const model::SweepSetting
     plot.traces.push_back(std::move(trace));
     out.plots.push_back(std::move(plot));
   }
-  out.notes.push_back(fmt::format("{} points on {} threads; each point rebuilds the model from "
-                                  "the file with the new value, so results equal a serial run.",
-                                  result.values.size(), result.threads_used));
+  out.notes.push_back(
+      fmt::format("{} points on {} threads; each point rebuilds the model from "
+                  "the file with the new value, so results equal a serial run.",
+                  result.values.size(), result.threads_used));
   return out;
 }
 

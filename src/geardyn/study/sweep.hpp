@@ -19,10 +19,10 @@ namespace geardyn::study {
 
 struct SweepResult {
   std::string parameter;
-  std::vector<double> values;                 ///< parameter values, in the key's units
-  std::vector<std::string> labels;            ///< one per output
-  std::vector<std::string> units;             ///< unit of each output column
-  std::vector<std::vector<double>> outputs;   ///< outputs[j][i]: output j at point i (NaN: failed)
+  std::vector<double> values;                ///< parameter values, in the key's units
+  std::vector<std::string> labels;           ///< one per output
+  std::vector<std::string> units;            ///< unit of each output column
+  std::vector<std::vector<double>> outputs;  ///< outputs[j][i]: output j at point i (NaN: failed)
   std::vector<Status> point_status;
   std::vector<std::string> point_message;
   int threads_used = 1;
