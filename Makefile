@@ -45,9 +45,10 @@ sanitize: deps
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS)
 
 FUZZ_SECONDS ?= 60
-# libFuzzer (clang) on the model parser, validation and assembly for FUZZ_SECONDS.
+# libFuzzer (clang) on the model parser (validation, assembly) and the mesh, matrix and gear CSV
+# readers, FUZZ_SECONDS each.
 fuzz: deps
-	./scripts/run-fuzz $(FUZZ_SECONDS)
+	for t in model nastran matrix_market gear_csv; do FUZZ_TARGET=$$t ./scripts/run-fuzz $(FUZZ_SECONDS) || exit $$?; done
 
 bench: build
 	$(BUILD)/bench/geardyn_bench --benchmark_min_time=0.2

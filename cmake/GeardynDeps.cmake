@@ -27,6 +27,21 @@ target_include_directories(geardyn_suitesparse SYSTEM INTERFACE ${SUITESPARSE_IN
 target_link_libraries(geardyn_suitesparse INTERFACE ${UMFPACK_LIBRARY} ${CHOLMOD_LIBRARY}
   ${AMD_LIBRARY} ${COLAMD_LIBRARY} ${SUITESPARSECONFIG_LIBRARY} Eigen3::Eigen)
 
+# Gmsh API (libgmsh-dev): mesh reading and the parametric sector generator.
+find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+find_library(GMSH_LIBRARY gmsh REQUIRED)
+add_library(geardyn_gmsh INTERFACE)
+target_include_directories(geardyn_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+target_link_libraries(geardyn_gmsh INTERFACE ${GMSH_LIBRARY})
+
+# HDF5 C library (libhdf5-dev, serial): reduced components and large result fields.
+set(HDF5_PREFER_PARALLEL OFF)
+find_package(HDF5 REQUIRED COMPONENTS C)
+add_library(geardyn_hdf5 INTERFACE)
+target_include_directories(geardyn_hdf5 SYSTEM INTERFACE ${HDF5_C_INCLUDE_DIRS})
+target_link_libraries(geardyn_hdf5 INTERFACE ${HDF5_C_LIBRARIES})
+target_compile_definitions(geardyn_hdf5 INTERFACE ${HDF5_C_DEFINITIONS})
+
 find_package(GTest REQUIRED)
 if(GEARDYN_BUILD_BENCH)
   find_package(benchmark REQUIRED)

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "geardyn/analysis/system_builder.hpp"
+#include "geardyn/component/solid_component.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/io/results_writer.hpp"
@@ -85,11 +86,16 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   info.model_sha256 = io::sha256_file(options.model_path);
   for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
 
+  // Solid components are read, generated and checked before anything runs: a bad mesh is bad
+  // input (exit 2), found before any result is written.
+  const component::SolidComponents solids = component::build_solids(m, *progress);
+  component::check_solid_analyses(m, solids);
+
   std::vector<AnalysisOutput> outputs;
   bool failed = false;
   fe::LinearSystem system;
   try {
-    system = analysis::build_system(m);
+    if (!m.shafts.empty() || !m.nodes.empty()) system = analysis::build_system(m);
   } catch (const NumericalError& e) {
     AnalysisOutput out;
     out.name = "build";
@@ -103,6 +109,8 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   std::printf("geardyn: %s — %d nodes, %d DOFs\n",
               m.title.empty() ? options.model_path.c_str() : m.title.c_str(),
               system.dofs.num_nodes(), system.size());
+  for (const auto& [solid_name, solid] : solids)
+    std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
   if (!failed) {
     for (const auto& a : m.analyses) {
       const bool selected =
@@ -113,6 +121,7 @@ int command_run(const RunOptions& options, int argc, char** argv) {
       study::RunContext context;
       context.document = &document;
       context.progress = progress.get();
+      context.solids = &solids;
       AnalysisOutput out = study::run_analysis(m, system, a, context);
       std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
                   std::string(to_string(out.status)).c_str(), out.run_time_s);
@@ -140,11 +149,18 @@ int command_check(const std::string& model_path, const std::vector<std::string>&
   std::size_t elements = 0;
   for (const auto& s : m.shafts)
     for (const auto& e : s.elements) elements += static_cast<std::size_t>(e.divisions);
+  // Meshes are read and checked too (inverted elements, missing sets, bad cards).
+  const component::SolidComponents solids = component::build_solids(m);
+  component::check_solid_analyses(m, solids);
   std::printf(
       "%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
-      "%zu analyses\n",
+      "%zu solids, %zu analyses\n",
       model_path.c_str(), m.shafts.size(), elements, m.disks.size(), m.bearings.size(),
-      m.gear_meshes.size(), m.analyses.size());
+      m.gear_meshes.size(), m.solids.size(), m.analyses.size());
+  for (const auto& [solid_name, solid] : solids) {
+    std::printf("  solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
+    for (const auto& w : solid.warnings) std::printf("    warning: %s\n", w.c_str());
+  }
   return 0;
 }
 

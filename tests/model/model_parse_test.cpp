@@ -402,7 +402,7 @@ TEST(ModelParse, NonAsciiTextInStringsAndComments) {
 TEST(ModelParse, FuzzSeedsAreValidModels) {
   // The seed corpus of fuzz/model_fuzz must stay valid, or the fuzzer starts from errors only.
   // Lines "#--set key=value" are overrides applied by the fuzz harness.
-  const std::string dir = std::string(GEARDYN_SOURCE_DIR) + "/fuzz/corpus";
+  const std::string dir = std::string(GEARDYN_SOURCE_DIR) + "/fuzz/corpus/model";
   int seeds = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     SCOPED_TRACE(entry.path().string());

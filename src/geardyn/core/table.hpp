@@ -2,6 +2,8 @@
 // Plain result data shared by every analysis, the CSV/manifest writer and the HTML report:
 // named tables whose column names carry their unit, and neutral plot descriptions.
 #include <cstddef>
+#include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -61,6 +63,15 @@ struct Plot {
   std::vector<Trace> traces;
 };
 
+/// A result file other than a table (mode shapes for ParaView, a reduced component, ...). The
+/// analysis computes the data; the results writer calls `write` with the path inside the
+/// staging folder, so the file appears only when the whole run is committed.
+struct OutputFile {
+  std::string file_name;    ///< relative to the analysis folder, e.g. "modes.vtu"
+  std::string description;  ///< one line for the manifest and the report
+  std::function<void(const std::filesystem::path&)> write;
+};
+
 /// What one analysis hands to the writers: tables, plots, status and a trust statement.
 struct AnalysisOutput {
   std::string name;  ///< the analysis name from the model (folder name)
@@ -71,6 +82,7 @@ struct AnalysisOutput {
   std::vector<std::string> notes;  ///< how far to trust the result (accuracy, checks done)
   std::vector<Table> tables;
   std::vector<Plot> plots;
+  std::vector<OutputFile> files;
 };
 
 }  // namespace geardyn

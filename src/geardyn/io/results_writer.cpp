@@ -146,6 +146,18 @@ void ResultsWriter::add(const AnalysisOutput& output) {
     for (const Column& c : table.columns) t.columns.push_back({c.name, c.unit, c.text});
     record.tables.push_back(std::move(t));
   }
+  std::set<std::string> file_names;
+  for (const OutputFile& file : output.files) {
+    check_component(file.file_name, "file name");
+    if (!file_names.insert(file.file_name).second || file.file_name.ends_with(".csv"))
+      throw std::invalid_argument(fmt::format("analysis '{}': file name '{}' repeats or clashes",
+                                              output.name, file.file_name));
+    if (!file.write)
+      throw std::logic_error(
+          fmt::format("analysis '{}': file '{}' has no writer", output.name, file.file_name));
+    file.write(folder / file.file_name);
+    record.files.push_back({output.name + "/" + file.file_name, file.description});
+  }
   analyses_.push_back(std::move(record));
 }
 
@@ -199,6 +211,10 @@ std::string ResultsWriter::manifest_text(bool all_ok) const {
                         {"columns", std::move(columns)}});
     }
     entry["tables"] = std::move(tables);
+    json files = json::array();
+    for (const auto& f : a.files)
+      files.push_back({{"file", f.file}, {"description", f.description}});
+    entry["files"] = std::move(files);
     analyses.push_back(std::move(entry));
   }
   manifest["analyses"] = std::move(analyses);

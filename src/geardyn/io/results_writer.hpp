@@ -68,11 +68,15 @@ class ResultsWriter {
     std::size_t rows = 0;
     std::vector<ColumnRecord> columns;
   };
+  struct FileRecord {
+    std::string file, description;
+  };
   struct AnalysisRecord {
     std::string name, type, status, message;
     double run_time_s = 0.0;
     std::vector<std::string> notes;
     std::vector<TableRecord> tables;
+    std::vector<FileRecord> files;
   };
 
   std::string manifest_text(bool all_ok) const;

@@ -115,6 +115,11 @@ Eigen::VectorXd SymmetricFactorization::solve(const Eigen::VectorXd& b) const {
   return impl_->lu.solve(b);
 }
 
+Eigen::MatrixXd SymmetricFactorization::solve(const Eigen::MatrixXd& B) const {
+  if (kind_ == FactorizationKind::Cholesky) return impl_->cholesky.solve(B);
+  return impl_->lu.solve(B);
+}
+
 void SymmetricFactorization::solve(const double* x, double* y) const {
   Eigen::Map<const Eigen::VectorXd> xin(x, n_);
   Eigen::Map<Eigen::VectorXd> yout(y, n_);

@@ -83,6 +83,9 @@ class SymmetricFactorization {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   /// y = A^{-1} x on raw arrays of length rows() (the form Spectra's operators use).
   void solve(const double* x, double* y) const;
+  /// X = A^{-1} B for a block of right-hand sides at once (CHOLMOD's supernodal solve works on
+  /// the whole block, which is much faster than column by column).
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
   Eigen::Index rows() const { return n_; }
   FactorizationKind kind() const { return kind_; }

@@ -14,4 +14,10 @@ const Analysis* Model::find_analysis(const std::string& name) const {
   return nullptr;
 }
 
+const Solid* Model::find_solid(const std::string& name) const {
+  for (const auto& s : solids)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
 }  // namespace geardyn::model

@@ -202,6 +202,63 @@ struct Damping {
 };
 
 // ---------------------------------------------------------------------------------------------
+// Solid components (3D finite elements): a mesh file, a generated sector or plate, or a reduced
+// component saved by an earlier run. A cyclic component is one sector of `sectors`.
+
+enum class SolidSource { MeshFile, AnnularPlate, GearSector, Reduced };
+
+/// Annular plate about the z axis (the whole plate, or one sector when Solid::sectors > 1).
+struct AnnularPlateSpec {
+  double inner_radius = kNaN;        ///< [m]
+  double outer_radius = kNaN;        ///< [m]
+  double thickness = kNaN;           ///< [m]
+  int radial_elements = 8;           ///< elements across the radius
+  int circumferential_elements = 0;  ///< over the mesh's angle (0: about square elements)
+  int layers = 2;                    ///< elements through the thickness
+  int order = 2;                     ///< 1: linear, 2: quadratic elements
+};
+
+/// Gear-blank sector about the z axis with an optional damper-ring groove and ring.
+struct GearSectorSpec {
+  int teeth = 0;
+  double module = kNaN;              ///< [m]
+  double pressure_angle = kNaN;      ///< [rad]
+  double face_width = kNaN;          ///< [m]
+  double bore_radius = kNaN;         ///< [m]
+  double hub_radius = kNaN;          ///< [m]
+  double hub_width = kNaN;           ///< [m]
+  double hub_offset = 0.0;           ///< axial centre of the hub from mid-face [m]
+  double web_thickness = kNaN;       ///< [m]
+  double web_offset = 0.0;           ///< axial centre of the web from mid-face [m]
+  double rim_inner_radius = kNaN;    ///< [m]
+  bool groove = false;               ///< damper-ring groove and ring
+  double groove_position = 0.0;      ///< axial position of the groove centre from mid-face [m]
+  double groove_width = kNaN;        ///< [m]
+  double groove_depth = kNaN;        ///< [m]
+  double ring_width = kNaN;          ///< axial width of the ring [m] (NaN: groove_width)
+  double ring_thickness = kNaN;      ///< radial thickness of the ring [m]
+  double element_size = kNaN;        ///< global target size [m]
+  double tooth_element_size = kNaN;  ///< at the teeth and the groove [m]
+  int order = 2;
+};
+
+struct Solid {
+  std::string name;
+  SolidSource source = SolidSource::MeshFile;
+  std::string mesh;           ///< mesh file (Gmsh .msh, Nastran .bdf/.dat/.nas/.blk), as written
+  std::string reduced;        ///< reduced component (.h5), as written
+  std::string material;       ///< gear / plate / Gmsh-mesh material
+  std::string ring_material;  ///< damper ring (generated gear sectors)
+  int sectors = 1;            ///< the body is `sectors` copies of this mesh about z (1: whole)
+  double interface_tolerance = 1e-6;          ///< sector interface matching [m]
+  std::vector<std::string> fixed_sets;        ///< node sets whose translations are fixed
+  bool unsupported_cards_are_errors = false;  ///< Nastran: unsupported card -> error
+  AnnularPlateSpec annular_plate;
+  GearSectorSpec gear_sector;
+  SourceLocation where;
+};
+
+// ---------------------------------------------------------------------------------------------
 // Analyses
 
 enum class EigenMethod { Auto, Dense, Sparse };
@@ -279,7 +336,57 @@ struct SweepSettings {
   int threads = 0;     ///< 0: all cores
 };
 
-enum class AnalysisType { Modal, Campbell, Harmonic, Unbalance, Transient, Sweep };
+/// Modes of a solid component (the mesh as given, or the whole wheel of a cyclic one).
+struct SolidModalSettings {
+  std::string solid;
+  int n_modes = 10;
+  double f_max = kNaN;      ///< band mode: every mode up to this [rad/s] (n_modes ignored)
+  bool full_wheel = false;  ///< cyclic solid: replicate the sector to 360 deg first
+  int shapes = 10;          ///< mode shapes written to VTU / Gmsh files (0: none)
+};
+
+enum class ReductionMethod { None, Guyan, CraigBampton };
+
+/// Modes per nodal diameter of a cyclic solid, optionally after Craig-Bampton reduction of the
+/// sector and interface-mode reduction, and the rotating-frame Campbell diagram.
+struct CyclicModalSettings {
+  std::string solid;
+  std::vector<int> nodal_diameters;  ///< empty: 0 .. sectors / 2
+  int n_modes = 6;                   ///< per nodal diameter
+  ReductionMethod reduction = ReductionMethod::None;
+  int cb_modes = 40;                     ///< fixed-interface modes kept
+  std::vector<std::string> master_sets;  ///< node sets kept physical besides the interfaces
+  int interface_modes = 0;               ///< Tran interface modes per ND (0: interfaces kept)
+  bool compare_full = false;             ///< also solve the replicated 360 deg mesh
+  int shapes = 2;                        ///< expanded full-wheel shapes written per ND
+  std::vector<double> speeds;            ///< Campbell speeds [rad/s] (empty: no Campbell)
+  int max_engine_order = 0;              ///< 0: 2 x sectors
+};
+
+/// Craig-Bampton (or Guyan) reduction of a solid: reduced vs full frequencies, a convergence
+/// table, and the reduced component file.
+struct ReductionSettings {
+  std::string solid;
+  ReductionMethod method = ReductionMethod::CraigBampton;
+  std::vector<std::string> master_sets;
+  int n_modes = 20;              ///< fixed-interface modes kept
+  double f_max = kNaN;           ///< ... or all up to this [rad/s]
+  int compare_modes = 10;        ///< full-model modes compared
+  std::vector<int> convergence;  ///< mode counts of the convergence table (empty: automatic)
+  bool save = true;              ///< write <analysis>.h5
+};
+
+enum class AnalysisType {
+  Modal,
+  Campbell,
+  Harmonic,
+  Unbalance,
+  Transient,
+  Sweep,
+  SolidModal,
+  CyclicModal,
+  Reduction
+};
 
 struct Analysis {
   std::string name;
@@ -289,7 +396,8 @@ struct Analysis {
   /// without the gear mesh: ["gear_meshes[0].stiffness=0"].
   std::vector<std::string> overrides;
   std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
-               TransientSettings, SweepSettings>
+               TransientSettings, SweepSettings, SolidModalSettings, CyclicModalSettings,
+               ReductionSettings>
       settings;
   SourceLocation where;
 };
@@ -311,10 +419,12 @@ struct Model {
   std::vector<HarmonicForce> forces;
   std::vector<Sensor> sensors;
   Damping damping;
+  std::vector<Solid> solids;
   std::vector<Analysis> analyses;
 
   const Material* find_material(const std::string& name) const;
   const Analysis* find_analysis(const std::string& name) const;
+  const Solid* find_solid(const std::string& name) const;
 };
 
 }  // namespace geardyn::model

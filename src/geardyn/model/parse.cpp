@@ -936,9 +936,10 @@ void Resolver::build_nodes() {
     shaft_stations_.push_back(stations);
   }
   for (const auto& n : m_.nodes) nodes_[n.name] = NodeInfo{-1, n.position};
-  if (m_.shafts.empty() && m_.nodes.empty())
+  if (m_.shafts.empty() && m_.nodes.empty() && m_.solids.empty())
     throw InputError({r_.doc().file_name(), 1, 1}, "shafts",
-                     "a model with at least one [[shafts]] or [[nodes]] table", "no nodes");
+                     "a model with at least one [[shafts]], [[nodes]] or [[solids]] table",
+                     "no nodes and no solids");
 }
 
 NodeInfo Resolver::check_node(const std::string& path, const std::string& name) const {
@@ -1170,8 +1171,9 @@ void Resolver::check_damping() {
 
 constexpr const char* kQuantityNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
                                           "peak_location", "amplitude_at"};
-constexpr const char* kAnalysisTypeNames[] = {"modal",     "campbell",  "harmonic",
-                                              "unbalance", "transient", "sweep"};
+constexpr const char* kAnalysisTypeNames[] = {"modal",       "campbell",     "harmonic",
+                                              "unbalance",   "transient",    "sweep",
+                                              "solid_modal", "cyclic_modal", "reduction"};
 
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
@@ -1210,10 +1212,37 @@ void Resolver::check_analyses() {
   const auto forces = names_of(m_.forces);
   const auto unbalances = names_of(m_.unbalances);
   const auto analyses = names_of(m_.analyses);
+  const auto solids = names_of(m_.solids);
   for (std::size_t i = 0; i < m_.analyses.size(); ++i) {
     const Analysis& a = m_.analyses[i];
     const std::string base = fmt::format("analyses[{}]", i);
     check_analysis_overrides(base, a);
+    const bool rotor_analysis = a.type == AnalysisType::Modal || a.type == AnalysisType::Campbell ||
+                                a.type == AnalysisType::Harmonic ||
+                                a.type == AnalysisType::Unbalance ||
+                                a.type == AnalysisType::Transient;
+    if (rotor_analysis && m_.shafts.empty() && m_.nodes.empty())
+      fail(base + ".type",
+           "an analysis of the solids (solid_modal, cyclic_modal, reduction), since the model "
+           "has no [[shafts]] or [[nodes]]",
+           fmt::format("\"{}\"", kAnalysisTypeNames[static_cast<int>(a.type)]));
+    const std::string* solid = nullptr;
+    if (const auto* sm = std::get_if<SolidModalSettings>(&a.settings)) solid = &sm->solid;
+    if (const auto* cm = std::get_if<CyclicModalSettings>(&a.settings)) solid = &cm->solid;
+    if (const auto* rs = std::get_if<ReductionSettings>(&a.settings)) solid = &rs->solid;
+    if (solid != nullptr) {
+      check_name(base + ".solid", *solid, solids, "solid", "solids");
+      const Solid& body = *m_.find_solid(*solid);
+      if (std::holds_alternative<CyclicModalSettings>(a.settings) && body.sectors < 2)
+        fail(base + ".solid", "a solid with sectors >= 2 (one sector of a cyclic body)",
+             fmt::format("\"{}\" with sectors = {}", *solid, body.sectors));
+      if (const auto* cm = std::get_if<CyclicModalSettings>(&a.settings))
+        for (std::size_t k = 0; k < cm->nodal_diameters.size(); ++k)
+          if (cm->nodal_diameters[k] > body.sectors / 2)
+            fail(fmt::format("{}.nodal_diameters[{}]", base, k),
+                 fmt::format("a nodal diameter in 0 .. sectors / 2 = {}", body.sectors / 2),
+                 std::to_string(cm->nodal_diameters[k]));
+    }
     if (const auto* h = std::get_if<HarmonicSettings>(&a.settings)) {
       if (!h->input_node.empty()) check_node(base + ".input_node", h->input_node);
       check_named(base + ".forces", h->forces, forces, "force", "forces");
@@ -1318,6 +1347,13 @@ void Resolver::run() {
   check_unique(m_.forces, "forces");
   check_unique(m_.sensors, "sensors");
   check_unique(m_.analyses, "analyses");
+  check_unique(m_.solids, "solids");
+  for (std::size_t i = 0; i < m_.solids.size(); ++i) {
+    const Solid& s = m_.solids[i];
+    if (!s.material.empty()) check_material(fmt::format("solids[{}].material", i), s.material);
+    if (!s.ring_material.empty())
+      check_material(fmt::format("solids[{}].ring_material", i), s.ring_material);
+  }
   resolve_disks();
   check_connections();
   check_damping();

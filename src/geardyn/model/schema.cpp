@@ -137,6 +137,8 @@ const char* ref_noun(Ref ref) {
       return "analysis";
     case Ref::KeyPath:
       return "key path";
+    case Ref::Solid:
+      return "solid";
     case Ref::None:
       break;
   }
@@ -517,6 +519,12 @@ F matrix(std::string name, std::vector<int> sizes, std::string help) {
   return f;
 }
 
+/// Setter into a member of a nested spec of a Solid (annular_plate / gear_sector keys).
+template <class Spec, class V>
+std::function<void(Solid&, const FieldValue&)> solid_spec(Spec Solid::*spec, V Spec::*member) {
+  return [spec, member](Solid& s, const FieldValue& v) { assign(s.*spec.*member, v); };
+}
+
 /// Builder of one Section.
 class S {
  public:
@@ -844,6 +852,75 @@ void finish_sweep(Analysis& a, const TableContext& t) {
   s.values = spaced(start, stop, static_cast<int>(t.at("count").integer), log);
 }
 
+void finish_cyclic(Analysis& a, const TableContext& t) {
+  auto& c = std::get<CyclicModalSettings>(a.settings);
+  if (t.has("speed_rpm") || t.has("speed_start_rpm")) c.speeds = speed_range(t);
+  if (c.reduction == ReductionMethod::None && c.interface_modes > 0)
+    t.fail("interface_modes",
+           "0 when reduction = \"none\" (interface modes reduce the "
+           "interfaces of a reduced sector)",
+           std::to_string(c.interface_modes), "set reduction = \"craig_bampton\" or \"guyan\"");
+  if (c.interface_modes > 0 && c.interface_modes < 6)
+    t.fail("interface_modes", "0 (off) or at least 6, so rigid-body motion survives",
+           std::to_string(c.interface_modes));
+}
+
+void finish_reduction(Analysis& a, const TableContext& t) {
+  auto& r = std::get<ReductionSettings>(a.settings);
+  if (r.master_sets.empty())
+    t.fail("master_sets",
+           "at least one node set of master nodes (interfaces, connections, contact, excitation "
+           "or sensor nodes)",
+           "none");
+  if (r.method == ReductionMethod::None)
+    t.fail("reduction", "\"guyan\" or \"craig_bampton\"", "\"none\"");
+  if (r.method == ReductionMethod::Guyan && (t.has("reduced_modes") || t.has("reduced_f_max_hz")))
+    t.fail(t.has("reduced_modes") ? "reduced_modes" : "reduced_f_max_hz",
+           "no fixed-interface modes for reduction = \"guyan\"", "a mode request",
+           "use reduction = \"craig_bampton\" to keep modes");
+  if (r.method == ReductionMethod::Guyan) r.n_modes = 0;
+  for (int n : r.convergence)
+    if (r.method == ReductionMethod::CraigBampton && n > r.n_modes && std::isnan(r.f_max))
+      t.fail("convergence", fmt::format("mode counts <= reduced_modes = {}", r.n_modes),
+             std::to_string(n));
+}
+
+void finish_solid(Solid& s, const TableContext& t) {
+  const bool needs_material = s.source == SolidSource::AnnularPlate ||
+                              s.source == SolidSource::GearSector ||
+                              (s.source == SolidSource::MeshFile && s.mesh.ends_with(".msh"));
+  if (needs_material && s.material.empty())
+    t.fail("material", "a material name (Gmsh and generated meshes carry no material)", "nothing");
+  if (s.source == SolidSource::AnnularPlate) {
+    const auto& p = s.annular_plate;
+    if (p.outer_radius <= p.inner_radius)
+      t.fail("outer_radius",
+             fmt::format("a radius > inner_radius = {} m", value_text(p.inner_radius)),
+             fmt::format("{} m", value_text(p.outer_radius)));
+  }
+  if (s.source == SolidSource::GearSector) {
+    const auto& g = s.gear_sector;
+    if (g.teeth % s.sectors != 0)
+      t.fail("sectors", fmt::format("a divisor of teeth = {} (whole teeth per sector)", g.teeth),
+             std::to_string(s.sectors));
+    if (g.groove) {
+      if (s.ring_material.empty())
+        t.fail("ring_material", "a material name for the damper ring (groove = true)", "nothing");
+      for (const char* key : {"groove_width", "groove_depth", "ring_thickness"})
+        if (!t.has(key)) t.fail(key, "a value (groove = true)", "nothing");
+    }
+    const double root = g.module * (g.teeth / 2.0 - 1.25);
+    const double radii[] = {g.bore_radius, g.hub_radius, g.rim_inner_radius, root};
+    const char* keys[] = {"bore_radius", "hub_radius", "rim_inner_radius"};
+    for (int k = 0; k < 3; ++k)
+      if (radii[k] >= radii[k + 1])
+        t.fail(keys[k],
+               fmt::format("a radius < {} = {} m", k + 1 < 3 ? keys[k + 1] : "root radius",
+                           value_text(radii[k + 1])),
+               fmt::format("{} m", value_text(radii[k])));
+  }
+}
+
 void finish_output(SweepOutput& o, const TableContext& t) {
   if (t.has("label")) return;
   static const char* const kNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
@@ -859,13 +936,15 @@ void finish_output(SweepOutput& o, const TableContext& t) {
 // ---------------------------------------------------------------------------------------------
 // The table
 
-const std::vector<std::string> kAnalysisTypes = {"modal",     "campbell",  "harmonic",
-                                                 "unbalance", "transient", "sweep"};
+const std::vector<std::string> kAnalysisTypes = {"modal",       "campbell",     "harmonic",
+                                                 "unbalance",   "transient",    "sweep",
+                                                 "solid_modal", "cyclic_modal", "reduction"};
 
 void set_analysis_type(Analysis& a, const FieldValue& v) {
-  constexpr AnalysisType kTypes[] = {AnalysisType::Modal,     AnalysisType::Campbell,
-                                     AnalysisType::Harmonic,  AnalysisType::Unbalance,
-                                     AnalysisType::Transient, AnalysisType::Sweep};
+  constexpr AnalysisType kTypes[] = {
+      AnalysisType::Modal,      AnalysisType::Campbell,    AnalysisType::Harmonic,
+      AnalysisType::Unbalance,  AnalysisType::Transient,   AnalysisType::Sweep,
+      AnalysisType::SolidModal, AnalysisType::CyclicModal, AnalysisType::Reduction};
   a.type = kTypes[v.choice];
   switch (a.type) {
     case AnalysisType::Modal:
@@ -885,6 +964,15 @@ void set_analysis_type(Analysis& a, const FieldValue& v) {
       break;
     case AnalysisType::Sweep:
       a.settings = SweepSettings{};
+      break;
+    case AnalysisType::SolidModal:
+      a.settings = SolidModalSettings{};
+      break;
+    case AnalysisType::CyclicModal:
+      a.settings = CyclicModalSettings{};
+      break;
+    case AnalysisType::Reduction:
+      a.settings = ReductionSettings{};
       break;
   }
 }
@@ -1409,8 +1497,222 @@ Section make_schema() {
           })
           .sections({bands});
 
+  // --- solids ---
+  const std::vector<std::string> kPlate = {"annular_plate"};
+  const std::vector<std::string> kGear = {"gear_sector"};
+  auto plate = [](auto member) { return solid_spec(&Solid::annular_plate, member); };
+  auto gear = [](auto member) { return solid_spec(&Solid::gear_sector, member); };
+  Section solids =
+      S("solids", SectionKind::ArrayOfTables, "[[solids]]",
+        "Solid (3D finite-element) components: a mesh file, a generated annular plate or "
+        "gear-blank sector, or a reduced component saved by an earlier run. With sectors > 1 "
+        "the mesh is one sector of a cyclic body about the z axis.")
+          .in_array(&Model::solids)
+          .located(&Solid::where)
+          .fields({
+              name_key("Unique solid name.").required().to(&Solid::name),
+              choice("type", {"mesh", "annular_plate", "gear_sector", "reduced"},
+                     "Where the solid comes from; selects the keys below.")
+                  .required()
+                  .to_enum(&Solid::source, {SolidSource::MeshFile, SolidSource::AnnularPlate,
+                                            SolidSource::GearSector, SolidSource::Reduced}),
+              text("file",
+                   "Mesh file (Gmsh .msh v4, or Nastran bulk data .bdf/.dat/.nas/.blk), "
+                   "relative to the model file.")
+                  .required()
+                  .only_in({"mesh"})
+                  .to(&Solid::mesh),
+              text("reduced_file",
+                   "Reduced component (.h5) written by a `reduction` analysis, relative to the "
+                   "model file.")
+                  .required()
+                  .only_in({"reduced"})
+                  .to(&Solid::reduced),
+              reference("material", Ref::Material,
+                        "Material of the solid (Nastran decks carry their own MAT1).")
+                  .note("required except for Nastran meshes and reduced components")
+                  .only_in({"mesh", "annular_plate", "gear_sector"})
+                  .to(&Solid::material),
+              integer("sectors", "Number of identical sectors of the body (1: the whole body).")
+                  .def("1")
+                  .ge(1)
+                  .le(10000)
+                  .to(&Solid::sectors),
+              number("interface_tolerance", kMetre,
+                     "Largest distance between a right-interface node and the rotated "
+                     "left-interface node it is paired with.")
+                  .def("1e-6")
+                  .gt(0)
+                  .to(&Solid::interface_tolerance),
+              F("fixed_sets", FieldType::StringArray, "Node sets whose translations are fixed.")
+                  .def("[]")
+                  .only_in({"mesh", "annular_plate", "gear_sector"})
+                  .to(&Solid::fixed_sets),
+              choice("unsupported_cards", {"warn", "error"},
+                     "Nastran cards geardyn does not read: listed as warnings, or an error.")
+                  .def("\"warn\"")
+                  .only_in({"mesh"})
+                  .to_fn<Solid>([](Solid& s, const FieldValue& v) {
+                    s.unsupported_cards_are_errors = v.choice == 1;
+                  }),
+              // annular plate
+              number("inner_radius", kMetre, "Inner radius b.")
+                  .required()
+                  .gt(0)
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::inner_radius)),
+              number("outer_radius", kMetre, "Outer radius a (> inner_radius).")
+                  .required()
+                  .gt(0)
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::outer_radius)),
+              number("thickness", kMetre, "Plate thickness h.")
+                  .required()
+                  .gt(0)
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::thickness)),
+              integer("radial_elements", "Elements across the radius.")
+                  .def("8")
+                  .ge(1)
+                  .le(1000)
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::radial_elements)),
+              integer("circumferential_elements",
+                      "Elements around the circumference of the mesh (the sector, or the whole "
+                      "plate).")
+                  .ge(0)
+                  .le(100000)
+                  .note("about square elements at the outer radius")
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::circumferential_elements)),
+              integer("layers", "Elements through the thickness.")
+                  .def("2")
+                  .ge(1)
+                  .le(100)
+                  .only_in(kPlate)
+                  .to_fn<Solid>(plate(&AnnularPlateSpec::layers)),
+              integer("order", "Element order: 1 linear, 2 quadratic.")
+                  .def("2")
+                  .ge(1)
+                  .le(2)
+                  .only_in({"annular_plate", "gear_sector"})
+                  .to_fn<Solid>([](Solid& s, const FieldValue& v) {
+                    s.annular_plate.order = static_cast<int>(v.integer);
+                    s.gear_sector.order = static_cast<int>(v.integer);
+                  }),
+              // gear sector
+              integer("teeth", "Number of teeth of the whole gear.")
+                  .required()
+                  .ge(3)
+                  .le(10000)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::teeth)),
+              number("module", kMetre, "Transverse module m (pitch radius m z / 2).")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::module)),
+              number("pressure_angle_deg", kDegree, "Pressure angle of the simplified tooth.")
+                  .def("20.0")
+                  .gt(0)
+                  .lt(45)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::pressure_angle)),
+              number("face_width", kMetre, "Face width of the rim and teeth.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::face_width)),
+              number("bore_radius", kMetre, "Bore radius.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::bore_radius)),
+              number("hub_radius", kMetre, "Outer radius of the hub.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::hub_radius)),
+              number("hub_width", kMetre, "Axial width of the hub.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::hub_width)),
+              number("hub_offset", kMetre, "Axial position of the hub centre from mid-face.")
+                  .def("0.0")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::hub_offset)),
+              number("web_offset", kMetre, "Axial position of the web centre from mid-face.")
+                  .def("0.0")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::web_offset)),
+              number("web_thickness", kMetre, "Axial thickness of the web.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::web_thickness)),
+              number("rim_inner_radius", kMetre, "Inner radius of the rim.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::rim_inner_radius)),
+              boolean("groove", "Damper-ring groove under the rim, with its split ring.")
+                  .def("false")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::groove)),
+              number("groove_position", kMetre,
+                     "Axial position of the groove centre from mid-face.")
+                  .def("0.0")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::groove_position)),
+              number("groove_width", kMetre, "Axial width of the groove (and the ring).")
+                  .gt(0)
+                  .note("required when groove = true")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::groove_width)),
+              number("groove_depth", kMetre, "Radial depth of the groove into the rim.")
+                  .gt(0)
+                  .note("required when groove = true")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::groove_depth)),
+              number("ring_width", kMetre, "Axial width of the ring (<= groove_width).")
+                  .gt(0)
+                  .note("groove_width")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::ring_width)),
+              number("ring_thickness", kMetre, "Radial thickness of the ring.")
+                  .gt(0)
+                  .note("required when groove = true")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::ring_thickness)),
+              reference("ring_material", Ref::Material, "Material of the damper ring.")
+                  .note("required when groove = true")
+                  .only_in(kGear)
+                  .to(&Solid::ring_material),
+              number("element_size", kMetre, "Target element size.")
+                  .required()
+                  .gt(0)
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::element_size)),
+              number("tooth_element_size", kMetre, "Target element size at the teeth and groove.")
+                  .gt(0)
+                  .note("element_size")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::tooth_element_size)),
+          })
+          .variants("type",
+                    {variant<Solid>("mesh", "A mesh file: Gmsh .msh (v4) or Nastran bulk data."),
+                     variant<Solid>("annular_plate",
+                                    "A generated annular plate (or one sector of it) about z."),
+                     variant<Solid>("gear_sector",
+                                    "A generated gear-blank sector with simplified teeth and an "
+                                    "optional damper-ring groove and ring."),
+                     variant<Solid>("reduced", "A reduced component file (.h5).")})
+          .finish<Solid>(finish_solid);
+
   // --- analyses ---
-  const std::vector<std::string> kSpeedRange = {"campbell", "unbalance"};
+  const std::vector<std::string> kSpeedRange = {"campbell", "unbalance", "cyclic_modal"};
+  const std::vector<std::string> kSolidAnalyses = {"solid_modal", "cyclic_modal", "reduction"};
   Section outputs =
       S("outputs", SectionKind::ArrayOfTables, "[[analyses.outputs]]",
         "Scalar results tabulated per sweep point.")
@@ -1533,12 +1835,117 @@ Section make_schema() {
                   .only_in(kSpeedRange)
                   .read_by_finish<Analysis>(),
               // modal, campbell
-              integer("n_modes", "Number of modes computed.")
+              integer("n_modes",
+                      "Number of modes computed (cyclic_modal: per nodal diameter; reduction: "
+                      "full-model modes compared with the reduced ones).")
                   .def("10")
                   .ge(1)
                   .le(10000)
-                  .only_in({"modal", "campbell"})
-                  .to_settings(&ModalSettings::n_modes, &CampbellSettings::n_modes),
+                  .only_in({"modal", "campbell", "solid_modal", "cyclic_modal", "reduction"})
+                  .to_settings(&ModalSettings::n_modes, &CampbellSettings::n_modes,
+                               &SolidModalSettings::n_modes, &CyclicModalSettings::n_modes,
+                               &ReductionSettings::compare_modes),
+              // solids
+              reference("solid", Ref::Solid, "The [[solids]] component analysed.")
+                  .required()
+                  .only_in(kSolidAnalyses)
+                  .to_settings(&SolidModalSettings::solid, &CyclicModalSettings::solid,
+                               &ReductionSettings::solid),
+              number("f_max_hz", kHertz, "Every mode up to this frequency (n_modes is ignored).")
+                  .gt(0)
+                  .note("n_modes modes")
+                  .only_in({"solid_modal"})
+                  .to_settings(&SolidModalSettings::f_max),
+              boolean("full_wheel", "Cyclic solid: replicate the sector to the whole wheel first.")
+                  .def("false")
+                  .only_in({"solid_modal"})
+                  .to_settings(&SolidModalSettings::full_wheel),
+              integer("shapes",
+                      "Mode shapes written as VTU and Gmsh views (per nodal diameter "
+                      "for cyclic_modal; 0: none).")
+                  .def("6")
+                  .ge(0)
+                  .le(1000)
+                  .only_in({"solid_modal", "cyclic_modal"})
+                  .to_settings(&SolidModalSettings::shapes, &CyclicModalSettings::shapes),
+              F("nodal_diameters", FieldType::NumberArray, "Nodal diameters solved.")
+                  .ge(0)
+                  .increasing()
+                  .note("0 .. sectors / 2")
+                  .only_in({"cyclic_modal"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    auto& c = std::get<CyclicModalSettings>(a.settings);
+                    c.nodal_diameters.clear();
+                    for (double h : v.numbers) c.nodal_diameters.push_back(static_cast<int>(h));
+                  }),
+              choice("reduction", {"none", "guyan", "craig_bampton"},
+                     "Sector reduction before the cyclic solve (cyclic_modal), or the method of "
+                     "a reduction analysis.")
+                  .def("\"craig_bampton\"")
+                  .note("cyclic_modal: \"none\"")
+                  .only_in({"cyclic_modal", "reduction"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    constexpr ReductionMethod kMethods[] = {ReductionMethod::None,
+                                                            ReductionMethod::Guyan,
+                                                            ReductionMethod::CraigBampton};
+                    if (auto* c = std::get_if<CyclicModalSettings>(&a.settings))
+                      c->reduction = v.given ? kMethods[v.choice] : ReductionMethod::None;
+                    if (auto* r = std::get_if<ReductionSettings>(&a.settings))
+                      r->method = kMethods[v.choice];
+                  }),
+              integer("reduced_modes", "Fixed-interface (Craig-Bampton) modes kept.")
+                  .def("40")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"cyclic_modal", "reduction"})
+                  .to_settings(&CyclicModalSettings::cb_modes, &ReductionSettings::n_modes),
+              number("reduced_f_max_hz", kHertz,
+                     "Keep every fixed-interface mode up to this frequency instead of a count.")
+                  .gt(0)
+                  .note("reduced_modes modes")
+                  .only_in({"reduction"})
+                  .to_settings(&ReductionSettings::f_max),
+              F("master_sets", FieldType::StringArray,
+                "Node sets kept as physical masters (contact, excitation, sensor, connection "
+                "nodes); cyclic_modal adds the sector interfaces itself.")
+                  .def("[]")
+                  .only_in({"cyclic_modal", "reduction"})
+                  .to_settings(&CyclicModalSettings::master_sets, &ReductionSettings::master_sets),
+              integer("interface_modes",
+                      "Interface modes per nodal diameter replacing the sector-interface DOFs "
+                      "(Tran's method; 0: interfaces kept, else >= 6).")
+                  .def("0")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"cyclic_modal"})
+                  .to_settings(&CyclicModalSettings::interface_modes),
+              boolean("compare_full", "Also solve the replicated 360 deg mesh and compare.")
+                  .def("false")
+                  .only_in({"cyclic_modal"})
+                  .to_settings(&CyclicModalSettings::compare_full),
+              integer("max_engine_order",
+                      "Highest engine order in the Campbell diagram (0: 2 x "
+                      "sectors).")
+                  .def("0")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"cyclic_modal"})
+                  .to_settings(&CyclicModalSettings::max_engine_order),
+              numbers("convergence", kNoUnit,
+                      "Numbers of fixed-interface modes of the convergence table.")
+                  .ge(0)
+                  .increasing()
+                  .note("automatic")
+                  .only_in({"reduction"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    auto& r = std::get<ReductionSettings>(a.settings);
+                    r.convergence.clear();
+                    for (double n : v.numbers) r.convergence.push_back(static_cast<int>(n));
+                  }),
+              boolean("save", "Write the reduced component as <analysis>.h5.")
+                  .def("true")
+                  .only_in({"reduction"})
+                  .to_settings(&ReductionSettings::save),
               boolean("complex_modes", "Also compute the damped gyroscopic (complex) modes.")
                   .def("true")
                   .only_in({"modal"})
@@ -1738,7 +2145,10 @@ Section make_schema() {
           })
           .choices({{{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
                      true,
-                     kSpeedRange},
+                     {"campbell", "unbalance"}},
+                    {{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
+                     false,
+                     {"cyclic_modal"}},
                     {{{"input_node", "input_dof"}, {"forces"}}, true, {"harmonic"}},
                     {{{"values"}, {"start", "stop", "count"}}, true, {"sweep"}}})
           .sections({outputs})
@@ -1764,7 +2174,19 @@ Section make_schema() {
                      variant<Analysis>("sweep",
                                        "Runs another analysis for each value of one parameter "
                                        "and tabulates scalar outputs.",
-                                       finish_sweep)});
+                                       finish_sweep),
+                     variant<Analysis>("solid_modal",
+                                       "Natural frequencies and mode shapes of a solid "
+                                       "component (sparse shift-invert Lanczos)."),
+                     variant<Analysis>("cyclic_modal",
+                                       "Modes per nodal diameter of a cyclic solid from one "
+                                       "sector, optionally reduced, with full-wheel shapes and "
+                                       "the rotating-frame Campbell diagram.",
+                                       finish_cyclic),
+                     variant<Analysis>("reduction",
+                                       "Craig-Bampton or Guyan reduction of a solid: reduced vs "
+                                       "full frequencies, convergence, reduced component file.",
+                                       finish_reduction)});
 
   Section root =
       S("", SectionKind::Root, "top level", "Keys at the top of the file, before any table.")
@@ -1777,7 +2199,8 @@ Section make_schema() {
               text("title", "Title shown in reports.").def("\"\"").to(&Model::title),
           })
           .sections({materials, shafts, nodes, disks, point_masses, bearings, couplings,
-                     gear_meshes, constraints, unbalances, forces, sensors, damping, analyses});
+                     gear_meshes, constraints, unbalances, forces, sensors, damping, solids,
+                     analyses});
   root.object_type = typeid(Model);  // the root has no parent to append it to
   return root;
 }

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 
 #include "geardyn/analysis/campbell.hpp"
@@ -11,6 +12,7 @@
 #include "geardyn/analysis/modal.hpp"
 #include "geardyn/analysis/system_builder.hpp"
 #include "geardyn/analysis/unbalance.hpp"
+#include "geardyn/component/solid_analyses.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/study/sweep.hpp"
@@ -32,6 +34,12 @@ std::string analysis_type_name(model::AnalysisType type) {
       return "transient";
     case model::AnalysisType::Sweep:
       return "sweep";
+    case model::AnalysisType::SolidModal:
+      return "solid_modal";
+    case model::AnalysisType::CyclicModal:
+      return "cyclic_modal";
+    case model::AnalysisType::Reduction:
+      return "reduction";
   }
   return "unknown";
 }
@@ -68,6 +76,18 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
   Progress& progress = context.progress != nullptr ? *context.progress : null_progress();
   const auto start = std::chrono::steady_clock::now();
   AnalysisOutput out;
+  // The solid component an analysis works on: built before the run, or here.
+  std::optional<component::SolidComponent> built;
+  auto solid_for = [&](const std::string& solid_name) -> const component::SolidComponent& {
+    if (context.solids != nullptr) {
+      auto it = context.solids->find(solid_name);
+      if (it != context.solids->end()) return it->second;
+    }
+    const model::Solid* s = model.find_solid(solid_name);
+    if (s == nullptr) throw std::logic_error("unresolved solid " + solid_name);
+    built = component::build_solid(model, *s, progress);
+    return *built;
+  };
   try {
     switch (analysis.type) {
       case model::AnalysisType::Modal: {
@@ -105,6 +125,21 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
         if (context.document == nullptr)
           throw NumericalError(analysis.name, "a sweep needs the model document to rebuild points");
         out = sweep_output(run_sweep(*context.document, s, progress), s, analysis.name);
+        break;
+      }
+      case model::AnalysisType::SolidModal: {
+        const auto& s = std::get<model::SolidModalSettings>(analysis.settings);
+        out = component::run_solid_modal(solid_for(s.solid), s, analysis.name, progress);
+        break;
+      }
+      case model::AnalysisType::CyclicModal: {
+        const auto& s = std::get<model::CyclicModalSettings>(analysis.settings);
+        out = component::run_cyclic_modal(solid_for(s.solid), s, analysis.name, progress);
+        break;
+      }
+      case model::AnalysisType::Reduction: {
+        const auto& s = std::get<model::ReductionSettings>(analysis.settings);
+        out = component::run_reduction(solid_for(s.solid), s, analysis.name, progress);
         break;
       }
     }

@@ -4,6 +4,7 @@
 #include <functional>
 #include <string>
 
+#include "geardyn/component/solid_component.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -20,6 +21,9 @@ namespace geardyn::study {
 struct RunContext {
   const model::ModelDocument* document = nullptr;
   Progress* progress = nullptr;  ///< null: silent
+  /// Solid components built before the run (component::build_solids); null: an analysis that
+  /// needs one builds it.
+  const component::SolidComponents* solids = nullptr;
 };
 
 /// Runs `analysis` on `model` whose matrices are `system`. Numerical failures are caught and

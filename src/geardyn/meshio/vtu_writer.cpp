@@ -1,0 +1,250 @@
+#include "geardyn/meshio/vtu_writer.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+#include "geardyn/core/error.hpp"
+
+namespace geardyn::meshio {
+
+int vtk_cell_type(solid::ElementType type) {
+  switch (type) {
+    case solid::ElementType::Tet4:
+      return 10;
+    case solid::ElementType::Tet10:
+      return 24;
+    case solid::ElementType::Hex8:
+      return 12;
+    case solid::ElementType::Hex20:
+      return 25;
+    case solid::ElementType::Wedge6:
+      return 13;
+    case solid::ElementType::Wedge15:
+      return 26;
+  }
+  return 0;
+}
+
+const std::vector<int>& vtk_order(solid::ElementType type) {
+  // Mid-edge node lists of Gmsh (solid/mesh.hpp) and VTK (header comment) matched edge by edge.
+  static const std::vector<int> tet4{0, 1, 2, 3};
+  static const std::vector<int> tet10{0, 1, 2, 3, 4, 5, 6, 7, 9, 8};
+  static const std::vector<int> hex8{0, 1, 2, 3, 4, 5, 6, 7};
+  static const std::vector<int> hex20{0,  1, 2,  3,  4,  5,  6,  7,  8,  11,
+                                      13, 9, 16, 18, 19, 17, 10, 12, 14, 15};
+  static const std::vector<int> wedge6{0, 1, 2, 3, 4, 5};
+  static const std::vector<int> wedge15{0, 1, 2, 3, 4, 5, 6, 9, 7, 12, 14, 13, 8, 10, 11};
+  switch (type) {
+    case solid::ElementType::Tet4:
+      return tet4;
+    case solid::ElementType::Tet10:
+      return tet10;
+    case solid::ElementType::Hex8:
+      return hex8;
+    case solid::ElementType::Hex20:
+      return hex20;
+    case solid::ElementType::Wedge6:
+      return wedge6;
+    case solid::ElementType::Wedge15:
+      return wedge15;
+  }
+  return tet4;
+}
+
+void check_fields(const solid::Mesh& mesh, const std::vector<Field>& fields) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const Field& f = fields[i];
+    const std::string key = fmt::format("fields[{}]", i);
+    if (f.name.empty()) throw InputError({}, key + ".name", "a non-empty field name", "''");
+    if (!names.insert(f.name).second)
+      throw InputError({}, key + ".name", "a unique field name", fmt::format("'{}'", f.name));
+    if (f.num_components < 1)
+      throw InputError({}, key + ".num_components", ">= 1", fmt::format("{}", f.num_components));
+    const std::size_t expected =
+        static_cast<std::size_t>(mesh.num_nodes()) * static_cast<std::size_t>(f.num_components);
+    if (f.values.size() != expected)
+      throw InputError({}, key + ".values",
+                       fmt::format("{} values ({} nodes x {} components)", expected,
+                                   mesh.num_nodes(), f.num_components),
+                       fmt::format("{} values", f.values.size()), "field '" + f.name + "'");
+  }
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const solid::Element& element = mesh.elements[e];
+    if (static_cast<int>(element.nodes.size()) != solid::num_element_nodes(element.type))
+      throw InputError(element.where, fmt::format("mesh.elements[{}]", e),
+                       fmt::format("{} nodes for a {}", solid::num_element_nodes(element.type),
+                                   solid::to_string(element.type)),
+                       fmt::format("{}", element.nodes.size()));
+    for (int n : element.nodes)
+      if (n < 0 || n >= mesh.num_nodes())
+        throw InputError(element.where, fmt::format("mesh.elements[{}].nodes", e),
+                         fmt::format("node indices in [0, {})", mesh.num_nodes()),
+                         fmt::format("{}", n));
+  }
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temporary =
+      path.parent_path() / fmt::format(".{}.tmp-{}", path.filename().string(), ::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(fmt::format("cannot create '{}'", temporary.string()));
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+    out.close();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw std::runtime_error(fmt::format("cannot write '{}'", temporary.string()));
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(fmt::format("cannot rename '{}' to '{}': {}", temporary.string(),
+                                         path.string(), ec.message()));
+  }
+}
+
+namespace {
+
+std::string xml_escape(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string vtu_text(const solid::Mesh& mesh, const std::vector<Field>& fields) {
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                 "header_type=\"UInt64\">\n"
+                 "<UnstructuredGrid>\n"
+                 "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                 mesh.num_nodes(), mesh.num_elements());
+
+  fmt::format_to(out, "<PointData>\n");
+  for (const Field& f : fields) {
+    fmt::format_to(out,
+                   "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
+                   "format=\"ascii\">\n",
+                   xml_escape(f.name), f.num_components);
+    // Shortest representation that reads back to the same double.
+    for (std::size_t i = 0; i < f.values.size(); ++i)
+      fmt::format_to(out, "{}{}", f.values[i],
+                     (i + 1) % static_cast<std::size_t>(f.num_components) == 0 ? '\n' : ' ');
+    fmt::format_to(out, "</DataArray>\n");
+  }
+  fmt::format_to(out, "<DataArray type=\"Int64\" Name=\"node_id\" format=\"ascii\">\n");
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    fmt::format_to(out, "{}\n",
+                   i < static_cast<int>(mesh.node_ids.size()) ? mesh.node_ids[i] : i + 1L);
+  fmt::format_to(out, "</DataArray>\n</PointData>\n");
+
+  fmt::format_to(out,
+                 "<CellData>\n<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n");
+  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", e.material);
+  fmt::format_to(out,
+                 "</DataArray>\n<DataArray type=\"Int64\" Name=\"element_id\" format=\"ascii\">\n");
+  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", e.id);
+  fmt::format_to(out, "</DataArray>\n</CellData>\n");
+
+  fmt::format_to(out,
+                 "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                 "format=\"ascii\">\n");
+  for (const Eigen::Vector3d& x : mesh.coords)
+    fmt::format_to(out, "{} {} {}\n", x.x(), x.y(), x.z());
+  fmt::format_to(out, "</DataArray>\n</Points>\n");
+
+  fmt::format_to(out,
+                 "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+                 "format=\"ascii\">\n");
+  for (const solid::Element& e : mesh.elements) {
+    const std::vector<int>& order = vtk_order(e.type);
+    for (std::size_t i = 0; i < order.size(); ++i)
+      fmt::format_to(out, "{}{}", e.nodes[static_cast<std::size_t>(order[i])],
+                     i + 1 == order.size() ? '\n' : ' ');
+  }
+  fmt::format_to(out,
+                 "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" "
+                 "format=\"ascii\">\n");
+  long offset = 0;
+  for (const solid::Element& e : mesh.elements) {
+    offset += solid::num_element_nodes(e.type);
+    fmt::format_to(out, "{}\n", offset);
+  }
+  fmt::format_to(out, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", vtk_cell_type(e.type));
+  fmt::format_to(out, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+  return fmt::to_string(b);
+}
+
+}  // namespace
+
+void write_vtu(const std::filesystem::path& path, const solid::Mesh& mesh,
+               const std::vector<Field>& fields) {
+  check_fields(mesh, fields);
+  write_file_atomically(path, vtu_text(mesh, fields));
+}
+
+std::vector<std::filesystem::path> write_vtu_series(const std::filesystem::path& pvd_path,
+                                                    const solid::Mesh& mesh,
+                                                    const std::vector<std::vector<Field>>& states,
+                                                    const std::vector<double>& times) {
+  if (times.size() != states.size())
+    throw InputError({}, "times", fmt::format("one time per state ({})", states.size()),
+                     fmt::format("{}", times.size()));
+  for (const std::vector<Field>& fields : states) check_fields(mesh, fields);
+  const std::string stem = pvd_path.stem().string();
+  const int digits =
+      static_cast<int>(fmt::format("{}", states.empty() ? 0 : states.size() - 1).size());
+  std::vector<std::filesystem::path> written;
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                 "<Collection>\n");
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const std::string name = fmt::format("{}_{:0{}}.vtu", stem, k, digits);
+    const std::filesystem::path file = pvd_path.parent_path() / name;
+    write_file_atomically(file, vtu_text(mesh, states[k]));
+    written.push_back(file);
+    fmt::format_to(out, "<DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", times[k],
+                   xml_escape(name));
+  }
+  fmt::format_to(out, "</Collection>\n</VTKFile>\n");
+  write_file_atomically(pvd_path, fmt::to_string(b));
+  return written;
+}
+
+}  // namespace geardyn::meshio
