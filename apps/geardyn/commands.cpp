@@ -11,6 +11,8 @@
 #include "geardyn/component/solid_component.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
+#include "geardyn/forcedan/forced_analyses.hpp"
+#include "geardyn/gearan/pair_model.hpp"
 #include "geardyn/io/results_writer.hpp"
 #include "geardyn/io/sha256.hpp"
 #include "geardyn/model/parse.hpp"
@@ -90,12 +92,16 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   // input (exit 2), found before any result is written.
   const component::SolidComponents solids = component::build_solids(m, *progress);
   component::check_solid_analyses(m, solids);
+  // Gear pairs (geometry, contact ratio, STE files) and measured files likewise.
+  gearan::check_gear_analyses(m);
+  forcedan::check_forced_analyses(m, solids);
 
   std::vector<AnalysisOutput> outputs;
   bool failed = false;
   fe::LinearSystem system;
   try {
-    if (!m.shafts.empty() || !m.nodes.empty()) system = analysis::build_system(m);
+    if (!m.shafts.empty() || !m.nodes.empty())
+      system = analysis::build_system(m, &solids, *progress);
   } catch (const NumericalError& e) {
     AnalysisOutput out;
     out.name = "build";
@@ -152,11 +158,13 @@ int command_check(const std::string& model_path, const std::vector<std::string>&
   // Meshes are read and checked too (inverted elements, missing sets, bad cards).
   const component::SolidComponents solids = component::build_solids(m);
   component::check_solid_analyses(m, solids);
+  gearan::check_gear_analyses(m);
+  forcedan::check_forced_analyses(m, solids);
   std::printf(
       "%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
-      "%zu solids, %zu analyses\n",
+      "%zu solids, %zu gear pairs, %zu analyses\n",
       model_path.c_str(), m.shafts.size(), elements, m.disks.size(), m.bearings.size(),
-      m.gear_meshes.size(), m.solids.size(), m.analyses.size());
+      m.gear_meshes.size(), m.solids.size(), m.gear_pairs.size(), m.analyses.size());
   for (const auto& [solid_name, solid] : solids) {
     std::printf("  solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
     for (const auto& w : solid.warnings) std::printf("    warning: %s\n", w.c_str());

@@ -95,7 +95,9 @@ const ErrorCase kCases[] = {
      "the unknown key 'bearing'", "did you mean 'bearings'?"},
     {"KeyOfAnotherAnalysisType", "[[analyses]]\nname = \"m\"\ntype = \"modal\"\nspeed_count = 5\n",
      4, 1, "analyses[0].speed_count", "a key of [[analyses]] with type = \"modal\"",
-     "the unknown key 'speed_count'", "type = \"campbell\", \"unbalance\" and \"cyclic_modal\" only"},
+     "the unknown key 'speed_count'",
+     "type = \"campbell\", \"unbalance\", \"cyclic_modal\", \"mesh_force\", "
+     "\"cyclic_forced_response\" and \"gear_forced_response\" only"},
     {"KeyOfAnotherGearType",
      "[[gear_meshes]]\ngear1 = \"rotor.0\"\ngear2 = \"rotor.1\"\nbase_radius1 = 0.1\n"
      "base_radius2 = 0.1\nstiffness = 1e8\nhelix_angle_deg = 20\n",

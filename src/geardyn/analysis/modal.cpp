@@ -52,6 +52,7 @@ ModeKind mode_kind(const fe::ModeFamilies& f) {
   if (f.lateral > kKindFraction) return ModeKind::Lateral;
   if (f.torsional > kKindFraction) return ModeKind::Torsional;
   if (f.axial > kKindFraction) return ModeKind::Axial;
+  if (f.body > kKindFraction) return ModeKind::Solid;
   return ModeKind::Coupled;
 }
 
@@ -214,7 +215,7 @@ void add_sensor_columns(Table& t, const model::Model& model, const fe::LinearSys
     for (const Mode& m : modes) {
       double largest = 0.0;
       for (int k = 0; k < m.shape.size(); ++k)
-        if ((static_cast<int>(dofs.dof_component(k)) >= 3) == rotation)
+        if (!dofs.is_generalized(k) && (static_cast<int>(dofs.dof_component(k)) >= 3) == rotation)
           largest = std::max(largest, std::abs(m.shape[k]));
       relative.push_back(eq < 0 || largest == 0.0 ? 0.0 : std::abs(m.shape[eq]) / largest);
     }
@@ -292,6 +293,8 @@ Table shapes_table(const model::Model& model, const fe::LinearSystem& system,
     // largest amplitude in the mode.
     double scale_t = 0.0, scale_r = 0.0;
     for (Eigen::Index e = 0; e < s.size(); ++e) {
+      // Generalised coordinates (modal coordinates of coupled solids) are not node DOFs.
+      if (dofs.is_generalized(static_cast<int>(e))) continue;
       const bool rotation = static_cast<int>(dofs.dof_component(static_cast<int>(e))) >= 3;
       if (rotation)
         scale_r = std::max(scale_r, std::abs(s[e]));

@@ -25,8 +25,9 @@ namespace geardyn::analysis {
 /// Whirl of a lateral mode relative to the spin of the node that moves most laterally.
 enum class Whirl { Forward, Backward, None };
 /// Dominant DOF family by the mass-weighted energy fractions of fe::mode_families: a family
-/// with more than kKindFraction of the energy names the mode, otherwise it is coupled.
-enum class ModeKind { Lateral, Torsional, Axial, Coupled };
+/// with more than kKindFraction of the energy names the mode, otherwise it is coupled. Solid:
+/// the elastic deformation of coupled solids (their modal coordinates) dominates.
+enum class ModeKind { Lateral, Torsional, Axial, Coupled, Solid };
 inline constexpr double kKindFraction = 0.8;
 
 constexpr std::string_view to_string(Whirl w) {
@@ -50,6 +51,8 @@ constexpr std::string_view to_string(ModeKind k) {
       return "axial";
     case ModeKind::Coupled:
       return "coupled";
+    case ModeKind::Solid:
+      return "solid";
   }
   return "coupled";
 }

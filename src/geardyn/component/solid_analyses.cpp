@@ -106,6 +106,19 @@ Plot frequency_plot(const std::string& plot_name, const std::string& title,
   return p;
 }
 
+/// The DOFs of the nodes of `sets` that have any (nodes fully fixed or eliminated by a rigid
+/// element have none and are skipped: they cannot be masters).
+std::vector<int> master_dofs(const SolidComponent& c, const std::vector<std::string>& sets) {
+  std::vector<int> out;
+  for (const auto& set : sets)
+    for (int node : c.mesh.node_sets.at(set))
+      for (int comp = 0; comp < 6; ++comp)
+        if (const int d = c.system.node_dof(node, comp); d >= 0) out.push_back(d);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 std::string trust_from_residual(double residual) {
   return fmt::format(
       "Largest backward error of the eigenpairs {:.1e}: the frequencies are exact for the "
@@ -385,9 +398,8 @@ AnalysisOutput run_cyclic_modal(const SolidComponent& c, const model::CyclicModa
                        fmt::format("a further reduction of solid '{}'", c.name));
     std::vector<long> master_ids = left_ids;
     master_ids.insert(master_ids.end(), right_ids.begin(), right_ids.end());
-    std::vector<std::vector<int>> lists = {reduce::select_dofs(mesh_dofs, master_ids)};
-    for (const auto& set : s.master_sets)
-      lists.push_back(reduce::select_dofs(c.mesh, mesh_dofs, set));
+    std::vector<std::vector<int>> lists = {reduce::select_dofs(mesh_dofs, master_ids),
+                                           master_dofs(c, s.master_sets)};
     reduce::CraigBamptonOptions o;
     o.n_modes = s.reduction == model::ReductionMethod::Guyan ? 0 : s.cb_modes;
     progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", name), 0);
@@ -571,9 +583,7 @@ AnalysisOutput run_reduction(const SolidComponent& c, const model::ReductionSett
   out.notes.push_back(c.description);
   for (const auto& w : c.warnings) out.notes.push_back(w);
   const auto& dofs = c.system.dofs;
-  std::vector<std::vector<int>> lists;
-  for (const auto& set : s.master_sets) lists.push_back(reduce::select_dofs(c.mesh, dofs, set));
-  const std::vector<int> masters = reduce::merge_dofs(lists);
+  const std::vector<int> masters = master_dofs(c, s.master_sets);
 
   reduce::CraigBamptonOptions o;
   if (s.method == model::ReductionMethod::CraigBampton) {

@@ -240,6 +240,30 @@ SolidComponent build_solid(const model::Model& model, const model::Solid& s, Pro
 }
 
 void check_solid_analyses(const model::Model& model, const SolidComponents& solids) {
+  // Node sets of the joints to the rotor ([[solids.spiders]], solid sensors).
+  auto check_set = [&](const std::string& solid_name, const std::string& set,
+                       const SourceLocation& where, const std::string& key) {
+    auto it = solids.find(solid_name);
+    if (it == solids.end() || it->second.is_reduced()) return;
+    const solid::Mesh& mesh = it->second.mesh;
+    if (mesh.node_sets.count(set)) return;
+    std::string available;
+    for (const auto& [set_name, nodes] : mesh.node_sets)
+      available += (available.empty() ? "" : ", ") + fmt::format("\"{}\"", set_name);
+    throw InputError(where, key,
+                     fmt::format("a node set of solid '{}' ({})", solid_name, available),
+                     fmt::format("\"{}\"", set));
+  };
+  for (std::size_t i = 0; i < model.solids.size(); ++i)
+    for (std::size_t k = 0; k < model.solids[i].spiders.size(); ++k)
+      check_set(model.solids[i].name, model.solids[i].spiders[k].node_set,
+                model.solids[i].spiders[k].where,
+                fmt::format("solids[{}].spiders[{}].node_set", i, k));
+  for (std::size_t j = 0; j < model.sensors.size(); ++j)
+    if (!model.sensors[j].solid.empty())
+      check_set(model.sensors[j].solid, model.sensors[j].node_set, model.sensors[j].where,
+                fmt::format("sensors[{}].node_set", j));
+
   for (std::size_t i = 0; i < model.analyses.size(); ++i) {
     const model::Analysis& a = model.analyses[i];
     const std::string* solid_name = nullptr;

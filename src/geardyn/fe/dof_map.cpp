@@ -138,6 +138,57 @@ int DofMap::node_index(const std::string& name) const {
   return index;
 }
 
+model::Component DofMap::dof_component(int equation) const {
+  if (dof_node(equation) < 0)
+    throw std::logic_error(fmt::format(
+        "DofMap: equation {} is a generalised coordinate, with no component", equation));
+  return dof_component_[static_cast<std::size_t>(equation)];
+}
+
+int DofMap::add_node(NodeInfo info, const std::array<bool, 6>& active, const std::string& key) {
+  if (by_name_.count(info.name) != 0) {
+    throw InputError({}, key, "a unique node name", fmt::format("'{}' defined twice", info.name));
+  }
+  const int index = static_cast<int>(nodes_.size());
+  by_name_.emplace(info.name, index);
+  nodes_.push_back(std::move(info));
+  for (std::size_t c = 0; c < 6; ++c) {
+    if (!active[c]) {
+      equation_.push_back(-1);
+      continue;
+    }
+    equation_.push_back(num_dofs_++);
+    dof_node_.push_back(index);
+    dof_component_.push_back(static_cast<model::Component>(c));
+  }
+  return index;
+}
+
+int DofMap::add_generalized(const std::string& name, int count) {
+  for (const GeneralizedRange& r : generalized_) {
+    if (r.name == name) {
+      throw InputError({}, name, "a unique name for a range of generalised coordinates",
+                       fmt::format("'{}' twice", name));
+    }
+  }
+  if (count < 0) throw std::logic_error("DofMap::add_generalized: negative count");
+  const int first = num_dofs_;
+  generalized_.push_back({name, first, count});
+  for (int k = 0; k < count; ++k) {
+    dof_node_.push_back(-1);
+    // Never read: dof_component refuses generalised coordinates.
+    dof_component_.push_back(model::Component::Ux);
+    ++num_dofs_;
+  }
+  return first;
+}
+
+int DofMap::num_generalized() const {
+  int n = 0;
+  for (const GeneralizedRange& r : generalized_) n += r.count;
+  return n;
+}
+
 std::array<int, 6> DofMap::node_dofs(int node) const {
   std::array<int, 6> dofs{};
   for (int c = 0; c < 6; ++c)

@@ -2,7 +2,12 @@
 // The one owner of DOF numbering. Every node has six DOFs (ux, uy, uz, rx, ry, rz) in its own
 // frame (columns e1, e2, e3 of `frame`, e3 = spin axis). Constrained DOFs are eliminated: they
 // have no equation number. Nodes: shaft stations in model order ("<shaft>.<k>"), then free nodes.
+// Bodies joined to the model (reduced solids, fe/superelement.hpp) may then append nodes of their
+// own (add_node) and generalised coordinates that belong to no node (add_generalized, e.g. the
+// fixed-interface modal coordinates of a Craig-Bampton body). Equations are numbered in the order
+// they are added, so the model's node DOFs keep their numbers.
 #include <Eigen/Dense>
+#include <array>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -19,6 +24,13 @@ struct NodeInfo {
   int shaft = -1;          ///< index into model.shafts, -1 for a free node
   int station = -1;        ///< station index along the shaft
   double axial_position = 0;  ///< distance from the shaft origin along the axis [m]
+};
+
+/// A named range of generalised coordinates (equations first .. first + count - 1).
+struct GeneralizedRange {
+  std::string name;
+  int first = 0;
+  int count = 0;
 };
 
 class DofMap {
@@ -39,13 +51,26 @@ class DofMap {
   int dof(int node, model::Component c) const {
     return equation_[static_cast<std::size_t>(node) * 6 + static_cast<std::size_t>(c)];
   }
-  /// Inverse map: node and component of an equation.
+  /// Inverse map: node and component of an equation. dof_node is -1 for a generalised
+  /// coordinate; dof_component throws std::logic_error for one (it has no component: check
+  /// is_generalized first).
   int dof_node(int equation) const { return dof_node_[static_cast<std::size_t>(equation)]; }
-  model::Component dof_component(int equation) const {
-    return dof_component_[static_cast<std::size_t>(equation)];
-  }
+  model::Component dof_component(int equation) const;
+  /// True for an equation that is a generalised coordinate (no node).
+  bool is_generalized(int equation) const { return dof_node(equation) < 0; }
   /// The 6 equation numbers of a node (-1 where constrained).
   std::array<int, 6> node_dofs(int node) const;
+
+  /// Appends a node that is not in the model (e.g. a sensor point of a coupled solid): the
+  /// components with active[c] get the next equation numbers, the others none (-1). Returns its
+  /// index. Throws InputError (key `key`) when the name is taken.
+  int add_node(NodeInfo info, const std::array<bool, 6>& active, const std::string& key = "node");
+  /// Appends `count` >= 0 generalised coordinates named `name` (unique among the ranges).
+  /// Returns the equation number of the first. Throws InputError for a repeated name.
+  int add_generalized(const std::string& name, int count);
+  const std::vector<GeneralizedRange>& generalized() const { return generalized_; }
+  /// Number of generalised coordinates of all ranges.
+  int num_generalized() const;
 
  private:
   std::vector<NodeInfo> nodes_;
@@ -53,6 +78,7 @@ class DofMap {
   std::vector<int> equation_;
   std::vector<int> dof_node_;
   std::vector<model::Component> dof_component_;
+  std::vector<GeneralizedRange> generalized_;
   int num_dofs_ = 0;
 };
 

@@ -265,6 +265,63 @@ struct Assembler {
     }
   }
 
+  // Each body: q = T u over the equations of its points' nodes (6 per model-node point, the
+  // node's equations for a new node) and its generalised coordinates; adds T^T A T.
+  void superelements(const std::vector<Superelement>& bodies,
+                     const std::vector<std::vector<int>>& point_nodes,
+                     const std::vector<int>& first_generalized) {
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      const Superelement& body = bodies[b];
+      const std::string key = fmt::format("superelement '{}'", body.name);
+      const auto n = static_cast<Eigen::Index>(body.size());
+      if (body.K.rows() != n || body.K.cols() != n || body.M.rows() != n || body.M.cols() != n ||
+          (body.G.size() != 0 && (body.G.rows() != n || body.G.cols() != n))) {
+        throw InputError(
+            {}, key, fmt::format("K, M (and G) of size {} x {}", n, n),
+            fmt::format("K {} x {}, M {} x {}, G {} x {}", body.K.rows(), body.K.cols(),
+                        body.M.rows(), body.M.cols(), body.G.rows(), body.G.cols()));
+      }
+      require_finite(body.K, {}, key + ".K");
+      require_finite(body.M, {}, key + ".M");
+      require_finite(body.G, {}, key + ".G");
+      std::vector<int> equations;
+      const auto n_points = body.points.size();
+      const Eigen::Index n_local =
+          static_cast<Eigen::Index>(6 * n_points) + static_cast<Eigen::Index>(body.n_generalized);
+      Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n_local);
+      Eigen::Index row = 0;
+      for (std::size_t p = 0; p < n_points; ++p) {
+        const int node = point_nodes[b][p];
+        const auto eq = dofs().node_dofs(node);
+        equations.insert(equations.end(), eq.begin(), eq.end());
+        const Matrix6d R = node_rotation(dofs().node(node).frame);
+        for (int c = 0; c < 6; ++c) {
+          if (!body.points[p].components[static_cast<std::size_t>(c)]) continue;
+          T.block(row++, static_cast<Eigen::Index>(6 * p), 1, 6) = R.row(c);
+        }
+      }
+      for (int k = 0; k < body.n_generalized; ++k) {
+        equations.push_back(first_generalized[b] + k);
+        T(row++, static_cast<Eigen::Index>(6 * n_points) + k) = 1.0;
+      }
+      auto add = [&](const Eigen::MatrixXd& A, Triplets& target) {
+        if (A.size() == 0) return;
+        const Eigen::MatrixXd local = T.transpose() * A * T;
+        for (Eigen::Index r = 0; r < n_local; ++r) {
+          const int er = equations[static_cast<std::size_t>(r)];
+          if (er < 0) continue;
+          for (Eigen::Index c = 0; c < n_local; ++c) {
+            const int ec = equations[static_cast<std::size_t>(c)];
+            if (ec >= 0 && local(r, c) != 0.0) target.emplace_back(er, ec, local(r, c));
+          }
+        }
+      };
+      add(body.K, K);
+      add(body.M, M);
+      add(body.G, G);
+    }
+  }
+
   void gear_meshes() {
     for (std::size_t i = 0; i < model.gear_meshes.size(); ++i) {
       const model::GearMesh& mesh = model.gear_meshes[i];
@@ -296,9 +353,31 @@ struct Assembler {
 
 }  // namespace
 
-LinearSystem assemble(const model::Model& model, [[maybe_unused]] const AssemblyOptions& options) {
+LinearSystem assemble(const model::Model& model, [[maybe_unused]] const AssemblyOptions& options,
+                      const std::vector<Superelement>& superelements) {
   LinearSystem system;
   system.dofs = DofMap::build(model);
+  // Bodies append their nodes, then their generalised coordinates, after the model's nodes.
+  std::vector<std::vector<int>> point_nodes(superelements.size());
+  std::vector<int> first_generalized(superelements.size(), 0);
+  for (std::size_t b = 0; b < superelements.size(); ++b) {
+    const Superelement& body = superelements[b];
+    for (std::size_t p = 0; p < body.points.size(); ++p) {
+      const SuperelementPoint& point = body.points[p];
+      const std::string key = fmt::format("superelement '{}'.points[{}]", body.name, p);
+      if (!point.new_node) {
+        point_nodes[b].push_back(require_node(system.dofs, point.node, {}, key));
+        continue;
+      }
+      NodeInfo info;
+      info.name = point.node;
+      info.position = point.position;
+      info.frame = Eigen::Matrix3d::Identity();
+      info.speed_ratio = point.speed_ratio;
+      point_nodes[b].push_back(system.dofs.add_node(std::move(info), point.components, key));
+    }
+    first_generalized[b] = system.dofs.add_generalized(body.name, body.n_generalized);
+  }
   const model::Damping& damping = model.damping;
   require_finite_non_negative(damping.loss_factor, {}, "damping.loss_factor",
                               "a non-negative loss factor");
@@ -314,6 +393,7 @@ LinearSystem assemble(const model::Model& model, [[maybe_unused]] const Assembly
   a.bearings();
   a.couplings();
   a.gear_meshes();
+  a.superelements(superelements, point_nodes, first_generalized);
 
   const int n = system.size();
   system.M = from_triplets(n, a.M);
@@ -446,6 +526,10 @@ ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& s
   const Eigen::VectorXd mass = system.M.diagonal();
   for (int i = 0; i < system.size() && i < shape.size(); ++i) {
     const double energy = mass(i) * std::norm(shape(i));
+    if (system.dofs.is_generalized(i)) {
+      f.body += energy;
+      continue;
+    }
     switch (system.dofs.dof_component(i)) {
       case model::Component::Uz:
         f.axial += energy;
@@ -458,11 +542,12 @@ ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& s
         break;
     }
   }
-  const double total = f.lateral + f.axial + f.torsional;
+  const double total = f.lateral + f.axial + f.torsional + f.body;
   if (total > 0) {
     f.lateral /= total;
     f.axial /= total;
     f.torsional /= total;
+    f.body /= total;
   }
   return f;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geardyn/fe/dof_map.hpp"
+#include "geardyn/fe/superelement.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::fe {
@@ -76,15 +77,19 @@ struct AssemblyOptions {
   int modal_damping_modes = 0;
 };
 
-/// Builds DOF map and matrices from a validated model. Throws InputError for inconsistent
-/// references that slipped past the parser, NumericalError when modal damping needs modes of a
-/// singular system.
-LinearSystem assemble(const model::Model& model, const AssemblyOptions& options = {});
+/// Builds DOF map and matrices from a validated model, with the bodies `superelements` joined
+/// to it (fe/superelement.hpp): their new nodes and generalised coordinates are appended to the
+/// DofMap after the model's nodes, in the order given. Global damping (Rayleigh, loss factor)
+/// applies to the bodies too. Throws InputError for inconsistent references that slipped past the
+/// parser and for a body whose matrices do not fit its coordinates or are not finite.
+LinearSystem assemble(const model::Model& model, const AssemblyOptions& options = {},
+                      const std::vector<Superelement>& superelements = {});
 
 /// Energy fractions of a mode shape by DOF family (uses diag(M)-weighted squares):
-/// lateral (ux, uy, rx, ry), axial (uz), torsional (rz). They sum to 1.
+/// lateral (ux, uy, rx, ry), axial (uz), torsional (rz) of node DOFs, and body: the generalised
+/// coordinates of joined bodies (the elastic deformation of reduced solids). They sum to 1.
 struct ModeFamilies {
-  double lateral = 0, axial = 0, torsional = 0;
+  double lateral = 0, axial = 0, torsional = 0, body = 0;
 };
 ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& shape);
 

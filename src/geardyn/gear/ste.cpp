@@ -120,8 +120,11 @@ struct CycleData {
 
 double interpolate_knots(const std::vector<double>& u, const std::vector<double>& y, double x,
                          SteInterpolation interpolation) {
-  // u increasing from 0 to 1 inclusive (the last knot closes the cycle).
-  const auto it = std::upper_bound(u.begin(), u.end(), x);
+  // u increasing from 0 to 1 inclusive (the last knot closes the cycle). A point on a knot up to
+  // the rounding of the abscissa (10.8 deg / 18 deg = 0.6000000000000001 against the grid point
+  // 6 / 10) belongs to that knot: otherwise Hold would return the previous row's value.
+  constexpr double kKnotTolerance = 1e-9;  // of a mesh cycle
+  const auto it = std::upper_bound(u.begin(), u.end(), x + kKnotTolerance);
   std::size_t j = it == u.begin() ? 0 : static_cast<std::size_t>(it - u.begin()) - 1;
   if (j >= u.size() - 1) j = u.size() - 2;
   if (interpolation == SteInterpolation::Hold) return y[j];

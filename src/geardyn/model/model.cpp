@@ -20,4 +20,10 @@ const Solid* Model::find_solid(const std::string& name) const {
   return nullptr;
 }
 
+const GearPair* Model::find_gear_pair(const std::string& name) const {
+  for (const auto& p : gear_pairs)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 }  // namespace geardyn::model

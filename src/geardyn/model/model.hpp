@@ -177,8 +177,10 @@ struct HarmonicForce {
 
 struct Sensor {
   std::string name;
-  std::string node;
-  Component dof = Component::Ux;  ///< in the node's frame
+  std::string node;               ///< a solid sensor: "<solid>/<node_set>" (set by the parser)
+  Component dof = Component::Ux;  ///< in the node's frame (a solid sensor: global ux, uy, uz)
+  std::string solid;              ///< non-empty: the mean motion of a node set of this solid
+  std::string node_set;           ///< with `solid`
   SourceLocation where;
 };
 
@@ -242,6 +244,17 @@ struct GearSectorSpec {
   int order = 2;
 };
 
+/// Joins a node set of a solid to a rotor node (RBE2 / RBE3-like, solid/mesh.hpp RigidElement):
+/// rigid: the set moves with the node as a rigid body; averaging: the node moves with the
+/// weighted least-squares rigid fit of the set's translations, without stiffening the set.
+enum class SpiderKind { Rigid, Averaging };
+struct Spider {
+  std::string node_set;  ///< node set of the solid's mesh
+  std::string node;      ///< rotor node: "<shaft>.<k>" or a [[nodes]] name
+  SpiderKind kind = SpiderKind::Rigid;
+  SourceLocation where;
+};
+
 struct Solid {
   std::string name;
   SolidSource source = SolidSource::MeshFile;
@@ -255,6 +268,51 @@ struct Solid {
   bool unsupported_cards_are_errors = false;  ///< Nastran: unsupported card -> error
   AnnularPlateSpec annular_plate;
   GearSectorSpec gear_sector;
+  std::vector<Spider> spiders;  ///< joints to rotor nodes (non-empty: part of the rotor system)
+  int coupling_modes = 20;      ///< fixed-interface modes kept when joined to the rotor
+  SourceLocation where;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Gear pairs of the mesh-excitation chain (DESIGN 4.4-4.5): geometry, tooth forces, mesh
+// stiffness / STE, dynamic mesh force and engine-order harmonics (gearan/ analyses). Gear 1 is
+// the pinion (the driving member under `torque`), gear 2 the wheel (or the internal gear).
+
+/// Direction of rotation of gear 1 seen from its back (cone base side), towards the apex.
+enum class GearRotation { Clockwise, CounterClockwise };
+enum class SteInterpolationKind { Linear, Hold };
+
+struct GearPair {
+  std::string name;
+  GearType type = GearType::Spur;
+  bool internal = false;              ///< gear 2 is an internal gear (spur, helical)
+  int teeth1 = 0, teeth2 = 0;         ///< z1, z2
+  double module = kNaN;               ///< normal module; bevel: outer transverse module [m]
+  double pressure_angle = kNaN;       ///< normal pressure angle of the rack [rad]
+  double helix_angle = 0.0;           ///< helix / mean spiral (hypoid: wheel's) angle [rad]
+  double pinion_spiral_angle = kNaN;  ///< hypoid: the pinion's mean spiral angle [rad]
+  Hand hand = Hand::Right;            ///< hand of gear 1's helix / spiral
+  GearRotation rotation = GearRotation::Clockwise;
+  double face_width = kNaN;  ///< [m]
+  double profile_shift1 = 0.0, profile_shift2 = 0.0;
+  double addendum_coefficient = 1.0, dedendum_coefficient = 1.25;
+  double centre_distance = kNaN;            ///< working centre distance [m] (NaN: zero backlash)
+  double shaft_angle = kNaN;                ///< bevel / hypoid Sigma [rad]
+  double outer_cone_distance = kNaN;        ///< bevel / hypoid R_e [m] (NaN: from the module)
+  double torque = kNaN;                     ///< on gear 1 [N m]
+  double inertia1 = kNaN, inertia2 = kNaN;  ///< polar inertias [kg m^2] (may be infinite)
+  std::string material1, material2;         ///< empty: steel, E = 206 GPa
+  double stiffness_correction = 0.8;        ///< ISO 6336-1 C_M
+  double application_factor = 1.0;          ///< ISO 6336-1 K_A
+  bool load_correction = true;              ///< ISO 6336-1 stiffness correction for light loads
+  double rim_thickness = kNaN, web_thickness = kNaN;  ///< gear blank with a web [m]
+  std::string ste_file;  ///< STE CSV as written (relative to the model file)
+  SteInterpolationKind ste_interpolation = SteInterpolationKind::Linear;
+  double ste_shift = 0.0;            ///< fraction of a mesh cycle
+  bool ste_extrapolation = false;    ///< torque outside the file's torques allowed
+  int ste_samples = 0;               ///< samples per mesh cycle (0: 512 / the file's rows)
+  double mesh_damping_ratio = 0.08;  ///< zeta of the dynamic mesh model
+  double backlash = kNaN;            ///< [m] (NaN: no back-side contact)
   SourceLocation where;
 };
 
@@ -376,6 +434,100 @@ struct ReductionSettings {
   bool save = true;              ///< write <analysis>.h5
 };
 
+enum class MeshForceModel { Dynamic, InfiniteInertia };
+enum class SweepDirectionKind { Up, Down, Both };
+
+/// Geometry, tooth forces, ISO 6336 stiffness and the mesh stiffness / STE over one mesh cycle.
+struct GearPairSettings {
+  std::string pair;  ///< empty: every [[gear_pairs]] entry
+};
+
+/// The dynamic mesh force over a speed range of gear 1 (DESIGN 4.5).
+struct MeshForceSettings {
+  std::string pair;            ///< empty: the model's only gear pair
+  std::vector<double> speeds;  ///< speeds of gear 1 [rad/s], increasing
+  SweepDirectionKind direction = SweepDirectionKind::Both;
+  MeshForceModel model = MeshForceModel::Dynamic;
+  bool contact_loss = true;           ///< false: linear mesh law for every x
+  std::vector<double> detail_speeds;  ///< time histories at these speeds of gear 1 [rad/s]
+};
+
+/// Engine-order harmonics of the tooth force of one gear at one speed (DESIGN 4.4).
+struct MeshHarmonicsSettings {
+  std::string pair;
+  double speed = 0.0;  ///< speed of gear 1 [rad/s]
+  int gear = 1;        ///< 1 or 2: the gear whose teeth are loaded
+  MeshForceModel model = MeshForceModel::Dynamic;
+  bool contact_loss = true;
+  double window_shift = 0.0;         ///< tooth-load window shift [pitches of that gear]
+  double contact_ratio = kNaN;       ///< window contact ratio (NaN: the total contact ratio)
+  std::vector<int> nodal_diameters;  ///< empty: 0 .. N / 2
+  int orders_per_diameter = 2;       ///< orders k = +-h (mod N) per nodal diameter
+  int max_order = 0;                 ///< order spectrum up to this (0: 2 N)
+};
+
+/// A measured response curve: resonance peaks, Q by the half-power method, optional reference.
+struct CorrelationSettings {
+  std::string measured_file;  ///< as written (relative to the model file)
+  double min_prominence_db = 6.0;
+  int max_peaks = 8;
+  double reference_peak = kNaN;       ///< reference peak position [rad/s] (speed or frequency)
+  bool reference_is_speed = true;     ///< reference_peak is a speed (rpm key) or frequency (hz key)
+  double reference_amplitude = kNaN;  ///< in the measured file's SI amplitude unit
+  double reference_q = kNaN;
+};
+
+/// Forced response of a cyclic solid to the engine-order harmonics of its tooth force, over the
+/// speed of that solid, by modal summation per (nodal diameter, engine order) (DESIGN 4.3-4.4;
+/// forced/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
+/// as mesh_harmonics does) or are given as force_amplitude.
+struct CyclicForcedResponseSettings {
+  std::string solid;
+  std::string pair;  ///< [[gear_pairs]] entry (empty: force_amplitude)
+  int gear = 1;      ///< 1 or 2: the member of the pair the solid is
+  MeshForceModel model = MeshForceModel::Dynamic;
+  bool contact_loss = true;
+  double window_shift = 0.0;           ///< [pitches]
+  double contact_ratio = kNaN;         ///< window contact ratio (NaN: total contact ratio)
+  double harmonics_speed = kNaN;       ///< gear-1 speed of the dynamic mesh force [rad/s]
+  std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per engine order
+  std::optional<Vec3> force_direction;  ///< of an explicit force (empty: tangential)
+  bool apex_below = true;               ///< the pitch-cone apex lies on the -z side
+  std::vector<int> nodal_diameters;     ///< empty: 0 .. sectors / 2
+  std::vector<int> engine_orders;       ///< empty: orders_per_diameter orders per diameter
+  int orders_per_diameter = 2;
+  std::string excitation_set = "excitation";
+  std::vector<std::string> sensor_sets;
+  std::vector<int> sensor_nodes;  ///< node ids of the mesh
+  std::vector<Component> sensor_components = {Component::Ux, Component::Uy, Component::Uz};
+  double damping_ratio = kNaN;  ///< zeta of every mode ...
+  double q_factor = kNaN;       ///< ... or Q = 1 / (2 zeta)
+  std::vector<double> speeds;   ///< speeds of the solid [rad/s]
+  int n_modes = 10;             ///< modes per nodal diameter
+  ReductionMethod reduction = ReductionMethod::None;
+  int cb_modes = 40;
+  std::vector<std::string> master_sets;
+  bool superpose = true;
+  std::string measured_file;    ///< measured response over speed (empty: none)
+  std::string measured_sensor;  ///< sensor compared (empty: the first)
+  int measured_engine_order = 0;  ///< curve compared: this order (0: the superposed sum)
+  bool scale_to_measured = false;
+  double min_prominence_db = 6.0;
+};
+
+/// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
+/// over speed (forced/rotor_mesh_response.hpp, modal method).
+struct GearForcedResponseSettings {
+  std::string gear_mesh;              ///< [[gear_meshes]] name (empty: the only one)
+  std::string pair;                   ///< [[gear_pairs]] entry (empty: force_amplitude)
+  std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per order
+  int max_mesh_order = 3;              ///< orders 1 .. this
+  std::vector<std::string> sensors;   ///< empty: all
+  std::vector<double> speeds;         ///< reference speeds [rad/s]
+  int n_modes = 10;
+  bool residual_vectors = true;
+};
+
 enum class AnalysisType {
   Modal,
   Campbell,
@@ -385,7 +537,13 @@ enum class AnalysisType {
   Sweep,
   SolidModal,
   CyclicModal,
-  Reduction
+  Reduction,
+  GearPair,
+  MeshForce,
+  MeshHarmonics,
+  Correlation,
+  CyclicForcedResponse,
+  GearForcedResponse
 };
 
 struct Analysis {
@@ -397,7 +555,8 @@ struct Analysis {
   std::vector<std::string> overrides;
   std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
                TransientSettings, SweepSettings, SolidModalSettings, CyclicModalSettings,
-               ReductionSettings>
+               ReductionSettings, GearPairSettings, MeshForceSettings, MeshHarmonicsSettings,
+               CorrelationSettings, CyclicForcedResponseSettings, GearForcedResponseSettings>
       settings;
   SourceLocation where;
 };
@@ -420,11 +579,13 @@ struct Model {
   std::vector<Sensor> sensors;
   Damping damping;
   std::vector<Solid> solids;
+  std::vector<GearPair> gear_pairs;
   std::vector<Analysis> analyses;
 
   const Material* find_material(const std::string& name) const;
   const Analysis* find_analysis(const std::string& name) const;
   const Solid* find_solid(const std::string& name) const;
+  const GearPair* find_gear_pair(const std::string& name) const;
 };
 
 }  // namespace geardyn::model

@@ -905,6 +905,7 @@ class Resolver {
   void check_damping();
   void check_analyses();
   void check_analysis_overrides(const std::string& base, const Analysis& analysis) const;
+  void check_gear_analysis(const std::string& base, const Analysis& analysis) const;
 
   Model& m_;
   const Reader& r_;
@@ -936,10 +937,11 @@ void Resolver::build_nodes() {
     shaft_stations_.push_back(stations);
   }
   for (const auto& n : m_.nodes) nodes_[n.name] = NodeInfo{-1, n.position};
-  if (m_.shafts.empty() && m_.nodes.empty() && m_.solids.empty())
+  if (m_.shafts.empty() && m_.nodes.empty() && m_.solids.empty() && m_.gear_pairs.empty())
     throw InputError({r_.doc().file_name(), 1, 1}, "shafts",
-                     "a model with at least one [[shafts]], [[nodes]] or [[solids]] table",
-                     "no nodes and no solids");
+                     "a model with at least one [[shafts]], [[nodes]], [[solids]] or "
+                     "[[gear_pairs]] table",
+                     "no nodes, no solids and no gear pairs");
 }
 
 NodeInfo Resolver::check_node(const std::string& path, const std::string& name) const {
@@ -1147,8 +1149,27 @@ void Resolver::check_connections() {
   }
   for (std::size_t i = 0; i < m_.forces.size(); ++i)
     check_node(fmt::format("forces[{}].node", i), m_.forces[i].node);
-  for (std::size_t i = 0; i < m_.sensors.size(); ++i)
-    check_node(fmt::format("sensors[{}].node", i), m_.sensors[i].node);
+  std::set<std::string> joined_solids;
+  for (const Solid& s : m_.solids)
+    if (!s.spiders.empty()) joined_solids.insert(s.name);
+  for (std::size_t i = 0; i < m_.sensors.size(); ++i) {
+    const Sensor& sensor = m_.sensors[i];
+    if (sensor.solid.empty()) {
+      check_node(fmt::format("sensors[{}].node", i), sensor.node);
+    } else if (m_.find_solid(sensor.solid) == nullptr) {
+      std::set<std::string> solids;
+      for (const Solid& s : m_.solids) solids.insert(s.name);
+      check_name(fmt::format("sensors[{}].solid", i), sensor.solid, solids, "solid", "solids");
+    } else if (!joined_solids.count(sensor.solid)) {
+      fail(fmt::format("sensors[{}].solid", i),
+           joined_solids.empty()
+               ? std::string("a solid joined to the rotor by [[solids.spiders]], but no solid is")
+               : fmt::format("a solid joined to the rotor by [[solids.spiders]] ({})",
+                             quoted_list({joined_solids.begin(), joined_solids.end()})),
+           fmt::format("\"{}\", which has no spiders", sensor.solid),
+           "a solid without spiders is not part of the rotor system; add [[solids.spiders]]");
+    }
+  }
 }
 
 void Resolver::check_damping() {
@@ -1171,9 +1192,11 @@ void Resolver::check_damping() {
 
 constexpr const char* kQuantityNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
                                           "peak_location", "amplitude_at"};
-constexpr const char* kAnalysisTypeNames[] = {"modal",       "campbell",     "harmonic",
-                                              "unbalance",   "transient",    "sweep",
-                                              "solid_modal", "cyclic_modal", "reduction"};
+constexpr const char* kAnalysisTypeNames[] = {
+    "modal",      "campbell",       "harmonic",     "unbalance", "transient",
+    "sweep",      "solid_modal",    "cyclic_modal", "reduction", "gear_pair",
+    "mesh_force", "mesh_harmonics", "correlation", "cyclic_forced_response",
+    "gear_forced_response"};
 
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
@@ -1202,6 +1225,75 @@ void Resolver::check_analysis_overrides(const std::string& base, const Analysis&
   --depth;
 }
 
+// Gear-pair analyses: the pair exists (or is the only one), the dynamic model has the inertias
+// it needs, and the nodal diameters fit the gear. The geometry itself (interference, contact
+// ratio) is checked by gearan::check_gear_pairs, which needs the gear library.
+void Resolver::check_gear_analysis(const std::string& base, const Analysis& a) const {
+  const std::string* pair = nullptr;
+  bool dynamic = false;
+  if (const auto* g = std::get_if<GearPairSettings>(&a.settings)) pair = &g->pair;
+  if (const auto* f = std::get_if<MeshForceSettings>(&a.settings)) {
+    pair = &f->pair;
+    dynamic = f->model == MeshForceModel::Dynamic;
+  }
+  const auto* h = std::get_if<MeshHarmonicsSettings>(&a.settings);
+  if (h != nullptr) {
+    pair = &h->pair;
+    dynamic = h->model == MeshForceModel::Dynamic;
+  }
+  // The forced responses use a pair only when they name one (else force_amplitude).
+  if (const auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings)) {
+    if (c->pair.empty()) return;
+    pair = &c->pair;
+    dynamic = c->model == MeshForceModel::Dynamic;
+  }
+  if (const auto* g = std::get_if<GearForcedResponseSettings>(&a.settings)) {
+    if (g->pair.empty()) return;
+    pair = &g->pair;
+  }
+  if (pair == nullptr) return;
+  const std::string type = fmt::format("\"{}\"", kAnalysisTypeNames[static_cast<int>(a.type)]);
+  if (m_.gear_pairs.empty())
+    fail(base + ".type", "an analysis whose gear pair exists in the model",
+         type + ", but the model has no [[gear_pairs]]");
+  std::set<std::string> pairs;
+  for (const auto& p : m_.gear_pairs) pairs.insert(p.name);
+  const GearPair* gp = nullptr;
+  std::size_t index = 0;
+  if (!pair->empty()) {
+    check_name(base + ".pair", *pair, pairs, "gear pair", "gear_pairs");
+    gp = m_.find_gear_pair(*pair);
+    index = static_cast<std::size_t>(gp - m_.gear_pairs.data());
+  } else if (m_.gear_pairs.size() == 1) {
+    gp = &m_.gear_pairs.front();
+  } else if (!std::holds_alternative<GearPairSettings>(a.settings)) {
+    fail(base + ".pair",
+         fmt::format("the name of the gear pair analysed (the model has {})",
+                     quoted_list(std::vector<std::string>(pairs.begin(), pairs.end()))),
+         "nothing");
+  }
+  if (gp != nullptr && dynamic) {
+    for (const char* key : {"inertia1", "inertia2"}) {
+      const double inertia = key[7] == '1' ? gp->inertia1 : gp->inertia2;
+      if (std::isnan(inertia))
+        fail(fmt::format("gear_pairs[{}].{}", index, key),
+             fmt::format("the polar inertia of gear {} [kg m^2] (needed by analysis '{}' with "
+                         "model = \"dynamic\")",
+                         key[7], a.name),
+             "nothing", "give it, or use model = \"infinite_inertia\"");
+    }
+  }
+  if (gp != nullptr && h != nullptr) {
+    const int teeth = h->gear == 1 ? gp->teeth1 : gp->teeth2;
+    for (std::size_t k = 0; k < h->nodal_diameters.size(); ++k)
+      if (h->nodal_diameters[k] > teeth / 2)
+        fail(fmt::format("{}.nodal_diameters[{}]", base, k),
+             fmt::format("a nodal diameter in 0 .. N / 2 = {} (gear {} has {} teeth)", teeth / 2,
+                         h->gear, teeth),
+             std::to_string(h->nodal_diameters[k]));
+  }
+}
+
 void Resolver::check_analyses() {
   auto names_of = [](const auto& items) {
     std::set<std::string> out;
@@ -1220,11 +1312,13 @@ void Resolver::check_analyses() {
     const bool rotor_analysis = a.type == AnalysisType::Modal || a.type == AnalysisType::Campbell ||
                                 a.type == AnalysisType::Harmonic ||
                                 a.type == AnalysisType::Unbalance ||
-                                a.type == AnalysisType::Transient;
+                                a.type == AnalysisType::Transient ||
+                                a.type == AnalysisType::GearForcedResponse;
     if (rotor_analysis && m_.shafts.empty() && m_.nodes.empty())
       fail(base + ".type",
-           "an analysis of the solids (solid_modal, cyclic_modal, reduction), since the model "
-           "has no [[shafts]] or [[nodes]]",
+           "an analysis of the solids (solid_modal, cyclic_modal, reduction) or gear pairs "
+           "(gear_pair, mesh_force, mesh_harmonics), since the model has no [[shafts]] or "
+           "[[nodes]]",
            fmt::format("\"{}\"", kAnalysisTypeNames[static_cast<int>(a.type)]));
     const std::string* solid = nullptr;
     if (const auto* sm = std::get_if<SolidModalSettings>(&a.settings)) solid = &sm->solid;
@@ -1242,6 +1336,84 @@ void Resolver::check_analyses() {
             fail(fmt::format("{}.nodal_diameters[{}]", base, k),
                  fmt::format("a nodal diameter in 0 .. sectors / 2 = {}", body.sectors / 2),
                  std::to_string(cm->nodal_diameters[k]));
+    }
+    check_gear_analysis(base, a);
+    // cyclic_forced_response: a cyclic solid, nodal diameters and engine orders that fit its
+    // sectors (k = +-h mod N), one tooth per sector when a gear pair gives the tooth force.
+    if (const auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings)) {
+      check_name(base + ".solid", c->solid, solids, "solid", "solids");
+      const Solid& body = *m_.find_solid(c->solid);
+      const int n = body.sectors;
+      if (n < 2)
+        fail(base + ".solid", "a solid with sectors >= 2 (one sector of a cyclic body)",
+             fmt::format("\"{}\" with sectors = {}", c->solid, n));
+      for (std::size_t k = 0; k < c->nodal_diameters.size(); ++k)
+        if (c->nodal_diameters[k] > n / 2)
+          fail(fmt::format("{}.nodal_diameters[{}]", base, k),
+               fmt::format("a nodal diameter in 0 .. sectors / 2 = {}", n / 2),
+               std::to_string(c->nodal_diameters[k]));
+      for (std::size_t j = 0; j < c->engine_orders.size(); ++j) {
+        const int r = c->engine_orders[j] % n;
+        const int h = std::min(r, n - r);
+        if (!c->nodal_diameters.empty() &&
+            std::find(c->nodal_diameters.begin(), c->nodal_diameters.end(), h) ==
+                c->nodal_diameters.end())
+          fail(fmt::format("{}.engine_orders[{}]", base, j),
+               fmt::format("an order k = +-h (mod sectors = {}) of a listed nodal diameter h", n),
+               fmt::format("{} (nodal diameter {})", c->engine_orders[j], h),
+               "add that nodal diameter to nodal_diameters, or drop the order");
+      }
+      if (!c->pair.empty()) {
+        const GearPair& gp = *m_.find_gear_pair(c->pair);
+        const int teeth = c->gear == 1 ? gp.teeth1 : gp.teeth2;
+        if (teeth != n)
+          fail(base + ".solid",
+               fmt::format("a cyclic solid with one tooth per sector, sectors = {} (the teeth of "
+                           "gear {} of pair '{}'): the tooth force of tooth j acts on sector j",
+                           teeth, c->gear, c->pair),
+               fmt::format("\"{}\" with sectors = {}", c->solid, n),
+               "mesh one tooth per sector, or give force_amplitude for a load repeated once "
+               "per sector");
+        if (body.source == SolidSource::GearSector && body.gear_sector.teeth != teeth)
+          fail(base + ".solid",
+               fmt::format("a gear sector with the {} teeth of gear {} of pair '{}'", teeth,
+                           c->gear, c->pair),
+               fmt::format("teeth = {}", body.gear_sector.teeth));
+      }
+    }
+    // gear_forced_response: a gear mesh with teeth, the pair (if any) with the same teeth.
+    if (const auto* g = std::get_if<GearForcedResponseSettings>(&a.settings)) {
+      if (m_.gear_meshes.empty())
+        fail(base + ".type", "an analysis whose gear mesh exists in the model",
+             "\"gear_forced_response\", but the model has no [[gear_meshes]]");
+      const GearMesh* mesh = &m_.gear_meshes.front();
+      if (!g->gear_mesh.empty()) {
+        check_name(base + ".gear_mesh", g->gear_mesh, names_of(m_.gear_meshes), "gear mesh",
+                   "gear_meshes");
+        for (const auto& gm : m_.gear_meshes)
+          if (gm.name == g->gear_mesh) mesh = &gm;
+      } else if (m_.gear_meshes.size() > 1) {
+        fail(base + ".gear_mesh", "the name of the gear mesh excited (the model has several)",
+             "nothing");
+      }
+      if (mesh->teeth1 <= 0)
+        fail(base + ".gear_mesh",
+             fmt::format("a gear mesh with teeth1 (mesh '{}' has none, so its mesh frequency is "
+                         "unknown)",
+                         mesh->name),
+             "teeth1 = 0");
+      if (!g->pair.empty()) {
+        const GearPair& gp = *m_.find_gear_pair(g->pair);
+        if (gp.teeth1 != mesh->teeth1 || (mesh->teeth2 > 0 && gp.teeth2 != mesh->teeth2))
+          fail(base + ".pair",
+               fmt::format("a gear pair with the teeth of gear mesh '{}' ({} / {})", mesh->name,
+                           mesh->teeth1, mesh->teeth2),
+               fmt::format("'{}' with {} / {} teeth", gp.name, gp.teeth1, gp.teeth2));
+      }
+      check_named(base + ".sensors", g->sensors, sensors, "sensor", "sensors");
+      if (m_.sensors.empty())
+        fail(base + ".type", "an analysis whose response points exist in the model",
+             "\"gear_forced_response\", but the model has no [[sensors]]");
     }
     if (const auto* h = std::get_if<HarmonicSettings>(&a.settings)) {
       if (!h->input_node.empty()) check_node(base + ".input_node", h->input_node);
@@ -1348,11 +1520,21 @@ void Resolver::run() {
   check_unique(m_.sensors, "sensors");
   check_unique(m_.analyses, "analyses");
   check_unique(m_.solids, "solids");
+  check_unique(m_.gear_pairs, "gear_pairs");
+  for (std::size_t i = 0; i < m_.gear_pairs.size(); ++i) {
+    const GearPair& g = m_.gear_pairs[i];
+    if (!g.material1.empty())
+      check_material(fmt::format("gear_pairs[{}].material1", i), g.material1);
+    if (!g.material2.empty())
+      check_material(fmt::format("gear_pairs[{}].material2", i), g.material2);
+  }
   for (std::size_t i = 0; i < m_.solids.size(); ++i) {
     const Solid& s = m_.solids[i];
     if (!s.material.empty()) check_material(fmt::format("solids[{}].material", i), s.material);
     if (!s.ring_material.empty())
       check_material(fmt::format("solids[{}].ring_material", i), s.ring_material);
+    for (std::size_t k = 0; k < s.spiders.size(); ++k)
+      check_node(fmt::format("solids[{}].spiders[{}].node", i, k), s.spiders[k].node);
   }
   resolve_disks();
   check_connections();

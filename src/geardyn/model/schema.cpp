@@ -139,6 +139,8 @@ const char* ref_noun(Ref ref) {
       return "key path";
     case Ref::Solid:
       return "solid";
+    case Ref::GearPair:
+      return "gear pair";
     case Ref::None:
       break;
   }
@@ -660,6 +662,15 @@ void finish_element(ShaftElement& e, const TableContext& t) {
            value_text(e.inner_diameter));
 }
 
+void finish_sensor(Sensor& s, const TableContext& t) {
+  if (s.solid.empty()) return;
+  if (static_cast<int>(s.dof) >= 3)
+    t.fail("dof", "ux, uy or uz (a solid sensor measures the mean translation of its node set)",
+           fmt::format("\"{}\"", kComponentNames[static_cast<std::size_t>(s.dof)]));
+  // '/' is not allowed in solid names, so this cannot be the name of another node.
+  s.node = s.solid + "/" + s.node_set;
+}
+
 void finish_node(Node& n, const TableContext&) {
   double norm = std::hypot(n.axis[0], n.axis[1], n.axis[2]);
   for (auto& a : n.axis) a /= norm;
@@ -891,6 +902,9 @@ void finish_solid(Solid& s, const TableContext& t) {
                               (s.source == SolidSource::MeshFile && s.mesh.ends_with(".msh"));
   if (needs_material && s.material.empty())
     t.fail("material", "a material name (Gmsh and generated meshes carry no material)", "nothing");
+  if (!s.spiders.empty() && s.sectors > 1)
+    t.fail("sectors", "1 for a solid joined to the rotor by [[solids.spiders]] (the whole body)",
+           std::to_string(s.sectors));
   if (s.source == SolidSource::AnnularPlate) {
     const auto& p = s.annular_plate;
     if (p.outer_radius <= p.inner_radius)
@@ -921,6 +935,125 @@ void finish_solid(Solid& s, const TableContext& t) {
   }
 }
 
+void finish_gear_pair(GearPair& g, const TableContext& t) {
+  const bool bevel = g.type == GearType::StraightBevel || g.type == GearType::SpiralBevel ||
+                     g.type == GearType::Hypoid;
+  if (g.internal && bevel)
+    t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
+           "true");
+  if (g.internal && g.teeth2 <= g.teeth1)
+    t.fail("teeth2",
+           fmt::format("more teeth than gear 1 (teeth1 = {}) for an internal gear pair", g.teeth1),
+           std::to_string(g.teeth2));
+  if (t.has("rim_thickness") != t.has("web_thickness"))
+    t.fail(t.has("rim_thickness") ? "web_thickness" : "rim_thickness",
+           "rim_thickness and web_thickness together (a gear blank with a web), or neither",
+           "only one of them");
+  if (!t.has("ste_file") && (t.has("ste_interpolation") || t.has("ste_extrapolation")))
+    t.fail(t.has("ste_interpolation") ? "ste_interpolation" : "ste_extrapolation",
+           "an ste_file to apply to (the synthetic STE from ISO 6336 is sampled uniformly)",
+           "no ste_file");
+}
+
+void finish_mesh_force(Analysis& a, const TableContext& t) {
+  auto& s = std::get<MeshForceSettings>(a.settings);
+  s.speeds = speed_range(t);
+  if (s.speeds.front() <= 0.0)
+    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
+  if (s.detail_speeds.size() > 8)
+    t.fail("detail_rpm", "at most 8 speeds for time histories",
+           fmt::format("{} speeds", s.detail_speeds.size()));
+}
+
+void finish_correlation(Analysis& a, const TableContext& t) {
+  auto& s = std::get<CorrelationSettings>(a.settings);
+  s.reference_is_speed = !t.has("reference_peak_hz");
+  const bool reference = t.has("reference_peak_rpm") || t.has("reference_peak_hz");
+  for (const char* key : {"reference_amplitude", "reference_q"})
+    if (t.has(key) && !reference)
+      t.fail(key, "reference_peak_rpm or reference_peak_hz with it (where the reference peak is)",
+             "no reference peak position");
+}
+
+/// force_amplitude = 1.0 or [a1, a2, ...] (NumberOrArray): the amplitudes in N.
+std::vector<double> amplitudes_of(const FieldValue& v) {
+  return v.is_array ? v.numbers : std::vector<double>{v.number};
+}
+
+void finish_cyclic_forced(Analysis& a, const TableContext& t) {
+  auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+  s.speeds = speed_range(t);
+  if (s.speeds.front() <= 0.0)
+    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+           "speeds > 0 rpm (the excitation frequency k W must be positive)", "0 rpm");
+  const bool pair = t.has("pair");
+  for (const char* key :
+       {"gear", "model", "contact_loss", "window_shift", "contact_ratio", "harmonics_rpm"})
+    if (t.has(key) && !pair)
+      t.fail(key, "a `pair` whose tooth force it shapes (or leave it out with force_amplitude)",
+             "no pair");
+  if (t.has("force_direction") && pair)
+    t.fail("force_direction",
+           "no force_direction with a gear pair (its tooth forces set the direction)",
+           "a direction");
+  if (pair && s.model == MeshForceModel::Dynamic && !t.has("harmonics_rpm"))
+    t.fail("harmonics_rpm",
+           "the speed of gear 1 at which the dynamic mesh force is computed (model = "
+           "\"dynamic\")",
+           "nothing", "give harmonics_rpm, or use model = \"infinite_inertia\"");
+  if (t.has("force_amplitude")) {
+    const FieldValue& v = t.at("force_amplitude");
+    if (v.is_array && v.count != s.engine_orders.size())
+      t.fail("force_amplitude",
+             s.engine_orders.empty()
+                 ? std::string("a single amplitude for every order (a list needs engine_orders "
+                               "with one order per amplitude)")
+                 : fmt::format("{} amplitudes, one per engine_orders entry",
+                               s.engine_orders.size()),
+             fmt::format("{} amplitudes", v.count));
+  }
+  if (t.has("engine_orders") && t.has("orders_per_diameter"))
+    t.fail("orders_per_diameter", "no orders_per_diameter when engine_orders lists the orders",
+           std::to_string(s.orders_per_diameter));
+  for (const char* key : {"measured_sensor", "measured_engine_order", "scale_to_measured"})
+    if (t.has(key) && !t.has("measured_file"))
+      t.fail(key, "a measured_file to compare with", "no measured_file");
+  if (s.measured_engine_order > 0 && !s.engine_orders.empty() &&
+      std::find(s.engine_orders.begin(), s.engine_orders.end(), s.measured_engine_order) ==
+          s.engine_orders.end())
+    t.fail("measured_engine_order", "one of engine_orders (or 0: the superposed sum)",
+           std::to_string(s.measured_engine_order));
+  if (s.measured_engine_order == 0 && t.has("measured_file") && !s.superpose)
+    t.fail("measured_engine_order",
+           "the engine order compared with the measurement (the superposed sum needs superpose "
+           "= true)",
+           "0");
+  if (s.sensor_sets.empty() && s.sensor_nodes.empty())
+    t.fail("sensor_sets", "at least one sensor point: sensor_sets or sensor_nodes", "neither");
+  if (s.reduction == ReductionMethod::Guyan)
+    t.fail("reduction", "\"none\" or \"craig_bampton\" (the forced response sums modes)",
+           "\"guyan\"");
+}
+
+void finish_gear_forced(Analysis& a, const TableContext& t) {
+  auto& s = std::get<GearForcedResponseSettings>(a.settings);
+  s.speeds = speed_range(t);
+  if (s.speeds.front() <= 0.0)
+    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
+  if (t.has("force_amplitude") && t.at("force_amplitude").is_array) {
+    const std::size_t n = t.at("force_amplitude").count;
+    if (!t.has("max_mesh_order"))
+      s.max_mesh_order = static_cast<int>(n);
+    else if (n != static_cast<std::size_t>(s.max_mesh_order))
+      t.fail("force_amplitude",
+             fmt::format("{} amplitudes, one per mesh order 1 .. max_mesh_order",
+                         s.max_mesh_order),
+             fmt::format("{} amplitudes", n));
+  }
+}
+
 void finish_output(SweepOutput& o, const TableContext& t) {
   if (t.has("label")) return;
   static const char* const kNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
@@ -936,15 +1069,20 @@ void finish_output(SweepOutput& o, const TableContext& t) {
 // ---------------------------------------------------------------------------------------------
 // The table
 
-const std::vector<std::string> kAnalysisTypes = {"modal",       "campbell",     "harmonic",
-                                                 "unbalance",   "transient",    "sweep",
-                                                 "solid_modal", "cyclic_modal", "reduction"};
+const std::vector<std::string> kAnalysisTypes = {
+    "modal",      "campbell",       "harmonic",     "unbalance", "transient",
+    "sweep",      "solid_modal",    "cyclic_modal", "reduction", "gear_pair",
+    "mesh_force", "mesh_harmonics", "correlation", "cyclic_forced_response",
+    "gear_forced_response"};
 
 void set_analysis_type(Analysis& a, const FieldValue& v) {
   constexpr AnalysisType kTypes[] = {
       AnalysisType::Modal,      AnalysisType::Campbell,    AnalysisType::Harmonic,
       AnalysisType::Unbalance,  AnalysisType::Transient,   AnalysisType::Sweep,
-      AnalysisType::SolidModal, AnalysisType::CyclicModal, AnalysisType::Reduction};
+      AnalysisType::SolidModal, AnalysisType::CyclicModal, AnalysisType::Reduction,
+      AnalysisType::GearPair,   AnalysisType::MeshForce,   AnalysisType::MeshHarmonics,
+      AnalysisType::Correlation, AnalysisType::CyclicForcedResponse,
+      AnalysisType::GearForcedResponse};
   a.type = kTypes[v.choice];
   switch (a.type) {
     case AnalysisType::Modal:
@@ -973,6 +1111,24 @@ void set_analysis_type(Analysis& a, const FieldValue& v) {
       break;
     case AnalysisType::Reduction:
       a.settings = ReductionSettings{};
+      break;
+    case AnalysisType::GearPair:
+      a.settings = GearPairSettings{};
+      break;
+    case AnalysisType::MeshForce:
+      a.settings = MeshForceSettings{};
+      break;
+    case AnalysisType::MeshHarmonics:
+      a.settings = MeshHarmonicsSettings{};
+      break;
+    case AnalysisType::Correlation:
+      a.settings = CorrelationSettings{};
+      break;
+    case AnalysisType::CyclicForcedResponse:
+      a.settings = CyclicForcedResponseSettings{};
+      break;
+    case AnalysisType::GearForcedResponse:
+      a.settings = GearForcedResponseSettings{};
       break;
   }
 }
@@ -1434,14 +1590,30 @@ Section make_schema() {
 
   Section sensors =
       S("sensors", SectionKind::ArrayOfTables, "[[sensors]]",
-        "Response outputs: a DOF of a node, in the node's frame.")
+        "Response outputs: a DOF of a node, in the node's frame; or the mean translation of a "
+        "node set of a solid joined to the rotor ([[solids.spiders]]), in global axes. A solid "
+        "sensor's node set becomes a physical (master) point of the solid's reduction, node "
+        "\"<solid>/<node_set>\" of the system.")
           .in_array(&Model::sensors)
           .located(&Sensor::where)
           .fields({
               name_key("Unique sensor name (used in result columns).").required().to(&Sensor::name),
               reference("node", Ref::Node, "Node measured.").required().to(&Sensor::node),
-              choice("dof", kComponentChoices, "DOF measured.").required().to(&Sensor::dof),
-          });
+              reference("solid", Ref::Solid,
+                        "Solid measured (joined to the rotor by [[solids.spiders]]).")
+                  .required()
+                  .to(&Sensor::solid),
+              text("node_set",
+                   "Node set of the solid's mesh whose mean translation (sum u_i / n) is measured.")
+                  .required()
+                  .to(&Sensor::node_set),
+              choice("dof", kComponentChoices,
+                     "DOF measured (a solid sensor: ux, uy or uz in global axes).")
+                  .required()
+                  .to(&Sensor::dof),
+          })
+          .choices({{{{"node"}, {"solid", "node_set"}}, true, {}}})
+          .finish<Sensor>(finish_sensor);
 
   Section bands = S("bands", SectionKind::ArrayOfTables, "[[damping.bands]]",
                     "Modal damping ratio for the modes whose undamped frequency lies in [f_min_hz, "
@@ -1502,11 +1674,42 @@ Section make_schema() {
   const std::vector<std::string> kGear = {"gear_sector"};
   auto plate = [](auto member) { return solid_spec(&Solid::annular_plate, member); };
   auto gear = [](auto member) { return solid_spec(&Solid::gear_sector, member); };
+  Section spiders =
+      S("spiders", SectionKind::ArrayOfTables, "[[solids.spiders]]",
+        "Joints of the solid to rotor nodes through node sets of its mesh (RBE2 / RBE3-like). "
+        "Each adds a reference point at the rotor node's position, whose 6 DOFs (global axes, "
+        "rotated into the node frame) become the rotor node's.")
+          .in_array(&Solid::spiders)
+          .located(&Spider::where)
+          .only_in({"mesh", "annular_plate", "gear_sector"})
+          .fields({
+              text("node_set", "Node set of the solid's mesh that is joined.")
+                  .required()
+                  .to(&Spider::node_set),
+              reference("node", Ref::Node,
+                        "Rotor node joined: \"<shaft>.<k>\" or a [[nodes]] name.")
+                  .required()
+                  .to(&Spider::node),
+              choice("kind", {"rigid", "averaging"},
+                     "rigid (RBE2): the set moves with the node as a rigid body; averaging (RBE3): "
+                     "the node follows the least-squares rigid fit of the set's translations, "
+                     "which keep their own flexibility.")
+                  .def("\"rigid\"")
+                  .to_enum(&Spider::kind, {SpiderKind::Rigid, SpiderKind::Averaging}),
+          });
+
   Section solids =
       S("solids", SectionKind::ArrayOfTables, "[[solids]]",
         "Solid (3D finite-element) components: a mesh file, a generated annular plate or "
         "gear-blank sector, or a reduced component saved by an earlier run. With sectors > 1 "
-        "the mesh is one sector of a cyclic body about the z axis.")
+        "the mesh is one sector of a cyclic body about the z axis. Mesh coordinates are in the "
+        "global frame of the rotor model (generated plates and gears lie about the global z "
+        "axis, mid-plane z = 0). A solid with [[solids.spiders]] is part of the rotor system: "
+        "it is Craig-Bampton reduced onto its spider points (6 DOFs each, joined to the rotor "
+        "node's 6 DOFs) and its sensor points, plus `coupling_modes` fixed-interface modes, "
+        "which become generalised coordinates of the system. Its gyroscopic effect is that of "
+        "its rigid-body polar inertia about the spin axis of its spider nodes, when they all "
+        "spin at one speed; the gyroscopic coupling of its elastic modes is not included.")
           .in_array(&Model::solids)
           .located(&Solid::where)
           .fields({
@@ -1548,6 +1751,14 @@ Section make_schema() {
                   .def("[]")
                   .only_in({"mesh", "annular_plate", "gear_sector"})
                   .to(&Solid::fixed_sets),
+              integer("coupling_modes",
+                      "Fixed-interface modes (spider and sensor points held) kept when the solid "
+                      "is joined to the rotor by [[solids.spiders]]; 0: Guyan (static) coupling.")
+                  .def("20")
+                  .ge(0)
+                  .le(10000)
+                  .only_in({"mesh", "annular_plate", "gear_sector"})
+                  .to(&Solid::coupling_modes),
               choice("unsupported_cards", {"warn", "error"},
                      "Nastran cards geardyn does not read: listed as warnings, or an error.")
                   .def("\"warn\"")
@@ -1708,11 +1919,244 @@ Section make_schema() {
                                     "A generated gear-blank sector with simplified teeth and an "
                                     "optional damper-ring groove and ring."),
                      variant<Solid>("reduced", "A reduced component file (.h5).")})
+          .sections({spiders})
           .finish<Solid>(finish_solid);
 
+  // --- gear pairs (mesh excitation) ---
+  constexpr Unit kTorque{"N m", 1.0};
+  const std::vector<std::string> kCylindrical = {"spur", "helical"};
+  const std::vector<std::string> kSpiral = {"spiral_bevel", "hypoid"};
+  Section gear_pairs =
+      S("gear_pairs", SectionKind::ArrayOfTables, "[[gear_pairs]]",
+        "Gear pairs of the mesh-excitation chain (DESIGN 4.4-4.5): geometry and contact ratio "
+        "(ISO 21771; bevel and hypoid gears as virtual cylindrical gears at mid face), tooth "
+        "forces, ISO 6336-1 mesh stiffness, the static transmission error (STE) from a file or "
+        "synthetic from the stiffness, the dynamic mesh force and the engine-order harmonics "
+        "(analyses gear_pair, mesh_force, mesh_harmonics). Gear 1 is the pinion; `torque` acts "
+        "on it. The geometry is checked (interference, contact ratio >= 1, backlash) before any "
+        "analysis runs.")
+          .in_array(&Model::gear_pairs)
+          .located(&GearPair::where)
+          .fields({
+              name_key("Unique gear-pair name.").required().to(&GearPair::name),
+              choice("type", kGearTypes, "Gear type; selects the keys below.")
+                  .def("\"spur\"")
+                  .to_enum(&GearPair::type,
+                           {GearType::Spur, GearType::Helical, GearType::StraightBevel,
+                            GearType::SpiralBevel, GearType::Hypoid}),
+              boolean("internal", "Gear 2 is an internal gear (ring gear).")
+                  .def("false")
+                  .only_in(kCylindrical)
+                  .to(&GearPair::internal),
+              integer("teeth1", "Number of teeth z1 of gear 1 (pinion).")
+                  .required()
+                  .ge(3)
+                  .le(100000)
+                  .to(&GearPair::teeth1),
+              integer("teeth2", "Number of teeth z2 of gear 2 (internal gear: its tooth count).")
+                  .required()
+                  .ge(3)
+                  .le(100000)
+                  .to(&GearPair::teeth2),
+              number("module", kMetre,
+                     "Normal module m_n (spur, helical); outer transverse module m_e at the heel "
+                     "(bevel; hypoid: the wheel's).")
+                  .required()
+                  .gt(0)
+                  .to(&GearPair::module),
+              number("pressure_angle_deg", kDegree, "Normal pressure angle of the basic rack.")
+                  .def("20.0")
+                  .gt(0)
+                  .lt(45)
+                  .to(&GearPair::pressure_angle),
+              number("helix_angle_deg", kDegree,
+                     "Helix angle (helical), mean spiral angle (spiral bevel), the wheel's mean "
+                     "spiral angle (hypoid).")
+                  .required()
+                  .gt(0)
+                  .lt(90)
+                  .only_in(kHelical)
+                  .to(&GearPair::helix_angle),
+              number("pinion_spiral_angle_deg", kDegree,
+                     "Hypoid: the pinion's mean spiral angle (> the wheel's helix_angle_deg).")
+                  .required()
+                  .gt(0)
+                  .lt(90)
+                  .only_in({"hypoid"})
+                  .to(&GearPair::pinion_spiral_angle),
+              choice("hand", {"right", "left"}, "Hand of gear 1's helix or spiral.")
+                  .def("\"right\"")
+                  .only_in(kHelical)
+                  .to_enum(&GearPair::hand, {Hand::Right, Hand::Left}),
+              choice("rotation", {"cw", "ccw"},
+                     "Direction of rotation of gear 1, seen from its back (cone base) towards "
+                     "the apex; with `hand` it sets which flank is loaded and the sign of the "
+                     "axial force.")
+                  .def("\"cw\"")
+                  .only_in(kSpiral)
+                  .to_enum(&GearPair::rotation,
+                           {GearRotation::Clockwise, GearRotation::CounterClockwise}),
+              number("face_width", kMetre, "Face width b.")
+                  .required()
+                  .gt(0)
+                  .to(&GearPair::face_width),
+              number("profile_shift1", kNoUnit, "Profile shift coefficient x1 of gear 1.")
+                  .def("0.0")
+                  .ge(-2.0)
+                  .le(2.0)
+                  .to(&GearPair::profile_shift1),
+              number("profile_shift2", kNoUnit,
+                     "Profile shift coefficient x2 of gear 2 (ISO 21771 sign for internal "
+                     "gears; bevel gears need x2 = -x1).")
+                  .def("0.0")
+                  .ge(-2.0)
+                  .le(2.0)
+                  .to(&GearPair::profile_shift2),
+              number("addendum_coefficient", kNoUnit, "Addendum of the basic rack h_aP / m_n.")
+                  .def("1.0")
+                  .gt(0)
+                  .le(2.0)
+                  .to(&GearPair::addendum_coefficient),
+              number("dedendum_coefficient", kNoUnit, "Dedendum of the basic rack h_fP / m_n.")
+                  .def("1.25")
+                  .gt(0)
+                  .le(2.5)
+                  .to(&GearPair::dedendum_coefficient),
+              number("centre_distance", kMetre,
+                     "Working centre distance (must leave backlash >= 0 for the profile shifts).")
+                  .gt(0)
+                  .note("the zero-backlash value for x1 + x2")
+                  .only_in(kCylindrical)
+                  .to(&GearPair::centre_distance),
+              number("shaft_angle_deg", kDegree, "Shaft angle Sigma.")
+                  .def("90.0")
+                  .gt(0)
+                  .lt(180)
+                  .only_in(kBevel)
+                  .to(&GearPair::shaft_angle),
+              number("outer_cone_distance", kMetre,
+                     "Outer cone distance R_e (checked against m_e z1 / (2 sin delta1)).")
+                  .gt(0)
+                  .note("from module, teeth and shaft angle")
+                  .only_in(kBevel)
+                  .to(&GearPair::outer_cone_distance),
+              number("torque", kTorque, "Torque on gear 1 (drive side).")
+                  .required()
+                  .gt(0)
+                  .to(&GearPair::torque),
+              number("inertia1", kInertia,
+                     "Polar moment of inertia of gear 1 (with what turns rigidly with it); "
+                     "may be inf.")
+                  .gt(0)
+                  .allow_infinity()
+                  .note("needed by mesh_force / mesh_harmonics with model = \"dynamic\"")
+                  .to(&GearPair::inertia1),
+              number("inertia2", kInertia, "Polar moment of inertia of gear 2; may be inf.")
+                  .gt(0)
+                  .allow_infinity()
+                  .note("needed by mesh_force / mesh_harmonics with model = \"dynamic\"")
+                  .to(&GearPair::inertia2),
+              reference("material1", Ref::Material,
+                        "Material of gear 1 (its Young's modulus enters the ISO 6336 stiffness).")
+                  .note("steel, E = 206 GPa")
+                  .to(&GearPair::material1),
+              reference("material2", Ref::Material, "Material of gear 2.")
+                  .note("steel, E = 206 GPa")
+                  .to(&GearPair::material2),
+              number("stiffness_correction", kNoUnit,
+                     "ISO 6336-1 correction factor C_M (measured / theoretical stiffness).")
+                  .def("0.8")
+                  .gt(0)
+                  .le(2.0)
+                  .to(&GearPair::stiffness_correction),
+              number("application_factor", kNoUnit,
+                     "ISO 6336-1 application factor K_A in the light-load correction.")
+                  .def("1.0")
+                  .ge(1.0)
+                  .le(10.0)
+                  .to(&GearPair::application_factor),
+              boolean("load_correction",
+                      "Apply ISO 6336-1's stiffness reduction for line loads F_t K_A / b below "
+                      "100 N/mm.")
+                  .def("true")
+                  .to(&GearPair::load_correction),
+              number("rim_thickness", kMetre,
+                     "Rim thickness s_R of a gear blank with a web (ISO 6336-1 C_R; give "
+                     "web_thickness too).")
+                  .gt(0)
+                  .note("solid disc, C_R = 1")
+                  .to(&GearPair::rim_thickness),
+              number("web_thickness", kMetre, "Web thickness b_s of a gear blank with a web.")
+                  .gt(0)
+                  .note("solid disc, C_R = 1")
+                  .to(&GearPair::web_thickness),
+              text("ste_file",
+                   "Static transmission error over one mesh cycle, CSV relative to the model "
+                   "file (format in gear/ste.hpp: an angle_deg or angle_rad column of gear 1's "
+                   "rotation over one mesh cycle, ste_<unit> or ste_<unit>@<torque>Nm columns; "
+                   "angular STE is scaled by gear 1's base radius); the first row is the tooth "
+                   "entering contact.")
+                  .note("synthetic STE e = F_s / k from the ISO 6336 mesh stiffness")
+                  .to(&GearPair::ste_file),
+              choice("ste_interpolation", {"linear", "hold"},
+                     "How the STE file is read between its rows: periodic linear, or each row "
+                     "held to the next (contact steps).")
+                  .def("\"linear\"")
+                  .to_enum(&GearPair::ste_interpolation,
+                           {SteInterpolationKind::Linear, SteInterpolationKind::Hold}),
+              boolean("ste_extrapolation",
+                      "Allow a torque outside the file's torques (linear extrapolation).")
+                  .def("false")
+                  .to(&GearPair::ste_extrapolation),
+              number("ste_shift", kNoUnit,
+                     "Moves the start of the STE cycle (the tooth entering contact) by this "
+                     "fraction of a mesh cycle.")
+                  .def("0.0")
+                  .ge(0)
+                  .lt(1)
+                  .to(&GearPair::ste_shift),
+              integer("ste_samples", "Samples of the STE per mesh cycle.")
+                  .ge(16)
+                  .le(100000)
+                  .note("512 for the synthetic STE; the file's rows per cycle")
+                  .to(&GearPair::ste_samples),
+              number("mesh_damping_ratio", kNoUnit,
+                     "Damping ratio zeta of the mesh: c = 2 zeta sqrt(k_mean m_e).")
+                  .def("0.08")
+                  .ge(0)
+                  .le(1.0)
+                  .to(&GearPair::mesh_damping_ratio),
+              number("backlash", kMetre,
+                     "Backlash along the line of action: back-side contact when the DTE falls "
+                     "below -backlash.")
+                  .gt(0)
+                  .note("no back-side contact")
+                  .to(&GearPair::backlash),
+          })
+          .variants("type",
+                    {
+                        variant<GearPair>("spur", "Spur gears (external or internal)."),
+                        variant<GearPair>("helical", "Helical gears (external or internal)."),
+                        variant<GearPair>("straight_bevel",
+                                          "Straight bevel gears (virtual spur gears at mid "
+                                          "face)."),
+                        variant<GearPair>("spiral_bevel", "Spiral bevel gears."),
+                        variant<GearPair>("hypoid",
+                                          "Hypoid gears (approximation: the offset is neglected "
+                                          "in the cone geometry; pinion enlargement from the "
+                                          "spiral angles)."),
+                    })
+          .finish<GearPair>(finish_gear_pair);
+
   // --- analyses ---
-  const std::vector<std::string> kSpeedRange = {"campbell", "unbalance", "cyclic_modal"};
-  const std::vector<std::string> kSolidAnalyses = {"solid_modal", "cyclic_modal", "reduction"};
+  const std::vector<std::string> kSpeedRange = {"campbell",   "unbalance",
+                                                "cyclic_modal", "mesh_force",
+                                                "cyclic_forced_response", "gear_forced_response"};
+  const std::vector<std::string> kSolidAnalyses = {"solid_modal", "cyclic_modal", "reduction",
+                                                   "cyclic_forced_response"};
+  const std::vector<std::string> kForcedAnalyses = {"cyclic_forced_response",
+                                                    "gear_forced_response"};
+  const std::vector<std::string> kGearAnalyses = {"gear_pair", "mesh_force", "mesh_harmonics"};
   Section outputs =
       S("outputs", SectionKind::ArrayOfTables, "[[analyses.outputs]]",
         "Scalar results tabulated per sweep point.")
@@ -1817,7 +2261,8 @@ Section make_schema() {
                   .increasing()
                   .min_items(1)
                   .only_in(kSpeedRange)
-                  .to_settings(&CampbellSettings::speeds, &UnbalanceSettings::speeds),
+                  .to_settings(&CampbellSettings::speeds, &UnbalanceSettings::speeds,
+                               &MeshForceSettings::speeds),
               number("speed_start_rpm", kRpm, "First speed of an evenly spaced range.")
                   .required()
                   .ge(0)
@@ -1836,21 +2281,25 @@ Section make_schema() {
                   .read_by_finish<Analysis>(),
               // modal, campbell
               integer("n_modes",
-                      "Number of modes computed (cyclic_modal: per nodal diameter; reduction: "
-                      "full-model modes compared with the reduced ones).")
+                      "Number of modes computed (cyclic_modal, cyclic_forced_response: per nodal "
+                      "diameter; reduction: full-model modes compared with the reduced ones; "
+                      "gear_forced_response: modes of the modal basis).")
                   .def("10")
                   .ge(1)
                   .le(10000)
-                  .only_in({"modal", "campbell", "solid_modal", "cyclic_modal", "reduction"})
+                  .only_in({"modal", "campbell", "solid_modal", "cyclic_modal", "reduction",
+                            "cyclic_forced_response", "gear_forced_response"})
                   .to_settings(&ModalSettings::n_modes, &CampbellSettings::n_modes,
                                &SolidModalSettings::n_modes, &CyclicModalSettings::n_modes,
-                               &ReductionSettings::compare_modes),
+                               &ReductionSettings::compare_modes,
+                               &CyclicForcedResponseSettings::n_modes,
+                               &GearForcedResponseSettings::n_modes),
               // solids
               reference("solid", Ref::Solid, "The [[solids]] component analysed.")
                   .required()
                   .only_in(kSolidAnalyses)
                   .to_settings(&SolidModalSettings::solid, &CyclicModalSettings::solid,
-                               &ReductionSettings::solid),
+                               &ReductionSettings::solid, &CyclicForcedResponseSettings::solid),
               number("f_max_hz", kHertz, "Every mode up to this frequency (n_modes is ignored).")
                   .gt(0)
                   .note("n_modes modes")
@@ -1882,13 +2331,15 @@ Section make_schema() {
                      "Sector reduction before the cyclic solve (cyclic_modal), or the method of "
                      "a reduction analysis.")
                   .def("\"craig_bampton\"")
-                  .note("cyclic_modal: \"none\"")
-                  .only_in({"cyclic_modal", "reduction"})
+                  .note("cyclic_modal, cyclic_forced_response: \"none\"")
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
                     constexpr ReductionMethod kMethods[] = {ReductionMethod::None,
                                                             ReductionMethod::Guyan,
                                                             ReductionMethod::CraigBampton};
                     if (auto* c = std::get_if<CyclicModalSettings>(&a.settings))
+                      c->reduction = v.given ? kMethods[v.choice] : ReductionMethod::None;
+                    if (auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings))
                       c->reduction = v.given ? kMethods[v.choice] : ReductionMethod::None;
                     if (auto* r = std::get_if<ReductionSettings>(&a.settings))
                       r->method = kMethods[v.choice];
@@ -1897,8 +2348,9 @@ Section make_schema() {
                   .def("40")
                   .ge(0)
                   .le(100000)
-                  .only_in({"cyclic_modal", "reduction"})
-                  .to_settings(&CyclicModalSettings::cb_modes, &ReductionSettings::n_modes),
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
+                  .to_settings(&CyclicModalSettings::cb_modes, &ReductionSettings::n_modes,
+                               &CyclicForcedResponseSettings::cb_modes),
               number("reduced_f_max_hz", kHertz,
                      "Keep every fixed-interface mode up to this frequency instead of a count.")
                   .gt(0)
@@ -1907,10 +2359,12 @@ Section make_schema() {
                   .to_settings(&ReductionSettings::f_max),
               F("master_sets", FieldType::StringArray,
                 "Node sets kept as physical masters (contact, excitation, sensor, connection "
-                "nodes); cyclic_modal adds the sector interfaces itself.")
+                "nodes); cyclic_modal adds the sector interfaces itself, "
+                "cyclic_forced_response the interfaces, the excitation and the sensor nodes.")
                   .def("[]")
-                  .only_in({"cyclic_modal", "reduction"})
-                  .to_settings(&CyclicModalSettings::master_sets, &ReductionSettings::master_sets),
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
+                  .to_settings(&CyclicModalSettings::master_sets, &ReductionSettings::master_sets,
+                               &CyclicForcedResponseSettings::master_sets),
               integer("interface_modes",
                       "Interface modes per nodal diameter replacing the sector-interface DOFs "
                       "(Tran's method; 0: interfaces kept, else >= 6).")
@@ -2047,9 +2501,9 @@ Section make_schema() {
                   .to_settings(&UnbalanceSettings::unbalances, &TransientSettings::unbalances),
               names("sensors", Ref::Sensor, "Sensors reported.")
                   .note("all sensors")
-                  .only_in({"harmonic", "unbalance", "transient"})
+                  .only_in({"harmonic", "unbalance", "transient", "gear_forced_response"})
                   .to_settings(&HarmonicSettings::sensors, &UnbalanceSettings::sensors,
-                               &TransientSettings::sensors),
+                               &TransientSettings::sensors, &GearForcedResponseSettings::sensors),
               // transient
               number("speed_end_rpm", kRpm, "End speed of a linear run-up over `duration`.")
                   .ge(0)
@@ -2142,15 +2596,312 @@ Section make_schema() {
                   .le(4096)
                   .only_in({"sweep"})
                   .to_settings(&SweepSettings::threads),
+              // gear pairs: gear_pair, mesh_force, mesh_harmonics
+              reference("pair", Ref::GearPair, "The [[gear_pairs]] entry analysed.")
+                  .note("gear_pair: every pair; otherwise the model's only pair")
+                  .only_in(kGearAnalyses)
+                  .to_settings(&GearPairSettings::pair, &MeshForceSettings::pair,
+                               &MeshHarmonicsSettings::pair),
+              choice("direction", {"up", "down", "both"},
+                     "Sweep direction; each speed starts from the previous steady state, so "
+                     "\"both\" shows the jump and hysteresis of contact loss.")
+                  .def("\"both\"")
+                  .only_in({"mesh_force"})
+                  .to_settings_enum(
+                      &MeshForceSettings::direction,
+                      {SweepDirectionKind::Up, SweepDirectionKind::Down, SweepDirectionKind::Both}),
+              choice("model", {"dynamic", "infinite_inertia"},
+                     "Mesh model: the dynamic one-DOF model along the line of action, or the "
+                     "algebraic limit of infinite inertias F_d = F_s k(t) / k_mean.")
+                  .def("\"dynamic\"")
+                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    const MeshForceModel m =
+                        v.choice == 0 ? MeshForceModel::Dynamic : MeshForceModel::InfiniteInertia;
+                    if (auto* s = std::get_if<MeshForceSettings>(&a.settings)) s->model = m;
+                    if (auto* s = std::get_if<MeshHarmonicsSettings>(&a.settings)) s->model = m;
+                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                      s->model = m;
+                  }),
+              boolean("contact_loss",
+                      "Teeth separate when the dynamic transmission error falls to zero (false: "
+                      "the linear time-periodic mesh law for every deflection).")
+                  .def("true")
+                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response"})
+                  .to_settings(&MeshForceSettings::contact_loss,
+                               &MeshHarmonicsSettings::contact_loss,
+                               &CyclicForcedResponseSettings::contact_loss),
+              numbers("detail_rpm", kRpm,
+                      "Speeds of gear 1 at which time histories over one period are written "
+                      "(at most 8; computed on their own from the static state).")
+                  .gt(0)
+                  .def("[]")
+                  .only_in({"mesh_force"})
+                  .to_settings(&MeshForceSettings::detail_speeds),
+              number("speed_rpm", kRpm, "Speed of gear 1.")
+                  .required()
+                  .gt(0)
+                  .only_in({"mesh_harmonics"})
+                  .to_settings(&MeshHarmonicsSettings::speed),
+              integer("gear", "The gear whose tooth load is analysed: 1 or 2 (N = its teeth).")
+                  .def("1")
+                  .ge(1)
+                  .le(2)
+                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .to_settings(&MeshHarmonicsSettings::gear, &CyclicForcedResponseSettings::gear),
+              number("window_shift", kNoUnit,
+                     "Shift of the tooth-load window against the STE cycle start (the tooth "
+                     "entering contact), in tooth pitches of that gear.")
+                  .def("0.0")
+                  .ge(-3.0)
+                  .le(3.0)
+                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .to_settings(&MeshHarmonicsSettings::window_shift,
+                               &CyclicForcedResponseSettings::window_shift),
+              number("contact_ratio", kNoUnit,
+                     "Contact ratio of the tooth-load window (the tooth carries load for this "
+                     "many pitches).")
+                  .ge(1.0)
+                  .le(3.0)
+                  .note("the pair's total contact ratio eps_gamma")
+                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .to_settings(&MeshHarmonicsSettings::contact_ratio,
+                               &CyclicForcedResponseSettings::contact_ratio),
+              F("nodal_diameters", FieldType::NumberArray,
+                "Nodal diameters h whose engine orders k = h, N - h, ... are tabulated.")
+                  .ge(0)
+                  .increasing()
+                  .note("0 .. N / 2")
+                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    std::vector<int> nds;
+                    for (double h : v.numbers) nds.push_back(static_cast<int>(h));
+                    if (auto* s = std::get_if<MeshHarmonicsSettings>(&a.settings))
+                      s->nodal_diameters = nds;
+                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                      s->nodal_diameters = nds;
+                  }),
+              integer("orders_per_diameter",
+                      "Engine orders per nodal diameter: 2 gives k = h and k = N - h, more add "
+                      "N + h, 2 N - h, ...")
+                  .def("2")
+                  .ge(1)
+                  .le(20)
+                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .to_settings(&MeshHarmonicsSettings::orders_per_diameter,
+                               &CyclicForcedResponseSettings::orders_per_diameter),
+              integer("max_order", "Highest order of the order-spectrum table (0: 2 N).")
+                  .def("0")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"mesh_harmonics"})
+                  .to_settings(&MeshHarmonicsSettings::max_order),
+              // correlation
+              text("measured_file",
+                   "Measured response CSV relative to the model file (format in "
+                   "gear/correlation.hpp: speed_rpm or frequency_hz, amplitude_<unit>, optional "
+                   "phase_deg).")
+                  .required()
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::measured_file),
+              number("min_prominence_db", kNoUnit,
+                     "Measured peaks at least this prominent [dB] are reported.")
+                  .def("6.0")
+                  .ge(0)
+                  .only_in({"correlation", "cyclic_forced_response"})
+                  .to_settings(&CorrelationSettings::min_prominence_db,
+                               &CyclicForcedResponseSettings::min_prominence_db),
+              integer("max_peaks", "At most this many peaks (the most prominent).")
+                  .def("8")
+                  .ge(1)
+                  .le(1000)
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::max_peaks),
+              number("reference_peak_rpm", kRpm,
+                     "Position of a reference (e.g. computed) peak, for a measured file over "
+                     "speed; the nearest measured peak is compared with it.")
+                  .gt(0)
+                  .note("no comparison")
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::reference_peak),
+              number("reference_peak_hz", kHertz,
+                     "Position of a reference peak, for a measured file over frequency.")
+                  .gt(0)
+                  .note("no comparison")
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::reference_peak),
+              number("reference_amplitude", kNoUnit,
+                     "Amplitude of the reference peak, in the SI unit of the measured amplitude "
+                     "(m, m/s, m/s^2, N, strain or Pa).")
+                  .unit_note("SI unit of the measured amplitude")
+                  .gt(0)
+                  .note("no amplitude comparison")
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::reference_amplitude),
+              number("reference_q", kNoUnit, "Quality factor Q of the reference peak.")
+                  .gt(0)
+                  .note("no Q comparison")
+                  .only_in({"correlation"})
+                  .to_settings(&CorrelationSettings::reference_q),
+              // forced responses: cyclic_forced_response, gear_forced_response
+              reference("pair", Ref::GearPair,
+                        "The [[gear_pairs]] entry whose tooth force (cyclic_forced_response: "
+                        "computed as mesh_harmonics does) or mesh force (gear_forced_response: "
+                        "the blocked force F_s k(t) / k_mean at the mesh orders) excites the "
+                        "structure.")
+                  .note("force_amplitude")
+                  .only_in(kForcedAnalyses)
+                  .to_settings(&CyclicForcedResponseSettings::pair,
+                               &GearForcedResponseSettings::pair),
+              F("force_amplitude", FieldType::NumberOrArray,
+                "Harmonic force amplitude [N] without a gear pair: one value for every order, "
+                "or one per entry of engine_orders (cyclic_forced_response) or per mesh order "
+                "1 .. max_mesh_order (gear_forced_response).")
+                  .unit(kNewton)
+                  .gt(0)
+                  .only_in(kForcedAnalyses)
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                      s->force_amplitude = amplitudes_of(v);
+                    if (auto* s = std::get_if<GearForcedResponseSettings>(&a.settings))
+                      s->force_amplitude = amplitudes_of(v);
+                  }),
+              number("harmonics_rpm", kRpm,
+                     "Speed of gear 1 at which the dynamic mesh force, and so the tooth-force "
+                     "harmonics, are computed (model = \"dynamic\"); the harmonics are then used "
+                     "at every speed of the range.")
+                  .gt(0)
+                  .note("required with model = \"dynamic\"")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::harmonics_speed),
+              vector3("force_direction", kNoUnit,
+                      "Direction of an explicit force_amplitude in global components of the "
+                      "sector (the rotating frame), normalised.")
+                  .nonzero()
+                  .note("tangential, -e_theta at each excitation node")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::force_direction),
+              choice("cone_apex", {"minus_z", "plus_z"},
+                     "Side of the pitch-cone apex along the solid's z axis: the axial tooth "
+                     "force (positive away from the apex, gear/tooth_forces.hpp) points the "
+                     "other way.")
+                  .def("\"minus_z\"")
+                  .only_in({"cyclic_forced_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    std::get<CyclicForcedResponseSettings>(a.settings).apex_below = v.choice == 0;
+                  }),
+              F("engine_orders", FieldType::NumberArray,
+                "Engine orders k excited (each k = +-h mod sectors for a listed nodal "
+                "diameter h).")
+                  .ge(1)
+                  .increasing()
+                  .note("orders_per_diameter orders per nodal diameter: h, N - h, ...")
+                  .only_in({"cyclic_forced_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+                    s.engine_orders.clear();
+                    for (double k : v.numbers) s.engine_orders.push_back(static_cast<int>(k));
+                  }),
+              text("excitation_set",
+                   "Node set of the sector carrying the tooth load (the load is shared equally "
+                   "by its nodes).")
+                  .def("\"excitation\"")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::excitation_set),
+              F("sensor_sets", FieldType::StringArray,
+                "Node sets of the sector whose response is reported: one point per set, its "
+                "node nearest to the set's centroid.")
+                  .def("[]")
+                  .unique()
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::sensor_sets),
+              F("sensor_nodes", FieldType::NumberArray,
+                "Node ids of the sector mesh whose response is reported.")
+                  .def("[]")
+                  .ge(0)
+                  .only_in({"cyclic_forced_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+                    s.sensor_nodes.clear();
+                    for (double n : v.numbers) s.sensor_nodes.push_back(static_cast<int>(n));
+                  }),
+              F("sensor_components", FieldType::DofList,
+                "Components reported at each sensor point, in the global axes of the sector "
+                "(which turn with the gear: the rotating frame).")
+                  .def("[\"ux\", \"uy\", \"uz\"]")
+                  .choices(kComponentChoices)
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::sensor_components),
+              number("damping_ratio", kNoUnit, "Modal damping ratio zeta of every mode.")
+                  .gt(0)
+                  .lt(1)
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::damping_ratio),
+              number("q_factor", kNoUnit, "Quality factor Q = 1 / (2 zeta) of every mode.")
+                  .gt(0.5)
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::q_factor),
+              boolean("superpose",
+                      "Also report the superposition of all orders per sensor: the sum of "
+                      "amplitudes (upper bound of the peak) and the RMS.")
+                  .def("true")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::superpose),
+              text("measured_file",
+                   "Measured response over speed (CSV, gear/correlation.hpp, displacement "
+                   "amplitude) overlaid on the computed one and compared peak by peak.")
+                  .note("no comparison")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::measured_file),
+              text("measured_sensor",
+                   "Computed curve compared with the measurement: its sensor name, "
+                   "<set or node<id>>_<component>.")
+                  .note("the first sensor")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::measured_sensor),
+              integer("measured_engine_order",
+                      "Engine order of the computed curve compared with the measurement (0: the "
+                      "superposed sum of amplitudes).")
+                  .def("0")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::measured_engine_order),
+              boolean("scale_to_measured",
+                      "Scale the harmonic force so that the computed peak matches the measured "
+                      "one, and report the implied force.")
+                  .def("false")
+                  .only_in({"cyclic_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::scale_to_measured),
+              text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
+                  .note("the model's only gear mesh")
+                  .only_in({"gear_forced_response"})
+                  .to_settings(&GearForcedResponseSettings::gear_mesh),
+              integer("max_mesh_order", "Mesh orders 1 .. this are excited.")
+                  .def("3")
+                  .ge(1)
+                  .le(100)
+                  .only_in({"gear_forced_response"})
+                  .to_settings(&GearForcedResponseSettings::max_mesh_order),
+              boolean("residual_vectors",
+                      "Add the static response to the mesh load to the modal basis (static "
+                      "correction of the modes left out).")
+                  .def("true")
+                  .only_in({"gear_forced_response"})
+                  .to_settings(&GearForcedResponseSettings::residual_vectors),
           })
           .choices({{{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
                      true,
-                     {"campbell", "unbalance"}},
+                     {"campbell", "unbalance", "mesh_force", "cyclic_forced_response",
+                      "gear_forced_response"}},
+                    {{{"pair"}, {"force_amplitude"}}, true, kForcedAnalyses},
+                    {{{"damping_ratio"}, {"q_factor"}}, true, {"cyclic_forced_response"}},
                     {{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
                      false,
                      {"cyclic_modal"}},
                     {{{"input_node", "input_dof"}, {"forces"}}, true, {"harmonic"}},
-                    {{{"values"}, {"start", "stop", "count"}}, true, {"sweep"}}})
+                    {{{"values"}, {"start", "stop", "count"}}, true, {"sweep"}},
+                    {{{"reference_peak_rpm"}, {"reference_peak_hz"}}, false, {"correlation"}}})
           .sections({outputs})
           .variants("type",
                     {variant<Analysis>("modal",
@@ -2186,7 +2937,36 @@ Section make_schema() {
                      variant<Analysis>("reduction",
                                        "Craig-Bampton or Guyan reduction of a solid: reduced vs "
                                        "full frequencies, convergence, reduced component file.",
-                                       finish_reduction)});
+                                       finish_reduction),
+                     variant<Analysis>("gear_pair",
+                                       "Gear-pair geometry, tooth forces (drive and coast), ISO "
+                                       "6336 stiffness and the mesh stiffness / STE over one "
+                                       "mesh cycle."),
+                     variant<Analysis>("mesh_force",
+                                       "Dynamic mesh force over a speed range of gear 1: "
+                                       "dynamic factor, DTE and contact loss versus speed, the "
+                                       "mesh resonance, time histories.",
+                                       finish_mesh_force),
+                     variant<Analysis>("mesh_harmonics",
+                                       "Engine-order harmonics of the tooth force of one gear "
+                                       "at one speed: tooth-load window, order spectrum, "
+                                       "harmonics per nodal diameter in 3D components."),
+                     variant<Analysis>("correlation",
+                                       "Resonance peaks and Q (half-power) of a measured "
+                                       "response, optionally compared with a reference peak.",
+                                       finish_correlation),
+                     variant<Analysis>("cyclic_forced_response",
+                                       "Forced response of a cyclic solid (a gear) to the "
+                                       "engine-order harmonics of its tooth force over speed, "
+                                       "per nodal diameter and engine order (modal sum), the "
+                                       "resonance table, the superposition of the orders, and "
+                                       "the comparison with a measured response.",
+                                       finish_cyclic_forced),
+                     variant<Analysis>("gear_forced_response",
+                                       "Forced response of the rotor to the mesh-order "
+                                       "harmonics of one gear mesh over speed (modal basis), "
+                                       "with the resonance peaks and their Q.",
+                                       finish_gear_forced)});
 
   Section root =
       S("", SectionKind::Root, "top level", "Keys at the top of the file, before any table.")
@@ -2200,7 +2980,7 @@ Section make_schema() {
           })
           .sections({materials, shafts, nodes, disks, point_masses, bearings, couplings,
                      gear_meshes, constraints, unbalances, forces, sensors, damping, solids,
-                     analyses});
+                     gear_pairs, analyses});
   root.object_type = typeid(Model);  // the root has no parent to append it to
   return root;
 }

@@ -37,7 +37,19 @@ enum class FieldType {
 };
 
 /// What a string (or each string of an array) names; checked after the whole file is read.
-enum class Ref { None, Node, Material, Shaft, Sensor, Force, Unbalance, Analysis, KeyPath, Solid };
+enum class Ref {
+  None,
+  Node,
+  Material,
+  Shaft,
+  Sensor,
+  Force,
+  Unbalance,
+  Analysis,
+  KeyPath,
+  Solid,
+  GearPair
+};
 
 /// A unit as written in the file and the factor that converts it to SI.
 struct Unit {

@@ -596,6 +596,14 @@ std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& 
       for (const auto& note : o.notes) out += fmt::format("<li>{}</li>\n", escape_html(note));
       out += "</ul></div>\n";
     }
+    if (!o.files.empty()) {
+      out += "<div class=\"notes\"><h3>Files</h3><ul>\n";
+      for (const auto& f : o.files)
+        out += fmt::format("<li><a href=\"{0}/{1}\"><code>{0}/{1}</code></a>: {2}</li>\n",
+                           escape_html(o.name), escape_html(f.file_name),
+                           escape_html(f.description));
+      out += "</ul></div>\n";
+    }
     if (!o.plots.empty()) {
       out += "<div class=\"plots\">\n";
       for (std::size_t p = 0; p < o.plots.size(); ++p) {

@@ -14,6 +14,8 @@
 #include "geardyn/analysis/unbalance.hpp"
 #include "geardyn/component/solid_analyses.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/forcedan/forced_analyses.hpp"
+#include "geardyn/gearan/gear_analyses.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/study/sweep.hpp"
 #include "geardyn/transient/transient_analysis.hpp"
@@ -40,6 +42,18 @@ std::string analysis_type_name(model::AnalysisType type) {
       return "cyclic_modal";
     case model::AnalysisType::Reduction:
       return "reduction";
+    case model::AnalysisType::GearPair:
+      return "gear_pair";
+    case model::AnalysisType::MeshForce:
+      return "mesh_force";
+    case model::AnalysisType::MeshHarmonics:
+      return "mesh_harmonics";
+    case model::AnalysisType::Correlation:
+      return "correlation";
+    case model::AnalysisType::CyclicForcedResponse:
+      return "cyclic_forced_response";
+    case model::AnalysisType::GearForcedResponse:
+      return "gear_forced_response";
   }
   return "unknown";
 }
@@ -142,6 +156,35 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
         out = component::run_reduction(solid_for(s.solid), s, analysis.name, progress);
         break;
       }
+      case model::AnalysisType::GearPair:
+        out = gearan::run_gear_pair(model, std::get<model::GearPairSettings>(analysis.settings),
+                                    analysis.name, progress);
+        break;
+      case model::AnalysisType::MeshForce:
+        out = gearan::run_mesh_force(model, std::get<model::MeshForceSettings>(analysis.settings),
+                                     analysis.name, progress);
+        break;
+      case model::AnalysisType::MeshHarmonics:
+        out = gearan::run_mesh_harmonics(model,
+                                         std::get<model::MeshHarmonicsSettings>(analysis.settings),
+                                         analysis.name, progress);
+        break;
+      case model::AnalysisType::Correlation:
+        out =
+            gearan::run_correlation(model, std::get<model::CorrelationSettings>(analysis.settings),
+                                    analysis.name, progress);
+        break;
+      case model::AnalysisType::CyclicForcedResponse: {
+        const auto& s = std::get<model::CyclicForcedResponseSettings>(analysis.settings);
+        out = forcedan::run_cyclic_forced_response(model, solid_for(s.solid), s, analysis.name,
+                                                   progress);
+        break;
+      }
+      case model::AnalysisType::GearForcedResponse:
+        out = forcedan::run_gear_forced_response(
+            model, system, std::get<model::GearForcedResponseSettings>(analysis.settings),
+            analysis.name, progress);
+        break;
     }
   } catch (const NumericalError& e) {
     out = AnalysisOutput{};

@@ -1,0 +1,90 @@
+// End-to-end runs of the solid-component examples: the numbers their READMEs state.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cli_support.hpp"
+
+namespace {
+
+using namespace geardyn::cli_test;
+
+/// First-mode frequency of each nodal diameter from a cyclic_modes.csv.
+std::map<int, double> first_modes(const fs::path& csv) {
+  auto c = read_csv(csv);
+  std::map<int, double> out;
+  for (std::size_t i = 0; i < c["mode"].size(); ++i)
+    if (c["mode"][i] == "1") out[std::stoi(c["nodal_diameter"][i])] = std::stod(c["frequency_hz"][i]);
+  return out;
+}
+
+double worst_relative_error(const fs::path& csv) {
+  auto c = read_csv(csv);
+  double worst = 0.0;
+  for (const auto& e : c["relative_error"]) worst = std::max(worst, std::abs(std::stod(e)));
+  return worst;
+}
+
+// Annular plate clamped at r = b, free at r = a: b/a = 0.1, a = 0.3 m, h = 0.01 m, steel.
+// Reference: A. W. Leissa, "Vibration of Plates", NASA SP-160 (1969), annular plates clamped at
+// the inner edge, thin-plate (Kirchhoff) values: ND0 115.60, ND1 95.05, ND2 150.10, ND3
+// 333.83 Hz. The issue asks for mesh-converged solid results within 2 %; the solid includes
+// shear and rotary inertia (h/a = 1/30), which Kirchhoff theory leaves out, so an exact match is
+// not expected (the README shows the mesh convergence: 16 vs 32 radial elements differ by
+// < 0.6 %).
+TEST(SolidExamples, AnnularPlateMatchesLeissaAndTheFullPlate) {
+  const fs::path out = fresh_dir("annular_plate_cyclic");
+  const ProcessResult r =
+      run("run -q " + kSource + "/examples/annular_plate_cyclic/model.toml -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::map<int, double> leissa = {{0, 115.60}, {1, 95.05}, {2, 150.10}, {3, 333.83}};
+  const auto f = first_modes(out / "cyclic" / "cyclic_modes.csv");
+  for (const auto& [nd, ref] : leissa) {
+    ASSERT_TRUE(f.count(nd)) << "ND " << nd;
+    EXPECT_NEAR(f.at(nd), ref, 0.02 * ref) << "ND " << nd;
+  }
+  // Cyclic symmetry is exact on the same mesh: round-off of the two eigen-solves only (their
+  // residuals are ~1e-16; the eigenvalues' condition numbers are moderate), so 1e-8 is loose.
+  EXPECT_LT(worst_relative_error(out / "cyclic" / "cyclic_vs_full.csv"), 1e-8);
+  // Double modes: every ND between 1 and N/2 - 1 appears twice in the full plate.
+  auto full = read_csv(out / "full_plate" / "modes.csv");
+  ASSERT_GE(full["frequency_hz"].size(), 7u);
+  const double f1a = std::stod(full["frequency_hz"][0]), f1b = std::stod(full["frequency_hz"][1]);
+  EXPECT_NEAR(f1a, f.at(1), 1e-8 * f1a);
+  EXPECT_NEAR(f1b, f.at(1), 1e-8 * f1b);
+  EXPECT_NEAR(std::stod(full["frequency_hz"][2]), f.at(0), 1e-8 * f.at(0));
+  // Craig-Bampton (30 modes) + 24 interface modes per ND: a Rayleigh-Ritz approximation from
+  // above; the README quotes agreement within 1.1e-6 for the first mode of ND 0-3.
+  const auto fr = first_modes(out / "cyclic_reduced" / "cyclic_modes.csv");
+  for (int nd = 0; nd <= 3; ++nd) {
+    EXPECT_GE(fr.at(nd), f.at(nd) * (1 - 1e-10)) << "ND " << nd;
+    EXPECT_LT((fr.at(nd) - f.at(nd)) / f.at(nd), 1e-5) << "ND " << nd;
+  }
+  auto campbell = read_csv(out / "cyclic" / "cyclic_campbell.csv");
+  ASSERT_FALSE(campbell["resonance_speed_rpm"].empty());
+  // ND 1 is excited by engine order N - h = 23 at 60 f / 23.
+  EXPECT_EQ(campbell["engine_order"][0], "23");
+  EXPECT_NEAR(std::stod(campbell["resonance_speed_rpm"][0]), 60.0 * f.at(1) / 23.0, 1e-9 * 300);
+  EXPECT_TRUE(fs::exists(out / "cyclic" / "wheel_modes.pvd"));
+  EXPECT_TRUE(fs::exists(out / "full_plate" / "modes.msh"));
+}
+
+// The generated gear sector: cyclic symmetry and the full wheel of the same mesh agree (the
+// issue's acceptance: "the same frequencies by sector plus cyclic symmetry as by its full-wheel
+// mesh"), and the reduced component is written.
+TEST(SolidExamples, GearSectorCyclicEqualsFullWheel) {
+  const fs::path out = fresh_dir("gear_sector_cyclic");
+  const ProcessResult r =
+      run("run -q " + kSource + "/examples/gear_sector_cyclic/model.toml -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_LT(worst_relative_error(out / "cyclic" / "cyclic_vs_full.csv"), 1e-8);
+  auto cmp = read_csv(out / "sector_reduction" / "reduction_frequencies.csv");
+  ASSERT_GE(cmp["error_pct"].size(), 10u);
+  for (const auto& e : cmp["error_pct"]) EXPECT_LT(std::abs(std::stod(e)), 0.5);
+  EXPECT_TRUE(fs::exists(out / "sector_reduction" / "sector_reduction.h5"));
+}
+
+}  // namespace
