@@ -1,5 +1,5 @@
-// Writes the stiffness and mass of the benchmark gear sector (the mesh of BM_SectorModes30/size:1 in
-// bench/solid_bench.cpp) as Matrix Market files, with geardyn's 30 lowest modes, for the
+// Writes the stiffness and mass of the benchmark gear sector (the mesh of BM_SectorModes30/size:1
+// in bench/solid_bench.cpp) as Matrix Market files, with geardyn's 30 lowest modes, for the
 // comparison with scipy in bench/scipy_eigsh.py. Not a test; see docs/performance.md.
 //
 //   geardyn_export_matrices <folder> [global_size_m tooth_size_m]

@@ -35,8 +35,7 @@ void BM_MeshSweep500(benchmark::State& state) {
   const gear::DynamicMesh mesh = reference_mesh(state.range(0) != 0);
   const double fn = mesh.natural_frequency_hz();
   gear::MeshSweepOptions options;
-  for (int i = 0; i < 500; ++i)
-    options.mesh_frequencies_hz.push_back(fn * (0.1 + 2.9 * i / 499.0));
+  for (int i = 0; i < 500; ++i) options.mesh_frequencies_hz.push_back(fn * (0.1 + 2.9 * i / 499.0));
   options.teeth = 20;
   options.direction = state.range(1) != 0 ? gear::SweepDirection::Both : gear::SweepDirection::Up;
   long cycles = 0;
@@ -62,8 +61,8 @@ void BM_MeshSweep500(benchmark::State& state) {
   state.counters["not_ok"] = static_cast<double>(not_ok);
   state.counters["solves"] = static_cast<double>(solves);
   state.counters["mesh_cycles"] = static_cast<double>(cycles);
-  state.counters["solves_per_s"] =
-      benchmark::Counter(static_cast<double>(solves), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["solves_per_s"] = benchmark::Counter(
+      static_cast<double>(solves), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_MeshSweep500)
     ->Args({1, 0})

@@ -47,7 +47,8 @@ void BM_AssembleBox(benchmark::State& state) {
   state.SetLabel(type == solid::ElementType::Tet10 ? "tet10" : "hex20");
   state.counters["dofs"] = dofs;
   state.counters["elements"] = static_cast<double>(mesh.elements.size());
-  state.counters["dofs_per_s"] = benchmark::Counter(dofs, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["dofs_per_s"] =
+      benchmark::Counter(dofs, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["elements_per_s"] = benchmark::Counter(
       static_cast<double>(mesh.elements.size()), benchmark::Counter::kIsIterationInvariantRate);
 }
