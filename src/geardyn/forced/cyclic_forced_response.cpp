@@ -457,22 +457,15 @@ CyclicForcedResult run_cyclic_forced_response(const cyclic::CyclicSector& sector
                                       : Eigen::VectorXd::Constant(nsens, kNaN);
       result.resonances.push_back(std::move(res));
     }
-    for (Eigen::Index s = 0; s < nsens; ++s) {
-      const auto peaks = find_speed_peaks(settings.speeds, amplitude.col(s), static_cast<int>(s),
-                                          static_cast<int>(e), settings.peaks);
-      result.peaks.insert(result.peaks.end(), peaks.begin(), peaks.end());
-    }
+    append_speed_peaks(result.peaks, settings.speeds, amplitude, static_cast<int>(e),
+                       settings.peaks);
     result.orders.push_back(std::move(order));
     progress.update(e + 1);
   }
   progress.finish();
   result.amplitude_rms = (0.5 * squares).cwiseSqrt();
   if (result.orders.size() > 1)
-    for (Eigen::Index s = 0; s < nsens; ++s) {
-      const auto peaks = find_speed_peaks(settings.speeds, result.amplitude_sum.col(s),
-                                          static_cast<int>(s), -1, settings.peaks);
-      result.peaks.insert(result.peaks.end(), peaks.begin(), peaks.end());
-    }
+    append_speed_peaks(result.peaks, settings.speeds, result.amplitude_sum, -1, settings.peaks);
   std::stable_sort(result.peaks.begin(), result.peaks.end(),
                    [](const SpeedPeak& a, const SpeedPeak& b) { return a.sensor < b.sensor; });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

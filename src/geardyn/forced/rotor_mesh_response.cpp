@@ -349,19 +349,11 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
     const Eigen::MatrixXd a = result.displacement[h].cwiseAbs();
     result.amplitude_sum += a;
     squares += a.cwiseAbs2();
-    for (Eigen::Index s = 0; s < nsens; ++s) {
-      const auto p = find_speed_peaks(settings.speeds, a.col(s), static_cast<int>(s),
-                                      static_cast<int>(h), settings.peaks);
-      result.peaks.insert(result.peaks.end(), p.begin(), p.end());
-    }
+    append_speed_peaks(result.peaks, settings.speeds, a, static_cast<int>(h), settings.peaks);
   }
   result.amplitude_rms = (0.5 * squares).cwiseSqrt();
   if (result.displacement.size() > 1)
-    for (Eigen::Index s = 0; s < nsens; ++s) {
-      const auto p = find_speed_peaks(settings.speeds, result.amplitude_sum.col(s),
-                                      static_cast<int>(s), -1, settings.peaks);
-      result.peaks.insert(result.peaks.end(), p.begin(), p.end());
-    }
+    append_speed_peaks(result.peaks, settings.speeds, result.amplitude_sum, -1, settings.peaks);
   std::stable_sort(result.peaks.begin(), result.peaks.end(),
                    [](const SpeedPeak& a, const SpeedPeak& b) { return a.sensor < b.sensor; });
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

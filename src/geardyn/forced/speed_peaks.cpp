@@ -68,4 +68,13 @@ std::vector<SpeedPeak> find_speed_peaks(const Eigen::VectorXd& speeds,
   return peaks;
 }
 
+void append_speed_peaks(std::vector<SpeedPeak>& peaks, const Eigen::VectorXd& speeds,
+                        const Eigen::MatrixXd& amplitude, int curve, const PeakOptions& options) {
+  for (Eigen::Index s = 0; s < amplitude.cols(); ++s) {
+    const auto found =
+        find_speed_peaks(speeds, amplitude.col(s), static_cast<int>(s), curve, options);
+    peaks.insert(peaks.end(), found.begin(), found.end());
+  }
+}
+
 }  // namespace geardyn::forced

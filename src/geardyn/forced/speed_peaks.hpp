@@ -52,4 +52,9 @@ std::vector<SpeedPeak> find_speed_peaks(const Eigen::VectorXd& speeds,
                                         const Eigen::VectorXd& amplitude, int sensor, int curve,
                                         const PeakOptions& options = {});
 
+/// find_speed_peaks on every column (sensor) of `amplitude` (speeds x sensors), appended to
+/// `peaks`.
+void append_speed_peaks(std::vector<SpeedPeak>& peaks, const Eigen::VectorXd& speeds,
+                        const Eigen::MatrixXd& amplitude, int curve, const PeakOptions& options);
+
 }  // namespace geardyn::forced
