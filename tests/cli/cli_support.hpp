@@ -2,6 +2,7 @@
 // Helpers of the end-to-end tests: run the geardyn program, read the CSV and JSON it writes.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -12,11 +13,9 @@
 #include <numbers>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 namespace geardyn::cli_test {
-
 
 namespace fs = std::filesystem;
 inline constexpr double kTwoPi = 2.0 * std::numbers::pi;

@@ -17,7 +17,8 @@ std::map<int, double> first_modes(const fs::path& csv) {
   auto c = read_csv(csv);
   std::map<int, double> out;
   for (std::size_t i = 0; i < c["mode"].size(); ++i)
-    if (c["mode"][i] == "1") out[std::stoi(c["nodal_diameter"][i])] = std::stod(c["frequency_hz"][i]);
+    if (c["mode"][i] == "1")
+      out[std::stoi(c["nodal_diameter"][i])] = std::stod(c["frequency_hz"][i]);
   return out;
 }
 

@@ -487,9 +487,9 @@ struct CyclicForcedResponseSettings {
   int gear = 1;      ///< 1 or 2: the member of the pair the solid is
   MeshForceModel model = MeshForceModel::Dynamic;
   bool contact_loss = true;
-  double window_shift = 0.0;           ///< [pitches]
-  double contact_ratio = kNaN;         ///< window contact ratio (NaN: total contact ratio)
-  double harmonics_speed = kNaN;       ///< gear-1 speed of the dynamic mesh force [rad/s]
+  double window_shift = 0.0;            ///< [pitches]
+  double contact_ratio = kNaN;          ///< window contact ratio (NaN: total contact ratio)
+  double harmonics_speed = kNaN;        ///< gear-1 speed of the dynamic mesh force [rad/s]
   std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per engine order
   std::optional<Vec3> force_direction;  ///< of an explicit force (empty: tangential)
   bool apex_below = true;               ///< the pitch-cone apex lies on the -z side
@@ -508,8 +508,8 @@ struct CyclicForcedResponseSettings {
   int cb_modes = 40;
   std::vector<std::string> master_sets;
   bool superpose = true;
-  std::string measured_file;    ///< measured response over speed (empty: none)
-  std::string measured_sensor;  ///< sensor compared (empty: the first)
+  std::string measured_file;      ///< measured response over speed (empty: none)
+  std::string measured_sensor;    ///< sensor compared (empty: the first)
   int measured_engine_order = 0;  ///< curve compared: this order (0: the superposed sum)
   bool scale_to_measured = false;
   double min_prominence_db = 6.0;
@@ -518,12 +518,12 @@ struct CyclicForcedResponseSettings {
 /// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
 /// over speed (forced/rotor_mesh_response.hpp, modal method).
 struct GearForcedResponseSettings {
-  std::string gear_mesh;              ///< [[gear_meshes]] name (empty: the only one)
-  std::string pair;                   ///< [[gear_pairs]] entry (empty: force_amplitude)
+  std::string gear_mesh;                ///< [[gear_meshes]] name (empty: the only one)
+  std::string pair;                     ///< [[gear_pairs]] entry (empty: force_amplitude)
   std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per order
-  int max_mesh_order = 3;              ///< orders 1 .. this
-  std::vector<std::string> sensors;   ///< empty: all
-  std::vector<double> speeds;         ///< reference speeds [rad/s]
+  int max_mesh_order = 3;               ///< orders 1 .. this
+  std::vector<std::string> sensors;     ///< empty: all
+  std::vector<double> speeds;           ///< reference speeds [rad/s]
   int n_modes = 10;
   bool residual_vectors = true;
 };

@@ -1192,11 +1192,21 @@ void Resolver::check_damping() {
 
 constexpr const char* kQuantityNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
                                           "peak_location", "amplitude_at"};
-constexpr const char* kAnalysisTypeNames[] = {
-    "modal",      "campbell",       "harmonic",     "unbalance", "transient",
-    "sweep",      "solid_modal",    "cyclic_modal", "reduction", "gear_pair",
-    "mesh_force", "mesh_harmonics", "correlation", "cyclic_forced_response",
-    "gear_forced_response"};
+constexpr const char* kAnalysisTypeNames[] = {"modal",
+                                              "campbell",
+                                              "harmonic",
+                                              "unbalance",
+                                              "transient",
+                                              "sweep",
+                                              "solid_modal",
+                                              "cyclic_modal",
+                                              "reduction",
+                                              "gear_pair",
+                                              "mesh_force",
+                                              "mesh_harmonics",
+                                              "correlation",
+                                              "cyclic_forced_response",
+                                              "gear_forced_response"};
 
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
@@ -1309,11 +1319,10 @@ void Resolver::check_analyses() {
     const Analysis& a = m_.analyses[i];
     const std::string base = fmt::format("analyses[{}]", i);
     check_analysis_overrides(base, a);
-    const bool rotor_analysis = a.type == AnalysisType::Modal || a.type == AnalysisType::Campbell ||
-                                a.type == AnalysisType::Harmonic ||
-                                a.type == AnalysisType::Unbalance ||
-                                a.type == AnalysisType::Transient ||
-                                a.type == AnalysisType::GearForcedResponse;
+    const bool rotor_analysis =
+        a.type == AnalysisType::Modal || a.type == AnalysisType::Campbell ||
+        a.type == AnalysisType::Harmonic || a.type == AnalysisType::Unbalance ||
+        a.type == AnalysisType::Transient || a.type == AnalysisType::GearForcedResponse;
     if (rotor_analysis && m_.shafts.empty() && m_.nodes.empty())
       fail(base + ".type",
            "an analysis of the solids (solid_modal, cyclic_modal, reduction) or gear pairs "

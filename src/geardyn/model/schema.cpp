@@ -1005,13 +1005,13 @@ void finish_cyclic_forced(Analysis& a, const TableContext& t) {
   if (t.has("force_amplitude")) {
     const FieldValue& v = t.at("force_amplitude");
     if (v.is_array && v.count != s.engine_orders.size())
-      t.fail("force_amplitude",
-             s.engine_orders.empty()
-                 ? std::string("a single amplitude for every order (a list needs engine_orders "
-                               "with one order per amplitude)")
-                 : fmt::format("{} amplitudes, one per engine_orders entry",
-                               s.engine_orders.size()),
-             fmt::format("{} amplitudes", v.count));
+      t.fail(
+          "force_amplitude",
+          s.engine_orders.empty()
+              ? std::string("a single amplitude for every order (a list needs engine_orders "
+                            "with one order per amplitude)")
+              : fmt::format("{} amplitudes, one per engine_orders entry", s.engine_orders.size()),
+          fmt::format("{} amplitudes", v.count));
   }
   if (t.has("engine_orders") && t.has("orders_per_diameter"))
     t.fail("orders_per_diameter", "no orders_per_diameter when engine_orders lists the orders",
@@ -1048,8 +1048,7 @@ void finish_gear_forced(Analysis& a, const TableContext& t) {
       s.max_mesh_order = static_cast<int>(n);
     else if (n != static_cast<std::size_t>(s.max_mesh_order))
       t.fail("force_amplitude",
-             fmt::format("{} amplitudes, one per mesh order 1 .. max_mesh_order",
-                         s.max_mesh_order),
+             fmt::format("{} amplitudes, one per mesh order 1 .. max_mesh_order", s.max_mesh_order),
              fmt::format("{} amplitudes", n));
   }
 }
@@ -1069,20 +1068,38 @@ void finish_output(SweepOutput& o, const TableContext& t) {
 // ---------------------------------------------------------------------------------------------
 // The table
 
-const std::vector<std::string> kAnalysisTypes = {
-    "modal",      "campbell",       "harmonic",     "unbalance", "transient",
-    "sweep",      "solid_modal",    "cyclic_modal", "reduction", "gear_pair",
-    "mesh_force", "mesh_harmonics", "correlation", "cyclic_forced_response",
-    "gear_forced_response"};
+const std::vector<std::string> kAnalysisTypes = {"modal",
+                                                 "campbell",
+                                                 "harmonic",
+                                                 "unbalance",
+                                                 "transient",
+                                                 "sweep",
+                                                 "solid_modal",
+                                                 "cyclic_modal",
+                                                 "reduction",
+                                                 "gear_pair",
+                                                 "mesh_force",
+                                                 "mesh_harmonics",
+                                                 "correlation",
+                                                 "cyclic_forced_response",
+                                                 "gear_forced_response"};
 
 void set_analysis_type(Analysis& a, const FieldValue& v) {
-  constexpr AnalysisType kTypes[] = {
-      AnalysisType::Modal,      AnalysisType::Campbell,    AnalysisType::Harmonic,
-      AnalysisType::Unbalance,  AnalysisType::Transient,   AnalysisType::Sweep,
-      AnalysisType::SolidModal, AnalysisType::CyclicModal, AnalysisType::Reduction,
-      AnalysisType::GearPair,   AnalysisType::MeshForce,   AnalysisType::MeshHarmonics,
-      AnalysisType::Correlation, AnalysisType::CyclicForcedResponse,
-      AnalysisType::GearForcedResponse};
+  constexpr AnalysisType kTypes[] = {AnalysisType::Modal,
+                                     AnalysisType::Campbell,
+                                     AnalysisType::Harmonic,
+                                     AnalysisType::Unbalance,
+                                     AnalysisType::Transient,
+                                     AnalysisType::Sweep,
+                                     AnalysisType::SolidModal,
+                                     AnalysisType::CyclicModal,
+                                     AnalysisType::Reduction,
+                                     AnalysisType::GearPair,
+                                     AnalysisType::MeshForce,
+                                     AnalysisType::MeshHarmonics,
+                                     AnalysisType::Correlation,
+                                     AnalysisType::CyclicForcedResponse,
+                                     AnalysisType::GearForcedResponse};
   a.type = kTypes[v.choice];
   switch (a.type) {
     case AnalysisType::Modal:
@@ -2149,9 +2166,12 @@ Section make_schema() {
           .finish<GearPair>(finish_gear_pair);
 
   // --- analyses ---
-  const std::vector<std::string> kSpeedRange = {"campbell",   "unbalance",
-                                                "cyclic_modal", "mesh_force",
-                                                "cyclic_forced_response", "gear_forced_response"};
+  const std::vector<std::string> kSpeedRange = {"campbell",
+                                                "unbalance",
+                                                "cyclic_modal",
+                                                "mesh_force",
+                                                "cyclic_forced_response",
+                                                "gear_forced_response"};
   const std::vector<std::string> kSolidAnalyses = {"solid_modal", "cyclic_modal", "reduction",
                                                    "cyclic_forced_response"};
   const std::vector<std::string> kForcedAnalyses = {"cyclic_forced_response",

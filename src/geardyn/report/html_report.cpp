@@ -599,9 +599,9 @@ std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& 
     if (!o.files.empty()) {
       out += "<div class=\"notes\"><h3>Files</h3><ul>\n";
       for (const auto& f : o.files)
-        out += fmt::format("<li><a href=\"{0}/{1}\"><code>{0}/{1}</code></a>: {2}</li>\n",
-                           escape_html(o.name), escape_html(f.file_name),
-                           escape_html(f.description));
+        out +=
+            fmt::format("<li><a href=\"{0}/{1}\"><code>{0}/{1}</code></a>: {2}</li>\n",
+                        escape_html(o.name), escape_html(f.file_name), escape_html(f.description));
       out += "</ul></div>\n";
     }
     if (!o.plots.empty()) {
