@@ -10,6 +10,7 @@
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Sparse>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -17,6 +18,7 @@
 
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
+#include "geardyn/linalg/sparse_factorization.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
 #include "geardyn/reduce/craig_bampton.hpp"
 #include "geardyn/solid/assembly.hpp"
@@ -121,13 +123,18 @@ void set_sector_counters(benchmark::State& state, const SectorModel& model) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// (b) The 30 lowest modes of the sector (6 rigid-body modes + 24 elastic).
+// (b) The 30 lowest modes of the sector (6 rigid-body modes + 24 elastic). Second argument: the
+// Lanczos block size of the default block engine, 0 for the Spectra engine (single vector).
 
 void BM_SectorModes30(benchmark::State& state) {
   const SectorModel& model = sector(static_cast<int>(state.range(0)));
   eig::SymmetricEigenOptions options;
   options.n_modes = 30;
   options.method = eig::Method::Sparse;
+  if (state.range(1) == 0)
+    options.engine = eig::KrylovEngine::Spectra;
+  else
+    options.block_size = static_cast<int>(state.range(1));
   eig::SymmetricEigenResult r;
   for (auto _ : state) r = eig::solve_symmetric(model.system.K, model.system.M, options);
   if (r.status != Status::Ok) state.SkipWithError(r.brief_report().c_str());
@@ -140,9 +147,39 @@ void BM_SectorModes30(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_SectorModes30)
-    ->Arg(0)
-    ->Arg(1)
-    ->ArgName("size")
+    ->ArgsProduct({{0, 1}, {0, 1, 2, 4, 8}})
+    ->ArgNames({"size", "block"})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
+    ->Iterations(1);
+
+// The parts of that solve: the supernodal Cholesky factorisation of K - sigma M (once per solve),
+// and one block solve with it for 1, 4 or 16 right-hand sides (the operator application of the
+// Lanczos engines). Second argument: right-hand sides, 0 for the factorisation alone.
+void BM_SectorShiftedFactorAndSolve(benchmark::State& state) {
+  const SectorModel& model = sector(static_cast<int>(state.range(0)));
+  const Eigen::SparseMatrix<double> A =
+      model.system.K - eig::automatic_shift(model.system.K, model.system.M) * model.system.M;
+  const Eigen::Index rhs = state.range(1);
+  linalg::SymmetricFactorization factor;
+  if (rhs > 0 && factor.compute(A) != Status::Ok) state.SkipWithError(factor.message().c_str());
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(A.rows(), std::max<Eigen::Index>(rhs, 1));
+  Eigen::MatrixXd X;
+  for (auto _ : state) {
+    if (rhs == 0) {
+      if (factor.compute(A) != Status::Ok) state.SkipWithError(factor.message().c_str());
+    } else {
+      X = factor.solve(B);
+      benchmark::DoNotOptimize(X.data());
+    }
+  }
+  set_sector_counters(state, model);
+  if (rhs > 0) state.counters["rhs"] = static_cast<double>(rhs);
+}
+BENCHMARK(BM_SectorShiftedFactorAndSolve)
+    ->ArgsProduct({{0, 1}, {0, 1, 4, 16}})
+    ->ArgNames({"size", "rhs"})
     ->Unit(benchmark::kSecond)
     ->UseRealTime()
     ->MeasureProcessCPUTime()

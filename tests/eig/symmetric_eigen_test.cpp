@@ -18,6 +18,7 @@ using test::chain_stiffness;
 using test::diagonal_matrix;
 
 using test::fixed_chain_lambda;
+using test::free_chain_lambda;
 
 TEST(SymmetricEigen, ModesAreMassOrthonormalAndSatisfyTheEigenEquation) {
   const int N = 600;  // sparse by default (> dense_limit)
@@ -34,8 +35,65 @@ TEST(SymmetricEigen, ModesAreMassOrthonormalAndSatisfyTheEigenEquation) {
     const Eigen::VectorXd phi = r.eigenvectors.col(j);
     const Eigen::VectorXd res = K * phi - r.eigenvalues[j] * (M * phi);
     // Relative to the size of the terms, not the backward error: the defining equation itself.
-    EXPECT_LT(res.norm() / (K * phi).norm(), 1e-8) << "mode " << j + 1;
+    // The Lanczos stopping test is ||Op y - theta y||_M <= tol |theta| (tol = 1e-10) on the
+    // inverted operator; mapped back to the pencil, the residual relative to ||K phi|| can grow
+    // like lambda_max / lambda_j, about 4e3 for mode 6 of this chain (bound 4e-7; 1e-8
+    // observed). The normwise backward error stays below 1e-11 (2.5e-12 observed).
+    EXPECT_LT(res.norm() / (K * phi).norm(), 1e-7) << "mode " << j + 1;
+    EXPECT_LT(r.residuals[j], 1e-11) << "backward error, mode " << j + 1;
   }
+}
+
+// Two identical, uncoupled fixed chains: every eigenvalue is exactly double. Single-vector
+// Lanczos finds one copy in exact arithmetic; the block engine (p = 4 >= 2) must return both,
+// each equal to the analytic lambda_j of test_systems.hpp to 1e-10 relative (tolerance 1e-10
+// of the inverted operator's Ritz values, conditioning ~1 for the lowest modes).
+TEST(SymmetricEigen, BlockEngineReturnsBothCopiesOfDoubleEigenvalues) {
+  const int N = 400;
+  const double k = 1e6, m = 2.0;
+  const auto chain = chain_stiffness(N, k, true);
+  Eigen::SparseMatrix<double> K(2 * N, 2 * N);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int copy = 0; copy < 2; ++copy)
+    for (int j = 0; j < chain.outerSize(); ++j)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(chain, j); it; ++it)
+        t.emplace_back(copy * N + it.row(), copy * N + it.col(), it.value());
+  K.setFromTriplets(t.begin(), t.end());
+  const auto M = diagonal_matrix(2 * N, m);
+  SymmetricEigenOptions options;
+  options.n_modes = 10;
+  const auto r = solve_symmetric(K, M, options);
+  ASSERT_EQ(r.status, Status::Ok) << r.brief_report();
+  ASSERT_EQ(r.eigenvalues.size(), 10);
+  for (int j = 1; j <= 5; ++j) {
+    const double exact = fixed_chain_lambda(j, N, k, m);
+    EXPECT_NEAR(r.eigenvalues[2 * j - 2], exact, 1e-10 * exact) << "first copy, j = " << j;
+    EXPECT_NEAR(r.eigenvalues[2 * j - 1], exact, 1e-10 * exact) << "second copy, j = " << j;
+  }
+  // The two copies span the eigenspace: M-orthonormal, so not the same vector twice.
+  const Eigen::MatrixXd gram = r.eigenvectors.transpose() * (M * r.eigenvectors);
+  EXPECT_LT((gram - Eigen::MatrixXd::Identity(10, 10)).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+// The block engine against the independent Spectra engine on a free-free chain (one rigid-body
+// mode): the same 12 eigenvalues to 1e-9 relative to the largest (both converge their Ritz
+// values to 1e-10 relative).
+TEST(SymmetricEigen, BlockAndSpectraEnginesAgree) {
+  const int N = 900;
+  const auto K = chain_stiffness(N, 3e5, false);
+  const auto M = diagonal_matrix(N, 0.7);
+  SymmetricEigenOptions options;
+  options.n_modes = 12;
+  const auto block = solve_symmetric(K, M, options);
+  options.engine = KrylovEngine::Spectra;
+  const auto spectra = solve_symmetric(K, M, options);
+  ASSERT_EQ(block.status, Status::Ok) << block.brief_report();
+  ASSERT_EQ(spectra.status, Status::Ok) << spectra.brief_report();
+  ASSERT_EQ(block.eigenvalues.size(), 12);
+  ASSERT_EQ(spectra.eigenvalues.size(), 12);
+  const double scale = spectra.eigenvalues.maxCoeff();
+  EXPECT_LT((block.eigenvalues - spectra.eigenvalues).cwiseAbs().maxCoeff(), 1e-9 * scale);
+  EXPECT_NEAR(block.eigenvalues[5], free_chain_lambda(5, N, 3e5, 0.7), 1e-9 * scale);
 }
 
 TEST(SymmetricEigen, ShiftSelectsNearestModesAndUsesLUWhenIndefinite) {

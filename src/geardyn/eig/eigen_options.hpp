@@ -29,13 +29,24 @@ constexpr std::string_view to_string(Method m) {
 /// `dense_limit` is honoured up to here, e.g. to cross-check the sparse solver).
 inline constexpr int kDenseHardLimit = 5000;
 
+/// Krylov iteration of the real symmetric sparse solver (symmetric_eigen.hpp).
+enum class KrylovEngine { Block, Spectra };
+
+constexpr std::string_view to_string(KrylovEngine e) {
+  return e == KrylovEngine::Spectra ? "spectra" : "block";
+}
+
+/// Throws InputError when Method::Dense is asked for more than kDenseHardLimit DOFs.
+void check_dense_size(Method method, long n);
+
 struct KrylovOptions {
   /// Relative accuracy of the Ritz values of the shift-inverted operator (Spectra's `tol`:
   /// a Ritz value theta is converged when its residual estimate < tol * max(|theta|, eps^(2/3))).
   double tolerance = 1e-10;
   /// Maximum number of implicit restarts.
   int max_restarts = 1000;
-  /// Krylov subspace dimension ncv; 0: min(N, max(2 nev + 1, nev + 20)).
+  /// Krylov subspace dimension before a restart; 0: automatic -- block Lanczos
+  /// min(N - p, max(2 nev + 2 p, nev + 20 + p)), Spectra min(N, max(2 nev + 1, nev + 20)).
   int subspace_size = 0;
 
   /// Appends one line per problem to `problems`.

@@ -489,10 +489,7 @@ QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
     method = n <= options.dense_limit || (2 * options.n_modes + 3 > 2 * n && n <= kDenseHardLimit)
                  ? Method::Dense
                  : Method::Sparse;
-  if (method == Method::Dense && n > kDenseHardLimit)
-    throw InputError({}, "eig.method", fmt::format("sparse for more than {} DOFs", kDenseHardLimit),
-                     fmt::format("dense with {} DOFs", n),
-                     "a dense solve of this size takes O(n^3) time and O(n^2) memory");
+  check_dense_size(method, n);
   if (method == Method::Sparse && n < 3) method = Method::Dense;  // Arnoldi needs 2n > 4
 
   const bool automatic = std::isnan(options.target.real());
