@@ -248,6 +248,37 @@ TEST(GearanModel, SteFileWithHoldKeepsEveryRow) {
     EXPECT_DOUBLE_EQ(t.curves[0].ste_m()[j], j < 6 ? 3.125e-6 : 5e-6) << "row " << j;
 }
 
+// An STE recorded over time at a known speed is the same curve as the one over gear 1's angle:
+// 20 teeth at 1000 rpm give a mesh period of 60 / (1000 * 20) s = 3 ms, so rows 0.3 ms apart
+// are the rows 1.8 deg apart of the angle file. Equal to round-off (the two abscissas are scaled
+// by different periods, 1e-15 relative).
+TEST(GearanModel, SteFileWithTimeAbscissaMatchesTheAngleFile) {
+  const fs::path dir = fresh_dir("ste_time");
+  std::string by_angle = "angle_deg, ste_um\n", by_time = "time_ms, ste_um\n";
+  for (int j = 0; j < 10; ++j) {
+    const std::string value = std::to_string(3.0 + 0.4 * std::cos(2.0 * std::numbers::pi * j / 10));
+    by_angle += std::to_string(1.8 * j) + ", " + value + "\n";
+    by_time += std::to_string(0.3 * j) + ", " + value + "\n";
+  }
+  write_file(dir / "angle.csv", by_angle);
+  write_file(dir / "time.csv", by_time);
+  const model::Model angle = load(dir, kMaterial + kSpur + "ste_file = \"angle.csv\"\n");
+  const model::Model time =
+      load(dir, kMaterial + kSpur + "ste_file = \"time.csv\"\nste_speed_rpm = 1000\n");
+  EXPECT_NEAR(time.gear_pairs[0].ste_speed, 1000 * kRpm, 1e-12);
+  const PairModel a = build_pair_model(angle, 0), t = build_pair_model(time, 0);
+  ASSERT_TRUE(a.ste.has_value() && t.ste.has_value());
+  ASSERT_EQ(a.ste->size(), 10u);
+  ASSERT_EQ(t.ste->size(), a.ste->size());
+  for (std::size_t j = 0; j < a.ste->size(); ++j)
+    EXPECT_NEAR(t.ste->ste_m()[j], a.ste->ste_m()[j], 1e-15 * a.ste->ste_m()[j]) << "row " << j;
+  // The same file at another speed spans 1.5 mesh periods: refused, naming the abscissa.
+  EXPECT_THROW(
+      (void)build_pair_model(
+          load(dir, kMaterial + kSpur + "ste_file = \"time.csv\"\nste_speed_rpm = 1500\n"), 0),
+      InputError);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input
 
@@ -269,6 +300,7 @@ TEST_P(GearanErrors, NameFileLineKeyExpectedFound) {
   const fs::path dir = fresh_dir(std::string("error_") + c.name);
   write_file(dir / "ste_bad.csv", "angle_deg, ste_um\n0, 2\n6, 3\n12, x\n");
   write_file(dir / "measured_hz.csv", "frequency_hz, amplitude_m\n1,1\n2,2\n3,5\n4,2\n5,1\n");
+  write_file(dir / "ste_time.csv", "time_ms, ste_um\n0, 2\n1, 3\n2, 2.5\n");
   write_file(dir / "ste_two.csv",
              "angle_deg, ste_um@50Nm, ste_um@80Nm\n0, 2, 3\n6, 3, 4\n12, 2.5, 3.5\n");
   std::optional<InputError> error;
@@ -338,6 +370,10 @@ INSTANTIATE_TEST_SUITE_P(
                   "a finite number", "x", true, "ste_bad.csv"},
         ErrorCase{"TorqueOutsideSteFile", kSpur + "ste_file = \"ste_two.csv\"\n", 7,
                   "gear_pairs[0].torque", "", "", true},
+        ErrorCase{"SteTimeWithoutSpeed", kSpur + "ste_file = \"ste_time.csv\"\n", 1, "time_ms",
+                  "mesh period", "none", true, "ste_time.csv"},
+        ErrorCase{"SteSpeedWithoutFile", kSpur + "ste_speed_rpm = 1000\n", 14,
+                  "gear_pairs[0].ste_speed_rpm", "an ste_file", "no ste_file"},
         // Analyses.
         ErrorCase{"AnalysisWithoutPairs",
                   "[[nodes]]\nname = \"n\"\nposition = [0, 0, 0]\n[[analyses]]\nname = \"a\"\n"

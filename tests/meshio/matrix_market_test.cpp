@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -194,6 +195,24 @@ TEST(DofMap, Errors) {
   ASSERT_EQ(dofs.size(), 1u);
   EXPECT_EQ(dofs[0].x, Eigen::Vector3d(1, 2, 3));
   EXPECT_EQ(dofs[0].component, 3);
+}
+
+// write_dof_map_csv writes what read_dof_map_csv reads: ids, components (q for generalised
+// coordinates) and positions come back bit for bit (shortest round-trip form).
+TEST_F(MatrixMarketFiles, DofMapRoundTripIsExact) {
+  std::vector<solid::DofInfo> dofs;
+  for (int c = 0; c < 6; ++c) dofs.push_back({17, c, {0.1, -2.0 / 3.0, 1e-7}});
+  dofs.push_back({3, 0, {std::sqrt(2.0), 0.0, -0.25}});
+  dofs.push_back({1, -1, Eigen::Vector3d::Zero()});
+  dofs.push_back({2, -1, Eigen::Vector3d::Zero()});
+  write_dof_map_csv(dir_ / "round.csv", dofs);
+  const std::vector<solid::DofInfo> back = read_dof_map_csv(dir_ / "round.csv");
+  ASSERT_EQ(back.size(), dofs.size());
+  for (std::size_t i = 0; i < dofs.size(); ++i) {
+    EXPECT_EQ(back[i].node_id, dofs[i].node_id) << i;
+    EXPECT_EQ(back[i].component, dofs[i].component) << i;
+    EXPECT_EQ(back[i].x, dofs[i].x) << i;
+  }
 }
 
 }  // namespace

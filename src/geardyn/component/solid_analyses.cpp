@@ -139,7 +139,7 @@ AnalysisOutput run_solid_modal(const SolidComponent& c, const model::SolidModalS
   solid::SolidSystem full_system;
   const solid::SolidSystem* system = &c.system;
   Eigen::SparseMatrix<double> K, M;
-  if (c.is_reduced()) {
+  if (!c.has_mesh()) {
     K = c.stiffness();
     M = c.mass();
     out.notes.push_back(c.description);
@@ -189,7 +189,11 @@ AnalysisOutput run_solid_modal(const SolidComponent& c, const model::SolidModalS
   out.notes.push_back(r.brief_report());
   out.notes.push_back(trust_from_residual(r.max_residual()));
 
-  if (!c.is_reduced() && s.shapes > 0) {
+  if (!c.has_mesh() && s.shapes > 0)
+    out.notes.push_back(fmt::format(
+        "Mode shapes are not written: solid '{}' (type \"{}\") has no mesh to draw them on.",
+        c.name, c.kind()));
+  if (c.has_mesh() && s.shapes > 0) {
     std::vector<meshio::Field> fields;
     std::vector<double> times;
     const int n = std::min<int>(s.shapes, static_cast<int>(r.eigenvalues.size()));
@@ -473,7 +477,12 @@ AnalysisOutput run_cyclic_modal(const SolidComponent& c, const model::CyclicModa
   }
 
   // Check against the replicated full wheel (the same mesh, no cyclic symmetry).
-  if (s.compare_full && !c.is_reduced()) {
+  if (s.compare_full && !c.has_mesh())
+    out.notes.push_back(fmt::format(
+        "compare_full skipped: solid '{}' (type \"{}\") has no mesh to replicate into the full "
+        "wheel.",
+        c.name, c.kind()));
+  if (s.compare_full && c.has_mesh()) {
     std::set<int> solved(nds.begin(), nds.end());
     if (static_cast<int>(solved.size()) != N / 2 + 1) {
       out.notes.push_back("compare_full needs every nodal diameter; the check was skipped.");
@@ -526,7 +535,7 @@ AnalysisOutput run_cyclic_modal(const SolidComponent& c, const model::CyclicModa
   }
 
   // Full-wheel mode shapes (mesh components only).
-  if (!c.is_reduced() && s.shapes > 0) {
+  if (c.has_mesh() && s.shapes > 0) {
     const cyclic::CyclicSector mesh_sector(mesh_dofs, mesh_interfaces);
     cyclic::ReplicatedMesh rep = cyclic::replicate(c.mesh, N, c.interface_tolerance);
     auto wheel = std::make_shared<solid::Mesh>(std::move(rep.mesh));
@@ -571,9 +580,10 @@ AnalysisOutput run_cyclic_modal(const SolidComponent& c, const model::CyclicModa
 
 AnalysisOutput run_reduction(const SolidComponent& c, const model::ReductionSettings& s,
                              const std::string& name, Progress& progress) {
-  if (c.is_reduced())
-    throw InputError({}, "solid", "a mesh component (this one is reduced already)",
-                     fmt::format("solid '{}' of type \"reduced\"", c.name));
+  if (!c.has_mesh())
+    throw InputError({}, "solid",
+                     "a mesh component: masters are chosen by the node sets of its mesh",
+                     fmt::format("solid '{}' of type \"{}\"", c.name, c.kind()));
   if (s.master_sets.empty())
     throw InputError({}, "master_sets",
                      "at least one node set of masters (interfaces, connection, contact, "

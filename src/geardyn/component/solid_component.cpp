@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <set>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/io/sha256.hpp"
 #include "geardyn/meshgen/annular_plate.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
 #include "geardyn/meshio/gmsh_reader.hpp"
+#include "geardyn/meshio/matrix_market.hpp"
 #include "geardyn/meshio/nastran_reader.hpp"
 #include "geardyn/reduce/reduced_component_io.hpp"
 
@@ -28,6 +30,10 @@ Eigen::SparseMatrix<double> SolidComponent::stiffness() const {
 
 Eigen::SparseMatrix<double> SolidComponent::mass() const {
   return reduced ? Eigen::SparseMatrix<double>(reduced->M.sparseView()) : system.M;
+}
+
+std::string SolidComponent::kind() const {
+  return is_reduced() ? "reduced" : external_matrices ? "matrices" : "mesh";
 }
 
 solid::Material solid_material(const model::Material& m) {
@@ -162,6 +168,40 @@ SolidComponent build_solid(const model::Model& model, const model::Solid& s, Pro
     return c;
   }
 
+  if (s.source == model::SolidSource::Matrices) {
+    const fs::path path_k = resolve(model, s.stiffness_file);
+    const fs::path path_m = resolve(model, s.mass_file);
+    const fs::path path_map = resolve(model, s.dof_map_file);
+    for (const auto& [path, key] :
+         {std::pair{path_k, "stiffness_file"}, std::pair{path_m, "mass_file"},
+          std::pair{path_map, "dof_map_file"}})
+      if (!fs::exists(path))
+        throw InputError(s.where, key_of(model, s, key), "an existing file",
+                         fmt::format("'{}' (no such file)", path.string()));
+    meshio::ExternalMatrices m = meshio::read_matrix_market_component(path_k, path_m, path_map);
+    c.external_matrices = true;
+    c.system.dofs = std::move(m.dofs);
+    c.system.K = std::move(m.K);
+    c.system.M = std::move(m.M);
+    c.source_sha256 = io::sha256_hex(io::sha256_file(path_k) + io::sha256_file(path_m) +
+                                     io::sha256_file(path_map));
+    int generalised = 0;
+    std::set<long> nodes;
+    for (const auto& d : c.system.dofs) {
+      if (d.component < 0)
+        ++generalised;
+      else
+        nodes.insert(d.node_id);
+    }
+    c.description = fmt::format(
+        "external matrices {} / {}: {} DOFs ({} nodes, {} generalised coordinates), {} and {} "
+        "non-zeros{}",
+        path_k.filename().string(), path_m.filename().string(), c.system.num_dofs(), nodes.size(),
+        generalised, c.system.K.nonZeros(), c.system.M.nonZeros(),
+        c.sectors > 1 ? fmt::format(" (one sector of {})", c.sectors) : "");
+    return c;
+  }
+
   std::string source;
   switch (s.source) {
     case model::SolidSource::MeshFile: {
@@ -206,6 +246,7 @@ SolidComponent build_solid(const model::Model& model, const model::Solid& s, Pro
       source = "generated gear sector";
       break;
     case model::SolidSource::Reduced:
+    case model::SolidSource::Matrices:
       break;
   }
 
@@ -244,7 +285,13 @@ void check_solid_analyses(const model::Model& model, const SolidComponents& soli
   auto check_set = [&](const std::string& solid_name, const std::string& set,
                        const SourceLocation& where, const std::string& key) {
     auto it = solids.find(solid_name);
-    if (it == solids.end() || it->second.is_reduced()) return;
+    if (it == solids.end()) return;
+    if (!it->second.has_mesh())
+      throw InputError(where, key,
+                       fmt::format("a solid with a mesh (solid '{}' is of type \"{}\" and has "
+                                   "no node sets)",
+                                   solid_name, it->second.kind()),
+                       fmt::format("node set \"{}\"", set));
     const solid::Mesh& mesh = it->second.mesh;
     if (mesh.node_sets.count(set)) return;
     std::string available;
@@ -277,7 +324,13 @@ void check_solid_analyses(const model::Model& model, const SolidComponents& soli
     }
     if (solid_name == nullptr) continue;
     auto it = solids.find(*solid_name);
-    if (it == solids.end() || it->second.is_reduced()) continue;
+    if (it == solids.end()) continue;
+    if (!it->second.has_mesh() && !sets->empty())
+      throw InputError(a.where, fmt::format("analyses[{}].master_sets[0]", i),
+                       fmt::format("no master sets (solid '{}' is of type \"{}\" and has no "
+                                   "node sets)",
+                                   *solid_name, it->second.kind()),
+                       fmt::format("\"{}\"", (*sets)[0]));
     const solid::Mesh& mesh = it->second.mesh;
     for (std::size_t k = 0; k < sets->size(); ++k) {
       if (mesh.node_sets.count((*sets)[k])) continue;

@@ -83,10 +83,11 @@ bool has_joined_solids(const model::Model& model) {
 SpiderSystem spider_system(const model::Model& model, const model::Solid& solid,
                            const SolidComponent& built, Progress& progress) {
   const std::string base = fmt::format("solids[{}]", index_of(model, solid));
-  if (built.is_reduced())
+  if (!built.has_mesh())
     throw InputError(solid.where, base + ".spiders",
                      "a solid with a mesh (type mesh, annular_plate or gear_sector)",
-                     "a reduced component", "join the mesh the component was reduced from");
+                     fmt::format("a solid of type \"{}\"", built.kind()),
+                     "join the mesh the component was reduced from");
   if (solid.spiders.empty())
     throw std::logic_error("spider_system: solid '" + solid.name + "' has no spiders");
   const fe::DofMap rotor = fe::DofMap::build(model);

@@ -83,11 +83,11 @@ SectorPoints sector_points(const model::Model& model, const std::string& name,
                            const component::SolidComponent& c,
                            const model::CyclicForcedResponseSettings& s) {
   const SourceLocation where = where_of(model, name);
-  if (c.is_reduced())
+  if (!c.has_mesh())
     throw InputError(where, key_of(model, name, "solid"),
                      "a mesh solid (mesh file or generated sector): the excitation and sensor "
                      "node sets are read from its mesh",
-                     fmt::format("solid '{}' of type \"reduced\"", c.name),
+                     fmt::format("solid '{}' of type \"{}\"", c.name, c.kind()),
                      "use the mesh it was reduced from; reduction = \"craig_bampton\" reduces "
                      "the sector in the analysis");
   const solid::Mesh& mesh = c.mesh;

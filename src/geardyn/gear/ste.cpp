@@ -516,7 +516,10 @@ std::vector<CycleData> read_cycle(const NumericCsv& csv, const Header& h, std::s
       if (std::isnan(options.mesh_period_s))
         throw InputError(csv.at_header(0), csv.names[0],
                          "the mesh period (SteReadOptions::mesh_period_s) with a time abscissa",
-                         "none");
+                         "none",
+                         "one mesh period is 60 / (speed_rpm teeth) s; in a model file give the "
+                         "gear pair's ste_speed_rpm, the speed of gear 1 while the STE was "
+                         "recorded");
       period = options.mesh_period_s * (h.abscissa == Abscissa::TimeMs ? 1e3 : 1.0);
       break;
   }

@@ -227,6 +227,8 @@ PairModel build_pair_model(const model::Model& model, std::size_t index) {
       read.base_radius_m = pm.base_radius1_m;
       read.shift = p.ste_shift;
       read.samples = static_cast<std::size_t>(p.ste_samples);
+      if (!std::isnan(p.ste_speed))
+        read.mesh_period_s = 2.0 * std::numbers::pi / (p.ste_speed * p.teeth1);
       read.interpolation = p.ste_interpolation == model::SteInterpolationKind::Hold
                                ? gear::SteInterpolation::Hold
                                : gear::SteInterpolation::Linear;

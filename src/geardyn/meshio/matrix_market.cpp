@@ -437,4 +437,16 @@ void write_matrix_market(const fs::path& path, const Eigen::SparseMatrix<double>
   if (!file) throw std::runtime_error(fmt::format("cannot write '{}'", path.string()));
 }
 
+void write_dof_map_csv(const fs::path& path, const std::vector<solid::DofInfo>& dofs) {
+  std::string out = "node_id,component,x,y,z\n";
+  for (const auto& d : dofs)
+    out += fmt::format("{},{},{},{},{}\n", d.node_id,
+                       d.component < 0 ? std::string("q") : std::to_string(d.component + 1),
+                       d.x.x(), d.x.y(), d.x.z());
+  std::ofstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error(fmt::format("cannot create '{}'", path.string()));
+  file << out;
+  if (!file) throw std::runtime_error(fmt::format("cannot write '{}'", path.string()));
+}
+
 }  // namespace geardyn::meshio

@@ -61,4 +61,9 @@ ExternalMatrices read_matrix_market_component(const std::filesystem::path& path_
 void write_matrix_market(const std::filesystem::path& path, const Eigen::SparseMatrix<double>& A,
                          bool symmetric);
 
+/// Writes a DOF map in the CSV form read_dof_map_csv reads (header node_id,component,x,y,z;
+/// components 1..6, q for component < 0; coordinates in shortest round-trip form). Throws
+/// std::runtime_error if the file cannot be written.
+void write_dof_map_csv(const std::filesystem::path& path, const std::vector<solid::DofInfo>& dofs);
+
 }  // namespace geardyn::meshio

@@ -204,10 +204,11 @@ struct Damping {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Solid components (3D finite elements): a mesh file, a generated sector or plate, or a reduced
-// component saved by an earlier run. A cyclic component is one sector of `sectors`.
+// Solid components (3D finite elements): a mesh file, a generated sector or plate, a reduced
+// component saved by an earlier run, or stiffness and mass matrices exported by another FE code
+// (Matrix Market) with their DOF map. A cyclic component is one sector of `sectors`.
 
-enum class SolidSource { MeshFile, AnnularPlate, GearSector, Reduced };
+enum class SolidSource { MeshFile, AnnularPlate, GearSector, Reduced, Matrices };
 
 /// Annular plate about the z axis (the whole plate, or one sector when Solid::sectors > 1).
 struct AnnularPlateSpec {
@@ -258,11 +259,14 @@ struct Spider {
 struct Solid {
   std::string name;
   SolidSource source = SolidSource::MeshFile;
-  std::string mesh;           ///< mesh file (Gmsh .msh, Nastran .bdf/.dat/.nas/.blk), as written
-  std::string reduced;        ///< reduced component (.h5), as written
-  std::string material;       ///< gear / plate / Gmsh-mesh material
-  std::string ring_material;  ///< damper ring (generated gear sectors)
-  int sectors = 1;            ///< the body is `sectors` copies of this mesh about z (1: whole)
+  std::string mesh;            ///< mesh file (Gmsh .msh, Nastran .bdf/.dat/.nas/.blk), as written
+  std::string reduced;         ///< reduced component (.h5), as written
+  std::string stiffness_file;  ///< Matrix Market K (type matrices), as written
+  std::string mass_file;       ///< Matrix Market M (type matrices), as written
+  std::string dof_map_file;    ///< DOF map CSV of K and M (type matrices), as written
+  std::string material;        ///< gear / plate / Gmsh-mesh material
+  std::string ring_material;   ///< damper ring (generated gear sectors)
+  int sectors = 1;             ///< the body is `sectors` copies of this mesh about z (1: whole)
   double interface_tolerance = 1e-6;          ///< sector interface matching [m]
   std::vector<std::string> fixed_sets;        ///< node sets whose translations are fixed
   bool unsupported_cards_are_errors = false;  ///< Nastran: unsupported card -> error
@@ -308,9 +312,12 @@ struct GearPair {
   double rim_thickness = kNaN, web_thickness = kNaN;  ///< gear blank with a web [m]
   std::string ste_file;  ///< STE CSV as written (relative to the model file)
   SteInterpolationKind ste_interpolation = SteInterpolationKind::Linear;
-  double ste_shift = 0.0;            ///< fraction of a mesh cycle
-  bool ste_extrapolation = false;    ///< torque outside the file's torques allowed
-  int ste_samples = 0;               ///< samples per mesh cycle (0: 512 / the file's rows)
+  double ste_shift = 0.0;          ///< fraction of a mesh cycle
+  bool ste_extrapolation = false;  ///< torque outside the file's torques allowed
+  int ste_samples = 0;             ///< samples per mesh cycle (0: 512 / the file's rows)
+  /// Speed of gear 1 while an STE file with a time abscissa was recorded [rad/s] (NaN: none);
+  /// one mesh period is 2 pi / (speed teeth1).
+  double ste_speed = kNaN;
   double mesh_damping_ratio = 0.08;  ///< zeta of the dynamic mesh model
   double backlash = kNaN;            ///< [m] (NaN: no back-side contact)
   SourceLocation where;

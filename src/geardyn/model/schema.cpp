@@ -949,8 +949,11 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
     t.fail(t.has("rim_thickness") ? "web_thickness" : "rim_thickness",
            "rim_thickness and web_thickness together (a gear blank with a web), or neither",
            "only one of them");
-  if (!t.has("ste_file") && (t.has("ste_interpolation") || t.has("ste_extrapolation")))
-    t.fail(t.has("ste_interpolation") ? "ste_interpolation" : "ste_extrapolation",
+  if (!t.has("ste_file") &&
+      (t.has("ste_interpolation") || t.has("ste_extrapolation") || t.has("ste_speed_rpm")))
+    t.fail(t.has("ste_interpolation")   ? "ste_interpolation"
+           : t.has("ste_extrapolation") ? "ste_extrapolation"
+                                        : "ste_speed_rpm",
            "an ste_file to apply to (the synthetic STE from ISO 6336 is sampled uniformly)",
            "no ste_file");
 }
@@ -1718,7 +1721,9 @@ Section make_schema() {
   Section solids =
       S("solids", SectionKind::ArrayOfTables, "[[solids]]",
         "Solid (3D finite-element) components: a mesh file, a generated annular plate or "
-        "gear-blank sector, or a reduced component saved by an earlier run. With sectors > 1 "
+        "gear-blank sector, a reduced component saved by an earlier run, or stiffness and mass "
+        "matrices exported by another FE code (Matrix Market) with their DOF map. With "
+        "sectors > 1 "
         "the mesh is one sector of a cyclic body about the z axis. Mesh coordinates are in the "
         "global frame of the rotor model (generated plates and gears lie about the global z "
         "axis, mid-plane z = 0). A solid with [[solids.spiders]] is part of the rotor system: "
@@ -1731,11 +1736,12 @@ Section make_schema() {
           .located(&Solid::where)
           .fields({
               name_key("Unique solid name.").required().to(&Solid::name),
-              choice("type", {"mesh", "annular_plate", "gear_sector", "reduced"},
+              choice("type", {"mesh", "annular_plate", "gear_sector", "reduced", "matrices"},
                      "Where the solid comes from; selects the keys below.")
                   .required()
-                  .to_enum(&Solid::source, {SolidSource::MeshFile, SolidSource::AnnularPlate,
-                                            SolidSource::GearSector, SolidSource::Reduced}),
+                  .to_enum(&Solid::source,
+                           {SolidSource::MeshFile, SolidSource::AnnularPlate,
+                            SolidSource::GearSector, SolidSource::Reduced, SolidSource::Matrices}),
               text("file",
                    "Mesh file (Gmsh .msh v4, or Nastran bulk data .bdf/.dat/.nas/.blk), "
                    "relative to the model file.")
@@ -1748,6 +1754,23 @@ Section make_schema() {
                   .required()
                   .only_in({"reduced"})
                   .to(&Solid::reduced),
+              text("stiffness_file",
+                   "Stiffness matrix K in Matrix Market format (coordinate or array, real, "
+                   "general or symmetric), relative to the model file.")
+                  .required()
+                  .only_in({"matrices"})
+                  .to(&Solid::stiffness_file),
+              text("mass_file", "Mass matrix M in Matrix Market format, the same size as K.")
+                  .required()
+                  .only_in({"matrices"})
+                  .to(&Solid::mass_file),
+              text("dof_map_file",
+                   "DOF map CSV of K and M, one row per matrix row: node_id, component (1-6, "
+                   "ux..rz, or q for a generalised coordinate), x, y, z [m] "
+                   "(docs/reduced-component-format.md).")
+                  .required()
+                  .only_in({"matrices"})
+                  .to(&Solid::dof_map_file),
               reference("material", Ref::Material,
                         "Material of the solid (Nastran decks carry their own MAT1).")
                   .note("required except for Nastran meshes and reduced components")
@@ -1935,7 +1958,10 @@ Section make_schema() {
                      variant<Solid>("gear_sector",
                                     "A generated gear-blank sector with simplified teeth and an "
                                     "optional damper-ring groove and ring."),
-                     variant<Solid>("reduced", "A reduced component file (.h5).")})
+                     variant<Solid>("reduced", "A reduced component file (.h5)."),
+                     variant<Solid>("matrices",
+                                    "Stiffness and mass matrices exported by another FE code "
+                                    "(e.g. an ANSYS or Nastran superelement) with a DOF map.")})
           .sections({spiders})
           .finish<Solid>(finish_solid);
 
@@ -2110,7 +2136,8 @@ Section make_schema() {
               text("ste_file",
                    "Static transmission error over one mesh cycle, CSV relative to the model "
                    "file (format in gear/ste.hpp: an angle_deg or angle_rad column of gear 1's "
-                   "rotation over one mesh cycle, ste_<unit> or ste_<unit>@<torque>Nm columns; "
+                   "rotation, or a time_s or time_ms column (with ste_speed_rpm), over one mesh "
+                   "cycle, ste_<unit> or ste_<unit>@<torque>Nm columns; "
                    "angular STE is scaled by gear 1's base radius); the first row is the tooth "
                    "entering contact.")
                   .note("synthetic STE e = F_s / k from the ISO 6336 mesh stiffness")
@@ -2132,6 +2159,12 @@ Section make_schema() {
                   .ge(0)
                   .lt(1)
                   .to(&GearPair::ste_shift),
+              number("ste_speed_rpm", kRpm,
+                     "Speed of gear 1 while an STE file with a time abscissa (time_s, time_ms) "
+                     "was recorded: one mesh period is 60 / (speed teeth1) s.")
+                  .gt(0)
+                  .note("required with a time abscissa")
+                  .to(&GearPair::ste_speed),
               integer("ste_samples", "Samples of the STE per mesh cycle.")
                   .ge(16)
                   .le(100000)
