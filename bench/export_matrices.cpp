@@ -60,8 +60,8 @@ int main(int argc, char** argv) {
   }
   try {
     const std::filesystem::path folder = argv[1];
-    const double global_size = argc == 4 ? std::stod(argv[2]) : 0.0026;
-    const double tooth_size = argc == 4 ? std::stod(argv[3]) : 0.0020;
+    const double global_size = argc == 4 ? std::stod(argv[2]) : 0.0020;
+    const double tooth_size = argc == 4 ? std::stod(argv[3]) : 0.0013;
     std::filesystem::create_directories(folder);
 
     auto t0 = std::chrono::steady_clock::now();
