@@ -496,5 +496,84 @@ n_modes = 20
   }
 }
 
+// The measured overlay of gear_forced_response. The "measurement" is the computed response of
+// the same analysis doubled, so the comparison is known exactly: peaks at the same speeds
+// (mismatch 0), amplitude mismatch (A - 2A) / 2A = -50 %, equal Q, and scale_to_measured must
+// find the scale 2 and an implied force of 2 x 100 N. Tolerance 1e-9: the peak search works on
+// the same grid for both curves, so only round-off separates them.
+TEST(ForcedWiring, RotorResponseAgainstAMeasuredCurve) {
+  const fs::path dir = fs::path(GEARDYN_BINARY_DIR) / "tests" / "forcedan" / "rotor_measured";
+  fs::create_directories(dir);
+  const std::string base =
+      read_text(fs::path(GEARDYN_SOURCE_DIR) / "examples" / "geared_rotor_hcf" / "model.toml") +
+      R"(
+[[analyses]]
+name = "mesh"
+type = "gear_forced_response"
+force_amplitude = [100.0]
+speed_start_rpm = 1000
+speed_stop_rpm = 40000
+speed_count = 400
+n_modes = 20
+)";
+  const model::Model plain = model::parse_model(base, (dir / "model.toml").string());
+  const fe::LinearSystem system = analysis::build_system(plain);
+  auto run = [&](const model::Model& m) {
+    const model::Analysis& a = m.analyses.back();
+    return forcedan::run_gear_forced_response(
+        m, system, std::get<model::GearForcedResponseSettings>(a.settings), a.name);
+  };
+  const AnalysisOutput reference = run(plain);
+  const Table* response = nullptr;
+  for (const Table& t : reference.tables)
+    if (t.name == "mesh_forced_response") response = &t;
+  ASSERT_NE(response, nullptr);
+  const std::vector<double>& rpm = response->column("speed_rpm").numbers;
+  const std::vector<double>& amplitude = response->column("turbine_x_p1_amplitude_m").numbers;
+  {
+    std::ofstream csv(dir / "measured.csv");
+    csv << "speed_rpm, amplitude_m\n";
+    for (std::size_t i = 0; i < rpm.size(); ++i)
+      csv << fmt::format("{:.17g}, {:.17g}\n", rpm[i], 2.0 * amplitude[i]);
+  }
+  const model::Model m =
+      model::parse_model(base +
+                             "measured_file = \"measured.csv\"\nmeasured_sensor = \"turbine_x\"\n"
+                             "measured_mesh_order = 1\nscale_to_measured = true\n",
+                         (dir / "model.toml").string());
+  forcedan::check_forced_analyses(m, {});
+  const AnalysisOutput out = run(m);
+  ASSERT_EQ(out.status, Status::Ok) << out.message;
+  const Table* comparison = nullptr;
+  const Table* scaling = nullptr;
+  for (const Table& t : out.tables) {
+    if (t.name == "comparison") comparison = &t;
+    if (t.name == "force_scaling") scaling = &t;
+  }
+  ASSERT_NE(comparison, nullptr);
+  ASSERT_NE(scaling, nullptr);
+  ASSERT_GE(comparison->rows(), 1u);
+  for (std::size_t k = 0; k < comparison->rows(); ++k) {
+    EXPECT_NEAR(comparison->column("x_mismatch_pct").numbers[k], 0.0, 1e-9) << k;
+    EXPECT_NEAR(comparison->column("amplitude_mismatch_pct").numbers[k], -50.0, 1e-9) << k;
+  }
+  EXPECT_NEAR(scaling->column("scale").numbers[0], 2.0, 1e-9);
+  EXPECT_NEAR(scaling->column("implied_force_n").numbers[0], 200.0, 1e-7);
+  const auto overlay = std::find_if(out.plots.begin(), out.plots.end(),
+                                    [](const Plot& p) { return p.name == "measured_overlay"; });
+  ASSERT_NE(overlay, out.plots.end());
+  EXPECT_EQ(overlay->traces.size(), 3u);  // measured, computed, computed scaled
+
+  // A sensor the analysis does not have, and a mesh order beyond max_mesh_order.
+  const model::Model wrong =
+      model::parse_model(base + "measured_file = \"measured.csv\"\nmeasured_sensor = \"nowhere\"\n",
+                         (dir / "model.toml").string());
+  EXPECT_THROW((void)run(wrong), InputError);
+  EXPECT_THROW((void)model::parse_model(base + "measured_file = \"measured.csv\"\n"
+                                               "measured_mesh_order = 2\n",
+                                        (dir / "model.toml").string()),
+               InputError);
+}
+
 }  // namespace
 }  // namespace geardyn

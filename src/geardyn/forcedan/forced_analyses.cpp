@@ -214,6 +214,73 @@ Trace curve(std::string trace_name, const std::vector<double>& x, std::vector<do
   return t;
 }
 
+/// Index of the sensor a measured curve is compared with: `wanted` by name, or the first one.
+/// InputError at `key` when no sensor has that name.
+template <class Sensor>
+std::size_t measured_sensor_index(const std::vector<Sensor>& sensors, const std::string& wanted,
+                                  const SourceLocation& where, const std::string& key) {
+  if (wanted.empty()) return 0;
+  auto it =
+      std::find_if(sensors.begin(), sensors.end(), [&](const auto& x) { return x.name == wanted; });
+  if (it == sensors.end()) {
+    std::string names;
+    for (const auto& x : sensors) names += (names.empty() ? "" : ", ") + x.name;
+    throw InputError(where, key, fmt::format("a sensor of this analysis ({})", names),
+                     fmt::format("\"{}\"", wanted));
+  }
+  return static_cast<std::size_t>(it - sensors.begin());
+}
+
+/// The comparison of a computed response over speed with a measured one, shared by the forced
+/// responses (thesis sec. 5.2): the overlay plot (measured markers, computed line; the caller may
+/// add traces before pushing it), the peak table and a note on the largest measured peak.
+struct MeasuredComparison {
+  Plot plot;
+  std::vector<gear::PeakComparison> peaks;  ///< empty: no prominent measured peak
+  std::size_t main = 0;                     ///< the largest measured peak
+};
+
+MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::MeasuredResponse& m,
+                                         const std::vector<double>& rpm,
+                                         const std::vector<double>& computed,
+                                         const std::string& curve_name, double min_prominence_db) {
+  MeasuredComparison c;
+  gear::CorrelationOptions co;
+  co.min_prominence_db = min_prominence_db;
+  c.peaks = gear::compare_peaks(m.x, m.amplitude, rpm, computed, co);
+  c.plot.name = "measured_overlay";
+  c.plot.title = fmt::format("Measured response ({}) and the computed {}", m.source, curve_name);
+  c.plot.x_label = "speed [rpm]";
+  c.plot.y_label = "amplitude [m]";
+  c.plot.y_log = true;
+  Trace mt = curve("measured", m.x, m.amplitude);
+  mt.mode = Trace::Mode::Markers;
+  c.plot.traces.push_back(std::move(mt));
+  c.plot.traces.push_back(curve("computed", rpm, computed));
+  if (c.peaks.empty()) {
+    out.notes.push_back(fmt::format(
+        "Measured file {}: no peak with a prominence of {:.3g} dB; nothing compared (lower "
+        "min_prominence_db or measure across the resonance).",
+        m.source, min_prominence_db));
+    return c;
+  }
+  Table t = gear::correlation_table(c.peaks, gear::ResponseAbscissa::SpeedRpm, "m", "comparison");
+  t.title = fmt::format(
+      "Measured versus computed peaks ({}); mismatch = (computed - measured) / measured",
+      curve_name);
+  out.tables.push_back(std::move(t));
+  for (std::size_t j = 1; j < c.peaks.size(); ++j)
+    if (c.peaks[j].measured.amplitude > c.peaks[c.main].measured.amplitude) c.main = j;
+  const gear::PeakComparison& pc = c.peaks[c.main];
+  out.notes.push_back(
+      fmt::format("Largest measured peak at {:.6g} rpm, {:.4g} m, Q = {:.4g}; computed {:.6g} rpm, "
+                  "{:.4g} m, Q = {:.4g}: speed {:+.2f} %, amplitude {:+.1f} %, Q {:+.1f} %.",
+                  pc.measured.x, pc.measured.amplitude, pc.measured.q_factor, pc.computed.x,
+                  pc.computed.amplitude, pc.computed.q_factor, 100 * pc.x_mismatch,
+                  100 * pc.amplitude_mismatch, 100 * pc.q_mismatch));
+  return c;
+}
+
 /// Drops the superposed columns of the library's response table.
 Table without_superposition(const Table& t) {
   Table out;
@@ -493,19 +560,8 @@ AnalysisOutput run_cyclic_forced_response(const model::Model& model,
   // Comparison with a measured response (thesis sec. 5.2): peak speed, amplitude and Q.
   if (!s.measured_file.empty()) {
     const gear::MeasuredResponse m = read_measured(model, name, s.measured_file);
-    std::size_t sensor = 0;
-    if (!s.measured_sensor.empty()) {
-      auto it = std::find_if(result.sensors.begin(), result.sensors.end(),
-                             [&](const auto& x) { return x.name == s.measured_sensor; });
-      if (it == result.sensors.end()) {
-        std::string names;
-        for (const auto& x : result.sensors) names += (names.empty() ? "" : ", ") + x.name;
-        throw InputError(where, key_of(model, name, "measured_sensor"),
-                         fmt::format("a sensor of this analysis ({})", names),
-                         fmt::format("\"{}\"", s.measured_sensor));
-      }
-      sensor = static_cast<std::size_t>(it - result.sensors.begin());
-    }
+    const std::size_t sensor = measured_sensor_index(result.sensors, s.measured_sensor, where,
+                                                     key_of(model, name, "measured_sensor"));
     int order_index = -1;
     if (s.measured_engine_order > 0) {
       for (std::size_t j = 0; j < orders.size(); ++j)
@@ -528,45 +584,15 @@ AnalysisOutput run_cyclic_forced_response(const model::Model& model,
       return a;
     };
     const std::vector<double> computed = computed_curve(result);
-    gear::CorrelationOptions co;
-    co.min_prominence_db = s.min_prominence_db;
-    const std::vector<gear::PeakComparison> peaks =
-        gear::compare_peaks(m.x, m.amplitude, rpm, computed, co);
     const std::string curve_name =
         fmt::format("{} {}", result.sensors[sensor].name,
                     order_index < 0 ? std::string("sum of orders")
                                     : fmt::format("EO {}", s.measured_engine_order));
-    Plot p;
-    p.name = "measured_overlay";
-    p.title = fmt::format("Measured response ({}) and the computed {}", m.source, curve_name);
-    p.x_label = "speed [rpm]";
-    p.y_label = "amplitude [m]";
-    p.y_log = true;
-    Trace mt = curve("measured", m.x, m.amplitude);
-    mt.mode = Trace::Mode::Markers;
-    p.traces.push_back(std::move(mt));
-    p.traces.push_back(curve("computed", rpm, computed));
-    if (peaks.empty()) {
-      out.notes.push_back(fmt::format(
-          "Measured file {}: no peak with a prominence of {:.3g} dB; nothing compared (lower "
-          "min_prominence_db or measure across the resonance).",
-          m.source, s.min_prominence_db));
-    } else {
-      Table t = gear::correlation_table(peaks, gear::ResponseAbscissa::SpeedRpm, "m", "comparison");
-      t.title = fmt::format(
-          "Measured versus computed peaks ({}); mismatch = (computed - measured) / measured",
-          curve_name);
-      out.tables.push_back(std::move(t));
-      std::size_t main = 0;
-      for (std::size_t j = 1; j < peaks.size(); ++j)
-        if (peaks[j].measured.amplitude > peaks[main].measured.amplitude) main = j;
-      const gear::PeakComparison& pc = peaks[main];
-      out.notes.push_back(fmt::format(
-          "Largest measured peak at {:.6g} rpm, {:.4g} m, Q = {:.4g}; computed {:.6g} rpm, "
-          "{:.4g} m, Q = {:.4g}: speed {:+.2f} %, amplitude {:+.1f} %, Q {:+.1f} %.",
-          pc.measured.x, pc.measured.amplitude, pc.measured.q_factor, pc.computed.x,
-          pc.computed.amplitude, pc.computed.q_factor, 100 * pc.x_mismatch,
-          100 * pc.amplitude_mismatch, 100 * pc.q_mismatch));
+    MeasuredComparison mc =
+        compare_with_measured(out, m, rpm, computed, curve_name, s.min_prominence_db);
+    Plot& p = mc.plot;
+    if (!mc.peaks.empty()) {
+      const gear::PeakComparison& pc = mc.peaks[mc.main];
       if (s.scale_to_measured) {
         // Linear model: scaling every harmonic by A_measured / A_computed reproduces the
         // measured peak; the implied force is the scaled harmonic (thesis sec. 5.2).
@@ -768,6 +794,62 @@ AnalysisOutput run_gear_forced_response(const model::Model& model, const fe::Lin
     }
     out.plots.push_back(std::move(p));
   }
+  // Comparison with a measured response: the sum of the mesh orders or one order at a sensor.
+  if (!s.measured_file.empty()) {
+    const gear::MeasuredResponse m = read_measured(model, name, s.measured_file);
+    const std::size_t sensor =
+        measured_sensor_index(r.sensors, s.measured_sensor, where_of(model, name),
+                              key_of(model, name, "measured_sensor"));
+    int order_index = -1;  // the parser keeps measured_mesh_order within 0 .. max_mesh_order
+    for (std::size_t j = 0; j < r.harmonics.size(); ++j)
+      if (r.harmonics[j].order == s.measured_mesh_order) order_index = static_cast<int>(j);
+    std::vector<double> computed(rpm.size());
+    for (std::size_t i = 0; i < rpm.size(); ++i) {
+      const auto row = static_cast<Eigen::Index>(i), col = static_cast<Eigen::Index>(sensor);
+      computed[i] = order_index < 0
+                        ? r.amplitude_sum(row, col)
+                        : std::abs(r.displacement[static_cast<std::size_t>(order_index)](row, col));
+    }
+    const std::string curve_name =
+        fmt::format("{} {}", r.sensors[sensor].name,
+                    order_index < 0 ? std::string("sum of mesh orders")
+                                    : fmt::format("mesh order {}", s.measured_mesh_order));
+    MeasuredComparison mc =
+        compare_with_measured(out, m, rpm, computed, curve_name, s.min_prominence_db);
+    if (!mc.peaks.empty() && s.scale_to_measured) {
+      // Linear model: the forces scaled by A_measured / A_computed reproduce the measured peak,
+      // and the response scales with them.
+      const gear::PeakComparison& pc = mc.peaks[mc.main];
+      const double scale = pc.measured.amplitude / pc.computed.amplitude;
+      Table f;
+      f.name = "force_scaling";
+      f.title = fmt::format(
+          "Mesh forces that make the computed peak match the measured one (scale {:.6g})", scale);
+      std::vector<double> order, used, implied, sc;
+      for (std::size_t j = 0; j < r.harmonics.size(); ++j) {
+        if (order_index >= 0 && static_cast<int>(j) != order_index) continue;
+        const gear::ForceScaling fsc =
+            gear::scale_force_to_peak(pc, std::abs(r.harmonics[j].amplitude));
+        order.push_back(r.harmonics[j].order);
+        used.push_back(std::abs(r.harmonics[j].amplitude));
+        implied.push_back(fsc.implied_force_n);
+        sc.push_back(fsc.scale);
+      }
+      f.add("mesh_order", "", order);
+      f.add("force_used_n", "N", used);
+      f.add("implied_force_n", "N", implied);
+      f.add("scale", "", sc);
+      out.tables.push_back(std::move(f));
+      std::vector<double> scaled = computed;
+      for (double& v : scaled) v *= scale;
+      mc.plot.traces.push_back(curve("computed, scaled", rpm, scaled, "dash"));
+      out.notes.push_back(fmt::format(
+          "scale_to_measured: the mesh forces multiplied by {:.6g} (table force_scaling) "
+          "reproduce the measured peak; the response tables and the other plots are unscaled.",
+          scale));
+    }
+    out.plots.push_back(std::move(mc.plot));
+  }
   out.notes.push_back(r.brief_report());
   out.notes.push_back(force_note);
   const double f_exc = s.max_mesh_order * r.mesh_frequency_per_speed * s.speeds.back() / kTwoPi;
@@ -814,6 +896,7 @@ void check_forced_analyses(const model::Model& model, const component::SolidComp
       if (!s->measured_file.empty()) (void)read_measured(model, a.name, s->measured_file);
     }
     if (const auto* g = std::get_if<model::GearForcedResponseSettings>(&a.settings)) {
+      if (!g->measured_file.empty()) (void)read_measured(model, a.name, g->measured_file);
       if (!g->pair.empty()) {
         const gearan::PairModel pm =
             gearan::build_pair_model(model, gearan::pair_index(model, g->pair));

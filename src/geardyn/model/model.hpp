@@ -533,6 +533,11 @@ struct GearForcedResponseSettings {
   std::vector<double> speeds;           ///< reference speeds [rad/s]
   int n_modes = 10;
   bool residual_vectors = true;
+  std::string measured_file;    ///< measured response over speed (empty: none)
+  std::string measured_sensor;  ///< sensor compared (empty: the first)
+  int measured_mesh_order = 0;  ///< curve compared: this mesh order (0: the sum of the orders)
+  bool scale_to_measured = false;
+  double min_prominence_db = 6.0;
 };
 
 enum class AnalysisType {

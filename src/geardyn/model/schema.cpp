@@ -1042,6 +1042,9 @@ void finish_cyclic_forced(Analysis& a, const TableContext& t) {
 void finish_gear_forced(Analysis& a, const TableContext& t) {
   auto& s = std::get<GearForcedResponseSettings>(a.settings);
   s.speeds = speed_range(t);
+  for (const char* key : {"measured_sensor", "measured_mesh_order", "scale_to_measured"})
+    if (t.has(key) && !t.has("measured_file"))
+      t.fail(key, "a measured_file to compare with", "no measured_file");
   if (s.speeds.front() <= 0.0)
     t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
            "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
@@ -1054,6 +1057,10 @@ void finish_gear_forced(Analysis& a, const TableContext& t) {
              fmt::format("{} amplitudes, one per mesh order 1 .. max_mesh_order", s.max_mesh_order),
              fmt::format("{} amplitudes", n));
   }
+  if (s.measured_mesh_order > s.max_mesh_order)
+    t.fail("measured_mesh_order",
+           fmt::format("a mesh order 1 .. max_mesh_order = {} (or 0: the sum)", s.max_mesh_order),
+           std::to_string(s.measured_mesh_order));
 }
 
 void finish_output(SweepOutput& o, const TableContext& t) {
@@ -2761,9 +2768,10 @@ Section make_schema() {
                      "Measured peaks at least this prominent [dB] are reported.")
                   .def("6.0")
                   .ge(0)
-                  .only_in({"correlation", "cyclic_forced_response"})
+                  .only_in({"correlation", "cyclic_forced_response", "gear_forced_response"})
                   .to_settings(&CorrelationSettings::min_prominence_db,
-                               &CyclicForcedResponseSettings::min_prominence_db),
+                               &CyclicForcedResponseSettings::min_prominence_db,
+                               &GearForcedResponseSettings::min_prominence_db),
               integer("max_peaks", "At most this many peaks (the most prominent).")
                   .def("8")
                   .ge(1)
@@ -2904,14 +2912,16 @@ Section make_schema() {
                    "Measured response over speed (CSV, gear/correlation.hpp, displacement "
                    "amplitude) overlaid on the computed one and compared peak by peak.")
                   .note("no comparison")
-                  .only_in({"cyclic_forced_response"})
-                  .to_settings(&CyclicForcedResponseSettings::measured_file),
+                  .only_in({"cyclic_forced_response", "gear_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::measured_file,
+                               &GearForcedResponseSettings::measured_file),
               text("measured_sensor",
-                   "Computed curve compared with the measurement: its sensor name, "
-                   "<set or node<id>>_<component>.")
+                   "Computed curve compared with the measurement: its sensor name (in a cyclic "
+                   "sector <set or node<id>>_<component>).")
                   .note("the first sensor")
-                  .only_in({"cyclic_forced_response"})
-                  .to_settings(&CyclicForcedResponseSettings::measured_sensor),
+                  .only_in({"cyclic_forced_response", "gear_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::measured_sensor,
+                               &GearForcedResponseSettings::measured_sensor),
               integer("measured_engine_order",
                       "Engine order of the computed curve compared with the measurement (0: the "
                       "superposed sum of amplitudes).")
@@ -2924,8 +2934,17 @@ Section make_schema() {
                       "Scale the harmonic force so that the computed peak matches the measured "
                       "one, and report the implied force.")
                   .def("false")
-                  .only_in({"cyclic_forced_response"})
-                  .to_settings(&CyclicForcedResponseSettings::scale_to_measured),
+                  .only_in({"cyclic_forced_response", "gear_forced_response"})
+                  .to_settings(&CyclicForcedResponseSettings::scale_to_measured,
+                               &GearForcedResponseSettings::scale_to_measured),
+              integer("measured_mesh_order",
+                      "Mesh order of the computed curve compared with the measurement (0: the "
+                      "sum of the amplitudes of all mesh orders).")
+                  .def("0")
+                  .ge(0)
+                  .le(100000)
+                  .only_in({"gear_forced_response"})
+                  .to_settings(&GearForcedResponseSettings::measured_mesh_order),
               text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
                   .note("the model's only gear mesh")
                   .only_in({"gear_forced_response"})
