@@ -240,6 +240,29 @@ struct MeasuredComparison {
   std::size_t main = 0;                     ///< the largest measured peak
 };
 
+/// Table "force_scaling": each harmonic force used and the force that makes the computed peak
+/// `pc` match the measured one (linear model: both scale by A_measured / A_computed). `ids` are
+/// the leading columns naming each row (nodal diameter and engine order, or mesh order).
+Table force_scaling_table(const gear::PeakComparison& pc, const std::string& what,
+                          const std::vector<std::pair<std::string, std::vector<double>>>& ids,
+                          const std::vector<double>& used) {
+  Table f;
+  f.name = "force_scaling";
+  f.title = fmt::format("{} that make the computed peak match the measured one (scale {:.6g})",
+                        what, pc.measured.amplitude / pc.computed.amplitude);
+  std::vector<double> implied, sc;
+  for (double u : used) {
+    const gear::ForceScaling fsc = gear::scale_force_to_peak(pc, u);
+    implied.push_back(fsc.implied_force_n);
+    sc.push_back(fsc.scale);
+  }
+  for (const auto& [column, values] : ids) f.add(column, "", values);
+  f.add("force_used_n", "N", used);
+  f.add("implied_force_n", "N", implied);
+  f.add("scale", "", sc);
+  return f;
+}
+
 MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::MeasuredResponse& m,
                                          const std::vector<double>& rpm,
                                          const std::vector<double>& computed,
@@ -597,27 +620,15 @@ AnalysisOutput run_cyclic_forced_response(const model::Model& model,
         // Linear model: scaling every harmonic by A_measured / A_computed reproduces the
         // measured peak; the implied force is the scaled harmonic (thesis sec. 5.2).
         const double scale = pc.measured.amplitude / pc.computed.amplitude;
-        Table f;
-        f.name = "force_scaling";
-        f.title = fmt::format(
-            "Harmonic forces that make the computed peak match the measured one (scale {:.6g})",
-            scale);
-        std::vector<double> nd, eo, used, implied, sc;
+        std::vector<double> nd, eo, used;
         for (std::size_t j = 0; j < orders.size(); ++j) {
           if (order_index >= 0 && static_cast<int>(j) != order_index) continue;
-          const gear::ForceScaling fsc = gear::scale_force_to_peak(pc, force_used[j]);
           nd.push_back(orders[j].nodal_diameter);
           eo.push_back(orders[j].engine_order);
           used.push_back(force_used[j]);
-          implied.push_back(fsc.implied_force_n);
-          sc.push_back(fsc.scale);
         }
-        f.add("nodal_diameter", "", nd);
-        f.add("engine_order", "", eo);
-        f.add("force_used_n", "N", used);
-        f.add("implied_force_n", "N", implied);
-        f.add("scale", "", sc);
-        out.tables.push_back(std::move(f));
+        out.tables.push_back(force_scaling_table(
+            pc, "Harmonic forces", {{"nodal_diameter", nd}, {"engine_order", eo}}, used));
         result = run(scale);
         p.traces.push_back(curve("computed, scaled", rpm, computed_curve(result), "dash"));
         out.notes.push_back(fmt::format(
@@ -821,25 +832,13 @@ AnalysisOutput run_gear_forced_response(const model::Model& model, const fe::Lin
       // and the response scales with them.
       const gear::PeakComparison& pc = mc.peaks[mc.main];
       const double scale = pc.measured.amplitude / pc.computed.amplitude;
-      Table f;
-      f.name = "force_scaling";
-      f.title = fmt::format(
-          "Mesh forces that make the computed peak match the measured one (scale {:.6g})", scale);
-      std::vector<double> order, used, implied, sc;
+      std::vector<double> order, used;
       for (std::size_t j = 0; j < r.harmonics.size(); ++j) {
         if (order_index >= 0 && static_cast<int>(j) != order_index) continue;
-        const gear::ForceScaling fsc =
-            gear::scale_force_to_peak(pc, std::abs(r.harmonics[j].amplitude));
         order.push_back(r.harmonics[j].order);
         used.push_back(std::abs(r.harmonics[j].amplitude));
-        implied.push_back(fsc.implied_force_n);
-        sc.push_back(fsc.scale);
       }
-      f.add("mesh_order", "", order);
-      f.add("force_used_n", "N", used);
-      f.add("implied_force_n", "N", implied);
-      f.add("scale", "", sc);
-      out.tables.push_back(std::move(f));
+      out.tables.push_back(force_scaling_table(pc, "Mesh forces", {{"mesh_order", order}}, used));
       std::vector<double> scaled = computed;
       for (double& v : scaled) v *= scale;
       mc.plot.traces.push_back(curve("computed, scaled", rpm, scaled, "dash"));
