@@ -1,0 +1,95 @@
+#pragma once
+// Harmonic balance of  M q'' + C q' + K q + f_nl(q) = f_ext(t)  for periodic steady states
+// (DESIGN 4.7), with pseudo-arc-length continuation in the excitation frequency.
+//
+// Unknowns: the Fourier coefficients of every DOF, DOF-major: X[d (2H+1) + c] is coefficient c
+// (HarmonicBasis layout [a_0, a_1, b_1, ...]) of DOF d. Residual
+//   R(X, omega) = D(omega) X + F_nl(X) - F_ext,
+// where D(omega) is block diagonal per harmonic n: for the (a_n, b_n) pair of each DOF pair
+//   [ K - (n omega)^2 M    n omega C          ]
+//   [ -n omega C           K - (n omega)^2 M  ]
+// (cos and sin rows), K for n = 0. F_nl and its Jacobian come from a NonlinearForce evaluated by
+// the alternating frequency-time method (harmonic_basis.hpp).
+//
+// Continuation: Keller's pseudo-arc-length method on y = (X, omega): Euler predictor along the
+// unit tangent of R(y) = 0, Newton corrector on R(y) = 0 plus t . (y - y_predicted) = 0, step
+// length adapted to the corrector's iteration count. It passes turning points (folds) of the
+// response curve. A point whose corrector fails at the smallest step is reported (frequency,
+// iterations, residual), never dropped: the curve ends there with Status::NotConverged.
+// Reference: Seydel, "Practical Bifurcation and Stability Analysis", 3rd ed., Springer (2010),
+// ch. 4; Krack & Gross, "Harmonic Balance for Nonlinear Vibration Problems", Springer (2019).
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geardyn/core/status.hpp"
+#include "geardyn/hbm/harmonic_basis.hpp"
+
+namespace geardyn::hbm {
+
+/// F_nl(X) and dF_nl/dX for the coefficient vector X (size n_dof (2H+1)); F and J are sized by
+/// the caller and zero on entry; the force adds its contribution.
+using NonlinearForce = std::function<void(const HarmonicBasis& basis, const Eigen::VectorXd& X,
+                                          Eigen::VectorXd& F, Eigen::MatrixXd& J)>;
+
+/// f = alpha q_dof^3 (a hardening spring for alpha > 0), exact in the AFT when
+/// time_samples > 4H.
+NonlinearForce cubic_spring(int dof, double alpha);
+
+class HarmonicBalance {
+ public:
+  /// M, C, K square of one size n_dof; F_ext of size n_dof (2H+1) in the unknowns' layout.
+  /// Throws InputError on mismatched sizes.
+  HarmonicBalance(Eigen::MatrixXd M, Eigen::MatrixXd C, Eigen::MatrixXd K, HarmonicBasis basis,
+                  std::vector<NonlinearForce> forces, Eigen::VectorXd F_ext);
+
+  int dofs() const { return static_cast<int>(K_.rows()); }
+  /// Number of unknowns n_dof (2H+1).
+  int size() const { return dofs() * basis_.size(); }
+  const HarmonicBasis& basis() const { return basis_; }
+
+  /// R(X, omega); with J non-null also dR/dX, with dR_domega non-null also dR/domega.
+  Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega, Eigen::MatrixXd* J = nullptr,
+                           Eigen::VectorXd* dR_domega = nullptr) const;
+
+  /// Amplitude sqrt(a_n^2 + b_n^2) of harmonic n >= 1 of DOF d in X.
+  double amplitude(const Eigen::VectorXd& X, int dof, int harmonic) const;
+
+ private:
+  Eigen::MatrixXd M_, C_, K_;
+  HarmonicBasis basis_;
+  std::vector<NonlinearForce> forces_;
+  Eigen::VectorXd F_ext_;
+};
+
+struct ContinuationOptions {
+  double omega_start = 0.0;  ///< [rad/s] (any consistent unit)
+  double omega_end = 0.0;
+  double step = 0.01;  ///< first arc-length step (in the scaled (X, omega) norm)
+  double min_step = 1e-7;
+  double max_step = 0.1;
+  int max_points = 20000;
+  double tolerance = 1e-10;  ///< ||R|| <= tolerance * max(1, ||F_ext||)
+  int max_iterations = 20;   ///< Newton iterations per point
+};
+
+struct ContinuationPoint {
+  double omega = 0.0;
+  Eigen::VectorXd X;
+  int iterations = 0;
+  double residual = 0.0;  ///< ||R|| at the converged point
+};
+
+struct ContinuationResult {
+  Status status = Status::Ok;
+  std::string message;  ///< empty when ok; otherwise where and why the curve ended
+  std::vector<ContinuationPoint> points;
+};
+
+/// Traces the periodic solutions from omega_start to omega_end, starting from the guess X0 at
+/// omega_start (corrected by Newton first).
+ContinuationResult continue_in_frequency(const HarmonicBalance& hb, const Eigen::VectorXd& X0,
+                                         const ContinuationOptions& options);
+
+}  // namespace geardyn::hbm
