@@ -27,6 +27,24 @@ NonlinearForce cubic_spring(int dof, double alpha) {
   };
 }
 
+NonlinearForce jenkins_force(int dof_a, int dof_b, JenkinsElement element) {
+  return [dof_a, dof_b, element](const HarmonicBasis& b, const Eigen::VectorXd& X,
+                                 Eigen::VectorXd& F, Eigen::MatrixXd& J) {
+    const int s = b.size();
+    Eigen::VectorXd u = X.segment(dof_a * s, s);
+    if (dof_b >= 0) u -= X.segment(dof_b * s, s);
+    const JenkinsResponse r = jenkins_response(element, b, u);
+    F.segment(dof_a * s, s) += r.coefficients;
+    J.block(dof_a * s, dof_a * s, s, s) += r.jacobian;
+    if (dof_b >= 0) {
+      F.segment(dof_b * s, s) -= r.coefficients;
+      J.block(dof_a * s, dof_b * s, s, s) -= r.jacobian;
+      J.block(dof_b * s, dof_a * s, s, s) -= r.jacobian;
+      J.block(dof_b * s, dof_b * s, s, s) += r.jacobian;
+    }
+  };
+}
+
 HarmonicBalance::HarmonicBalance(Eigen::MatrixXd M, Eigen::MatrixXd C, Eigen::MatrixXd K,
                                  HarmonicBasis basis, std::vector<NonlinearForce> forces,
                                  Eigen::VectorXd F_ext)

@@ -25,6 +25,7 @@
 
 #include "geardyn/core/status.hpp"
 #include "geardyn/hbm/harmonic_basis.hpp"
+#include "geardyn/hbm/jenkins.hpp"
 
 namespace geardyn::hbm {
 
@@ -36,6 +37,11 @@ using NonlinearForce = std::function<void(const HarmonicBasis& basis, const Eige
 /// f = alpha q_dof^3 (a hardening spring for alpha > 0), exact in the AFT when
 /// time_samples > 4H.
 NonlinearForce cubic_spring(int dof, double alpha);
+
+/// A Jenkins friction element (jenkins.hpp) between DOF a and DOF b (b = -1: ground) acting on
+/// the relative displacement u = q_a - q_b: the force T on a, -T on b. Its Jacobian is the
+/// analytic one of jenkins_response.
+NonlinearForce jenkins_force(int dof_a, int dof_b, JenkinsElement element);
 
 class HarmonicBalance {
  public:
