@@ -147,8 +147,7 @@ ContinuationResult continue_in_frequency(const HarmonicBalance& hb, const Eigen:
                      fmt::format("step {}, min {}, max {}, omega {} .. {}", o.step, o.min_step,
                                  o.max_step, o.omega_start, o.omega_end));
   const double direction = o.omega_end > o.omega_start ? 1.0 : -1.0;
-  Eigen::VectorXd F0 = hb.residual(Eigen::VectorXd::Zero(n), o.omega_start);  // -F_ext
-  const double tol = o.tolerance * std::max(1.0, F0.norm());
+  const double tol = o.tolerance * std::max(1.0, hb.external_force().norm());
 
   // First point: Newton in X at omega_start.
   Eigen::VectorXd X = X0;

@@ -54,6 +54,7 @@ class HarmonicBalance {
   /// Number of unknowns n_dof (2H+1).
   int size() const { return dofs() * basis_.size(); }
   const HarmonicBasis& basis() const { return basis_; }
+  const Eigen::VectorXd& external_force() const { return F_ext_; }
 
   /// R(X, omega); with J non-null also dR/dX, with dR_domega non-null also dR/domega.
   Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega, Eigen::MatrixXd* J = nullptr,
