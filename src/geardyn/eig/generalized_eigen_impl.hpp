@@ -41,32 +41,6 @@ using SparseMatrix = Eigen::SparseMatrix<Scalar>;
   throw InputError({}, where, "valid eigen-solver options", found);
 }
 
-/// Options shared by the real and complex solvers, validated once.
-template <class Options>
-std::vector<std::string> validate_common(const Options& o) {
-  std::vector<std::string> problems;
-  if (o.n_modes < 1) problems.push_back(fmt::format("n_modes must be >= 1, found {}", o.n_modes));
-  const bool has_min = !std::isnan(o.band_min), has_max = !std::isnan(o.band_max);
-  if (has_min != has_max) problems.push_back("band_min and band_max must be given together");
-  if (has_min && has_max) {
-    if (!std::isfinite(o.band_min) || !std::isfinite(o.band_max) || !(o.band_max > o.band_min))
-      problems.push_back(fmt::format("band must be finite with band_max > band_min, found [{}, {}]",
-                                     o.band_min, o.band_max));
-    if (!std::isnan(o.shift))
-      problems.push_back("shift and band are exclusive (the band sets the shift)");
-  }
-  if (!std::isnan(o.shift) && !std::isfinite(o.shift))
-    problems.push_back(fmt::format("shift must be finite or NaN (automatic), found {}", o.shift));
-  if (o.dense_limit < 0)
-    problems.push_back(fmt::format("dense_limit must be >= 0, found {}", o.dense_limit));
-  if (o.block_size < 1 || o.block_size > 64)
-    problems.push_back(fmt::format("block_size must be in 1..64, found {}", o.block_size));
-  if (!(o.residual_limit > 0.0))
-    problems.push_back(fmt::format("residual_limit must be > 0, found {}", o.residual_limit));
-  o.krylov.validate(problems);
-  return problems;
-}
-
 /// -1e-6 * min_i (Re K_ii / Re M_ii) over DOFs with both positive (-1e-6 when there are none).
 template <class Scalar>
 double automatic_shift(const SparseMatrix<Scalar>& K, const SparseMatrix<Scalar>& M) {

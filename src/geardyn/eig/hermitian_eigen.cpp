@@ -17,22 +17,6 @@ namespace geardyn::eig {
 using Complex = std::complex<double>;
 using ComplexSparse = Eigen::SparseMatrix<Complex>;
 
-std::vector<std::string> HermitianEigenOptions::validate() const {
-  return detail::validate_common(*this);
-}
-
-double HermitianEigenResult::max_residual() const {
-  return residuals.size() > 0 ? residuals.maxCoeff() : 0.0;
-}
-
-std::string HermitianEigenResult::brief_report() const {
-  return fmt::format(
-      "hermitian eigen: {} ({}), {}/{} modes, sigma={:.4g}, max residual {:.2e}, {} restarts, "
-      "{} solves, status {}{}{}",
-      to_string(method_used), factorization, converged, requested, shift_used, max_residual(),
-      iterations, operations, to_string(status), message.empty() ? "" : ": ", message);
-}
-
 double automatic_shift(const ComplexSparse& K, const ComplexSparse& M) {
   return detail::automatic_shift(K, M);
 }

@@ -33,62 +33,16 @@
 #include <vector>
 
 #include "geardyn/core/status.hpp"
-#include "geardyn/eig/eigen_options.hpp"
+#include "geardyn/eig/generalized_eigen.hpp"
 
 namespace geardyn::eig {
 
-struct HermitianEigenOptions {
-  /// Number of eigenpairs wanted (nearest the shift). In band mode: the first guess of how many
-  /// the band holds (the solver enlarges the request until the band is covered).
-  int n_modes = 10;
-  /// Band of eigenvalues [rad^2/s^2]; both finite: every lambda in [band_min, band_max].
-  double band_min = kNaN;
-  double band_max = kNaN;
-  /// Shift sigma [rad^2/s^2]. NaN: automatic, -1e-6 * min_i (Re K_ii / Re M_ii). In band mode
-  /// sigma = band_min when band_min > 0, else automatic.
-  double shift = kNaN;
-  Method method = Method::Auto;
-  /// Auto uses the dense solver for n <= dense_limit.
-  int dense_limit = 400;
-  /// tolerance: a Ritz value theta of the shift-inverted operator is converged when the M-norm
-  /// of its residual is <= tolerance * |theta|. max_restarts: thick restarts. subspace_size:
-  /// basis size m before a restart; 0: min(n - block_size, max(2 nev + 2 p, nev + 20 + p)).
-  KrylovOptions krylov;
-  /// Lanczos block size p >= 1 (see "Multiple eigenvalues" above).
-  int block_size = 2;
-  /// Seed of the random start block (results are reproducible for a given seed).
-  unsigned seed = 12345;
-  /// A mode whose backward error exceeds this sets Status::NotConverged.
-  double residual_limit = 1e-8;
-
-  /// Every problem with the options, one line each; empty when valid.
-  std::vector<std::string> validate() const;
+/// Block size 2 by default: enough for the double modes of 0 < h < N/2 (see above).
+struct HermitianEigenOptions : GeneralizedEigenOptions {
+  HermitianEigenOptions() { block_size = 2; }
 };
 
-struct HermitianEigenResult {
-  Status status = Status::Failed;
-  std::string message;  ///< empty when ok; otherwise what went wrong and what usually helps
-
-  Eigen::VectorXd eigenvalues;    ///< lambda = omega^2, ascending [rad^2/s^2]
-  Eigen::MatrixXcd eigenvectors;  ///< columns phi, phi^H M phi = 1
-  /// Normwise backward error of each pair (Tisseur 2000, LAA 309:339, Thm 1):
-  ///   eta = ||K phi - lambda M phi|| / ((||K||_1 + |lambda| ||M||_1) ||phi||).
-  Eigen::VectorXd residuals;
-
-  Method method_used = Method::Auto;
-  double shift_used = kNaN;   ///< sigma actually used [rad^2/s^2]
-  std::string factorization;  ///< "cholmod_cholesky", "umfpack_lu", "dense_cholesky_of_M", ...
-  int requested = 0;          ///< n_modes (count mode) or final request (band mode)
-  int converged = 0;          ///< eigenpairs returned
-  int iterations = 0;         ///< thick restarts (all rounds)
-  int operations = 0;         ///< operator applications (solves with the factorisation)
-  int factorizations = 0;
-  double asymmetry = 0.0;  ///< ||K - K^H||_F / ||K||_F; the solver uses (K + K^H) / 2
-  double max_residual() const;
-
-  /// One line: method, modes found/asked, max residual, counters.
-  std::string brief_report() const;
-};
+using HermitianEigenResult = GeneralizedEigenResult<Eigen::MatrixXcd>;
 
 /// Solves K phi = lambda M phi for Hermitian K, M (a non-Hermitian input is replaced by its
 /// Hermitian part and `asymmetry` records by how much). Throws InputError for invalid options or

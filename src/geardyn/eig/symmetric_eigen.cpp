@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/eig/generalized_eigen_impl.hpp"
@@ -36,21 +37,43 @@ void KrylovOptions::validate(std::vector<std::string>& problems) const {
     problems.push_back(fmt::format("krylov.subspace_size must be >= 0, found {}", subspace_size));
 }
 
-std::vector<std::string> SymmetricEigenOptions::validate() const {
-  return detail::validate_common(*this);
+std::vector<std::string> GeneralizedEigenOptions::validate() const {
+  std::vector<std::string> problems;
+  if (n_modes < 1) problems.push_back(fmt::format("n_modes must be >= 1, found {}", n_modes));
+  const bool has_min = !std::isnan(band_min), has_max = !std::isnan(band_max);
+  if (has_min != has_max) problems.push_back("band_min and band_max must be given together");
+  if (has_min && has_max) {
+    if (!std::isfinite(band_min) || !std::isfinite(band_max) || !(band_max > band_min))
+      problems.push_back(fmt::format("band must be finite with band_max > band_min, found [{}, {}]",
+                                     band_min, band_max));
+    if (!std::isnan(shift))
+      problems.push_back("shift and band are exclusive (the band sets the shift)");
+  }
+  if (!std::isnan(shift) && !std::isfinite(shift))
+    problems.push_back(fmt::format("shift must be finite or NaN (automatic), found {}", shift));
+  if (dense_limit < 0)
+    problems.push_back(fmt::format("dense_limit must be >= 0, found {}", dense_limit));
+  if (block_size < 1 || block_size > 64)
+    problems.push_back(fmt::format("block_size must be in 1..64, found {}", block_size));
+  if (!(residual_limit > 0.0))
+    problems.push_back(fmt::format("residual_limit must be > 0, found {}", residual_limit));
+  krylov.validate(problems);
+  return problems;
 }
 
-double SymmetricEigenResult::max_residual() const {
-  return residuals.size() > 0 ? residuals.maxCoeff() : 0.0;
-}
-
-std::string SymmetricEigenResult::brief_report() const {
+template <class Vectors>
+std::string GeneralizedEigenResult<Vectors>::brief_report() const {
+  constexpr bool real = std::is_same_v<typename Vectors::Scalar, double>;
   return fmt::format(
-      "symmetric eigen: {} ({}), {}/{} modes, sigma={:.4g}, max residual {:.2e}, {} restarts, "
+      "{} eigen: {} ({}), {}/{} modes, sigma={:.4g}, max residual {:.2e}, {} restarts, "
       "{} solves, status {}{}{}",
-      to_string(method_used), factorization, converged, requested, shift_used, max_residual(),
-      iterations, operations, to_string(status), message.empty() ? "" : ": ", message);
+      real ? "symmetric" : "hermitian", to_string(method_used), factorization, converged, requested,
+      shift_used, max_residual(), iterations, operations, to_string(status),
+      message.empty() ? "" : ": ", message);
 }
+
+template struct GeneralizedEigenResult<Eigen::MatrixXd>;
+template struct GeneralizedEigenResult<Eigen::MatrixXcd>;
 
 double automatic_shift(const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M) {
   return detail::automatic_shift(K, M);
