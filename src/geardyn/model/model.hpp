@@ -558,6 +558,26 @@ enum class AnalysisType {
   GearForcedResponse
 };
 
+/// The model-file name (`type = "..."`) of each AnalysisType, in enum order.
+inline constexpr std::array<const char*, 15> kAnalysisTypeNames = {"modal",
+                                                                   "campbell",
+                                                                   "harmonic",
+                                                                   "unbalance",
+                                                                   "transient",
+                                                                   "sweep",
+                                                                   "solid_modal",
+                                                                   "cyclic_modal",
+                                                                   "reduction",
+                                                                   "gear_pair",
+                                                                   "mesh_force",
+                                                                   "mesh_harmonics",
+                                                                   "correlation",
+                                                                   "cyclic_forced_response",
+                                                                   "gear_forced_response"};
+static_assert(kAnalysisTypeNames.size() ==
+                  static_cast<std::size_t>(AnalysisType::GearForcedResponse) + 1,
+              "one name per AnalysisType");
+
 struct Analysis {
   std::string name;
   AnalysisType type = AnalysisType::Modal;

@@ -1192,21 +1192,6 @@ void Resolver::check_damping() {
 
 constexpr const char* kQuantityNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
                                           "peak_location", "amplitude_at"};
-constexpr const char* kAnalysisTypeNames[] = {"modal",
-                                              "campbell",
-                                              "harmonic",
-                                              "unbalance",
-                                              "transient",
-                                              "sweep",
-                                              "solid_modal",
-                                              "cyclic_modal",
-                                              "reduction",
-                                              "gear_pair",
-                                              "mesh_force",
-                                              "mesh_harmonics",
-                                              "correlation",
-                                              "cyclic_forced_response",
-                                              "gear_forced_response"};
 
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own

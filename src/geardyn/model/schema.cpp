@@ -1078,21 +1078,7 @@ void finish_output(SweepOutput& o, const TableContext& t) {
 // ---------------------------------------------------------------------------------------------
 // The table
 
-const std::vector<std::string> kAnalysisTypes = {"modal",
-                                                 "campbell",
-                                                 "harmonic",
-                                                 "unbalance",
-                                                 "transient",
-                                                 "sweep",
-                                                 "solid_modal",
-                                                 "cyclic_modal",
-                                                 "reduction",
-                                                 "gear_pair",
-                                                 "mesh_force",
-                                                 "mesh_harmonics",
-                                                 "correlation",
-                                                 "cyclic_forced_response",
-                                                 "gear_forced_response"};
+const std::vector<std::string> kAnalysisTypes(kAnalysisTypeNames.begin(), kAnalysisTypeNames.end());
 
 void set_analysis_type(Analysis& a, const FieldValue& v) {
   constexpr AnalysisType kTypes[] = {AnalysisType::Modal,
