@@ -19,6 +19,7 @@
 #include <numbers>
 #include <string>
 
+#include "bench_sector.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
 #include "geardyn/meshio/matrix_market.hpp"
@@ -27,27 +28,6 @@
 namespace {
 
 using namespace geardyn;
-
-// Keep identical to sector_params() in bench/solid_bench.cpp: one sector of N = 10 of a z = 40,
-// m = 4.5 mm steel spur gear (the blank of tests/meshgen/gear_sector_test.cpp without the damper
-// ring), quadratic tets; free-free (six rigid-body modes among the 30).
-meshgen::GearSectorParams sector_params(double global_size, double tooth_size) {
-  meshgen::GearSectorParams p;
-  p.num_sectors = 10;
-  p.num_teeth = 40;
-  p.bore_radius = 0.020;
-  p.hub_outer_radius = 0.035;
-  p.hub_width = 0.040;
-  p.web_thickness = 0.008;
-  p.rim_inner_radius = 0.070;
-  p.face_width = 0.030;
-  p.tooth.module = 0.0045;
-  p.mesh.global = global_size;
-  p.mesh.tooth = tooth_size;
-  p.mesh.element_order = 2;
-  p.gear_material = {"steel", 1, 210e9, 0.3, 7850, {}};
-  return p;
-}
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
@@ -60,12 +40,12 @@ int main(int argc, char** argv) {
   }
   try {
     const std::filesystem::path folder = argv[1];
-    const double global_size = argc == 4 ? std::stod(argv[2]) : 0.0020;
-    const double tooth_size = argc == 4 ? std::stod(argv[3]) : 0.0013;
+    const double global_size = argc == 4 ? std::stod(argv[2]) : bench::kFineSizes[0];
+    const double tooth_size = argc == 4 ? std::stod(argv[3]) : bench::kFineSizes[1];
     std::filesystem::create_directories(folder);
 
     auto t0 = std::chrono::steady_clock::now();
-    const solid::Mesh mesh = meshgen::gear_sector(sector_params(global_size, tooth_size));
+    const solid::Mesh mesh = meshgen::gear_sector(bench::sector_params(global_size, tooth_size));
     const double mesh_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     solid::AssemblyOptions ao;

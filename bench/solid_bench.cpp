@@ -16,6 +16,7 @@
 #include <numbers>
 #include <utility>
 
+#include "bench_sector.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -71,27 +72,6 @@ BENCHMARK(BM_AssembleBox)
     ->MeasureProcessCPUTime();
 
 // ---------------------------------------------------------------------------------------------
-// The gear sector: one sector of N = 10 of a z = 40, m = 4.5 mm steel spur gear (the blank of
-// tests/meshgen/gear_sector_test.cpp without the damper ring), quadratic tets, free-free.
-// Keep identical to sector_params() in bench/export_matrices.cpp.
-
-meshgen::GearSectorParams sector_params(double global_size, double tooth_size) {
-  meshgen::GearSectorParams p;
-  p.num_sectors = 10;
-  p.num_teeth = 40;
-  p.bore_radius = 0.020;
-  p.hub_outer_radius = 0.035;
-  p.hub_width = 0.040;
-  p.web_thickness = 0.008;
-  p.rim_inner_radius = 0.070;
-  p.face_width = 0.030;
-  p.tooth.module = 0.0045;
-  p.mesh.global = global_size;
-  p.mesh.tooth = tooth_size;
-  p.mesh.element_order = 2;
-  p.gear_material = kSteel;
-  return p;
-}
 
 // Mesh sizes [m] (global, tooth): 0 "coarse" (2.7e4 DOFs), 1 "fine" (2.7e5 DOFs, the sector
 // of bench/export_matrices.cpp and of the scipy comparison).
@@ -103,14 +83,14 @@ struct SectorModel {
 const SectorModel& sector(int size_index) {
   static std::map<int, SectorModel> cache;
   static const std::pair<double, double> kSizes[] = {
-      {0.0060, 0.0030},  // 0 coarse
-      {0.0020, 0.0013},  // 1 fine
+      {bench::kCoarseSizes[0], bench::kCoarseSizes[1]},  // 0 coarse
+      {bench::kFineSizes[0], bench::kFineSizes[1]},      // 1 fine
   };
   auto it = cache.find(size_index);
   if (it == cache.end()) {
     const auto [global, tooth] = kSizes[size_index];
     SectorModel model;
-    model.mesh = meshgen::gear_sector(sector_params(global, tooth));
+    model.mesh = meshgen::gear_sector(bench::sector_params(global, tooth));
     model.system = solid::assemble(model.mesh);
     it = cache.emplace(size_index, std::move(model)).first;
   }
