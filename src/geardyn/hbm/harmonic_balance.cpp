@@ -3,14 +3,18 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wnull-dereference"
 #include <Eigen/Dense>
+#include <complex>
 #pragma GCC diagnostic pop
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/hbm/condensed.hpp"
 #include "geardyn/hbm/harmonic_balance.hpp"
 
 namespace geardyn::hbm {
@@ -115,117 +119,442 @@ double HarmonicBalance::amplitude(const Eigen::VectorXd& X, int dof, int harmoni
                     X[base + HarmonicBasis::sin_index(harmonic)]);
 }
 
+double HarmonicBalance::residual_scale(const Eigen::VectorXd&, double) const {
+  return std::max(1.0, F_ext_.norm());
+}
+
 namespace {
 
-// Unit tangent of R(X, omega) = 0 at y, oriented along `previous`.
-Eigen::VectorXd tangent(const Eigen::MatrixXd& J, const Eigen::VectorXd& dR_domega,
-                        const Eigen::VectorXd& previous) {
-  const auto n = J.rows();
-  Eigen::MatrixXd A(n + 1, n + 1);
-  A.topLeftCorner(n, n) = J;
-  A.topRightCorner(n, 1) = dR_domega;
-  A.bottomRows(1) = previous.transpose();
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + 1);
-  rhs[n] = 1.0;
-  Eigen::VectorXd t = A.partialPivLu().solve(rhs);
+// The problem in the scaled unknowns y = (X / x_scale, omega / omega_scale).
+class Scaled {
+ public:
+  Scaled(const HarmonicSystem& hb, const ContinuationOptions& o)
+      : hb_(hb), xs_(o.x_scale), ws_(o.omega_scale), tolerance_(o.tolerance) {}
+  int size() const { return hb_.size(); }
+  double x_scale() const { return xs_; }
+  double omega_scale() const { return ws_; }
+  double omega(const Eigen::VectorXd& y) const { return y[size()] * ws_; }
+  Eigen::VectorXd X(const Eigen::VectorXd& y) const { return y.head(size()) * xs_; }
+  Eigen::VectorXd pack(const Eigen::VectorXd& X, double omega) const {
+    Eigen::VectorXd y(size() + 1);
+    y << X / xs_, omega / ws_;
+    return y;
+  }
+  // R and the Jacobian [dR/dy] (n x (n + 1)).
+  Eigen::VectorXd residual(const Eigen::VectorXd& y, Eigen::MatrixXd* A) const {
+    if (!A) return hb_.residual(X(y), omega(y));
+    Eigen::MatrixXd J;
+    Eigen::VectorXd dRw;
+    Eigen::VectorXd R = hb_.residual(X(y), omega(y), &J, &dRw);
+    A->resize(size(), size() + 1);
+    A->leftCols(size()) = J * xs_;
+    A->col(size()) = dRw * ws_;
+    return R;
+  }
+  double tolerance(const Eigen::VectorXd& y) const {
+    return tolerance_ * hb_.residual_scale(X(y), omega(y));
+  }
+
+ private:
+  const HarmonicSystem& hb_;
+  double xs_, ws_, tolerance_;
+};
+
+// The linear algebra of the continuation: R(y), and solves with the Jacobian A = dR/dy
+// (n x (n + 1)) of the last point linearized, either alone with omega fixed (A_X d = rhs, border
+// empty) or bordered by a row b ([A; b^T] d = rhs). `target` bounds the residual of the first n
+// rows (units of R) that an iterative solver must reach; direct solvers ignore it.
+class NewtonAlgebra {
+ public:
+  virtual ~NewtonAlgebra() = default;
+  virtual Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) = 0;
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& border, const Eigen::VectorXd& rhs,
+                                double target) = 0;
+};
+
+// Any HarmonicSystem: its dense Jacobian and a partial-pivoting LU per solve.
+class DenseAlgebra final : public NewtonAlgebra {
+ public:
+  DenseAlgebra(const Scaled& p, CondensedStatistics* statistics)
+      : p_(p), statistics_(statistics) {}
+  Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) override {
+    return p_.residual(y, linearize ? &A_ : nullptr);
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& border, const Eigen::VectorXd& rhs,
+                        double) override {
+    const double started = statistics_ ? CondensedStatistics::now() : 0.0;
+    const auto n = A_.rows();
+    Eigen::VectorXd d;
+    if (border.size() == 0) {
+      d = A_.leftCols(n).partialPivLu().solve(rhs);
+    } else {
+      Eigen::MatrixXd B(n + 1, n + 1);
+      B.topRows(n) = A_;
+      B.bottomRows(1) = border.transpose();
+      d = B.partialPivLu().solve(rhs);
+    }
+    if (statistics_) {
+      ++statistics_->linear_solves;
+      ++statistics_->dense_factorizations;
+      statistics_->linear_algebra_seconds += CondensedStatistics::now() - started;
+    }
+    return d;
+  }
+
+ private:
+  const Scaled& p_;
+  CondensedStatistics* statistics_;
+  Eigen::MatrixXd A_;
+};
+
+struct Krylov {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+};
+
+// Right-preconditioned GMRES (the flexible variant, which keeps the preconditioned vectors) on
+// A x = b from the given x, until ||b - A x|| <= target or max_iterations. Right preconditioning
+// makes the monitored residual the true one of A x = b (checked explicitly at the end of each
+// cycle), which is what the Newton tolerance is about. Orthogonalisation: classical Gram-Schmidt
+// applied twice (as stable as modified Gram-Schmidt, in matrix-vector products).
+// Reference: Saad, "Iterative Methods for Sparse Linear Systems", 2nd ed., SIAM (2003), alg. 9.6.
+template <class Operator, class Preconditioner>
+Krylov gmres(const Operator& A, const Preconditioner& M, const Eigen::VectorXd& b,
+             Eigen::VectorXd& x, double target, int max_iterations) {
+  Krylov out;
+  const auto n = b.size();
+  Eigen::VectorXd r = x.isZero(0.0) ? b : Eigen::VectorXd(b - A(x));
+  out.residual = r.norm();
+  while (out.residual > target && out.iterations < max_iterations && std::isfinite(out.residual)) {
+    const int m = max_iterations - out.iterations;
+    Eigen::MatrixXd V(n, m + 1), Z(n, m), Hm = Eigen::MatrixXd::Zero(m + 1, m);
+    Eigen::VectorXd cs(m), sn(m), g = Eigen::VectorXd::Zero(m + 1), w, h, h2;
+    g[0] = out.residual;
+    V.col(0) = r / out.residual;
+    int j = 0;
+    while (j < m) {
+      Z.col(j) = M(V.col(j));
+      w = A(Z.col(j));
+      h.noalias() = V.leftCols(j + 1).transpose() * w;
+      w.noalias() -= V.leftCols(j + 1) * h;
+      h2.noalias() = V.leftCols(j + 1).transpose() * w;
+      w.noalias() -= V.leftCols(j + 1) * h2;
+      h += h2;
+      const double next = w.norm();
+      Hm.col(j).head(j + 1) = h;
+      Hm(j + 1, j) = next;
+      if (next > 0.0) V.col(j + 1) = w / next;
+      for (int i = 0; i < j; ++i) {
+        const double a = Hm(i, j), c = Hm(i + 1, j);
+        Hm(i, j) = cs[i] * a + sn[i] * c;
+        Hm(i + 1, j) = -sn[i] * a + cs[i] * c;
+      }
+      const double rho = std::hypot(Hm(j, j), Hm(j + 1, j));
+      cs[j] = rho > 0.0 ? Hm(j, j) / rho : 1.0;
+      sn[j] = rho > 0.0 ? Hm(j + 1, j) / rho : 0.0;
+      Hm(j, j) = rho;
+      Hm(j + 1, j) = 0.0;
+      g[j + 1] = -sn[j] * g[j];
+      g[j] *= cs[j];
+      ++j;
+      ++out.iterations;
+      if (std::abs(g[j]) <= target || next == 0.0 || !(rho > 0.0)) break;
+    }
+    const Eigen::VectorXd y =
+        Hm.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
+    if (!y.allFinite()) break;
+    x.noalias() += Z.leftCols(j) * y;
+    r = b - A(x);
+    const double previous = out.residual;
+    out.residual = r.norm();
+    if (!(out.residual < previous)) break;  // stagnation: no progress in a whole cycle
+  }
+  out.converged = out.residual <= target;
+  return out;
+}
+
+// A CondensedHarmonicBalance built from LocalForce: J_X applied from its parts
+// (CondensedJacobian), the (bordered) systems solved by GMRES, preconditioned by the
+// Sherman-Morrison-Woodbury inverse of CondensedPreconditioner kept from an earlier Newton point
+// and rebuilt only when GMRES slows (a chord-like reuse: the capacitance LU is the only
+// factorisation, of the size of the modal basis, not of N). When even a fresh one does not
+// bring GMRES to the target (a residual flexibility strongly coupling the clusters), it falls
+// back to the LU of the dense J, kept and reused the same way.
+class CondensedAlgebra final : public NewtonAlgebra {
+ public:
+  CondensedAlgebra(const CondensedHarmonicBalance& hb, const Scaled& p) : hb_(hb), p_(p) {}
+
+  Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) override {
+    // The elements' march yields the Jacobian with the forces, so every residual is linearized:
+    // the line search's accepted trial is the next Newton point and is not evaluated again.
+    if (!(last_ && last_y_.size() == y.size() && last_y_ == y)) {
+      last_ = std::make_shared<const CondensedJacobian>(hb_.linearize(p_.X(y), p_.omega(y)));
+      last_y_ = y;
+    }
+    if (linearize && kept_ != last_) {
+      kept_ = last_;
+      ++kept_id_;
+    }
+    return last_->residual();
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& border, const Eigen::VectorXd& rhs,
+                        double target) override {
+    CondensedStatistics* stats = hb_.statistics();
+    const double started = stats ? CondensedStatistics::now() : 0.0;
+    const CondensedJacobian& J = *kept_;
+    const int n = p_.size();
+    const bool bordered = border.size() > 0;
+    const double xs = p_.x_scale(), ws = p_.omega_scale();
+    // The border row is weighted by x_scale, which puts its residual in the units of R.
+    const double sigma = xs;
+    const Eigen::VectorXd a = ws * J.omega_derivative();
+    auto op = [&](const Eigen::VectorXd& v) {
+      Eigen::VectorXd out(v.size());
+      out.head(n) = xs * J.apply(v.head(n));
+      if (bordered) {
+        out.head(n) += a * v[n];
+        out[n] = sigma * border.dot(v);
+      }
+      return out;
+    };
+    Eigen::VectorXd b = rhs;
+    if (bordered) b[n] *= sigma;
+    const double goal = std::max(target, kRelativeFloor * b.norm());
+
+    if (!built_ || stale_) build();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
+    Krylov k = run(op, b, x, border, a, goal);
+    if (!k.converged && built_id_ != kept_id_) {
+      build();
+      k = run(op, b, x, border, a, goal);
+    }
+    if (!k.converged && !dense_) {
+      dense_ = true;
+      build();
+      k = run(op, b, x, border, a, goal);
+    }
+    stale_ = k.iterations > kRebuildAfter;
+    if (bordered) x += border * ((rhs[n] - border.dot(x)) / border.squaredNorm());
+    if (stats) {
+      ++stats->linear_solves;
+      stats->linear_algebra_seconds += CondensedStatistics::now() - started;
+    }
+    return x;
+  }
+
+ private:
+  // GMRES iterations of one attempt; a solve that needed more rebuilds the preconditioner
+  // at the next one (one build costs about as much as this many iterations).
+  static constexpr int kMaxIterations = 40;
+  static constexpr int kRebuildAfter = 8;
+  // No solve is asked to go below rounding.
+  static constexpr double kRelativeFloor = 1e-13;
+
+  // M^{-1} r ~ J_X^{-1} r from the current preconditioner.
+  Eigen::VectorXd inverse(const Eigen::VectorXd& r) const {
+    return dense_ ? Eigen::VectorXd(dense_lu_.solve(r)) : woodbury_->solve(r);
+  }
+
+  void build() {
+    CondensedStatistics* stats = hb_.statistics();
+    if (!dense_) {
+      woodbury_ = std::make_unique<CondensedPreconditioner>(hb_, *kept_);
+      if (stats) ++stats->preconditioner_builds;
+      if (woodbury_->status() != Status::Ok) dense_ = true;
+    }
+    if (dense_) {
+      dense_lu_.compute(kept_->dense());
+      if (stats) ++stats->dense_factorizations;
+    }
+    built_ = true;
+    stale_ = false;
+    built_id_ = kept_id_;
+  }
+
+  // GMRES with the preconditioner of the bordered matrix [[A_X, a], [sigma b_X^T, sigma b_w]]
+  // by block elimination with M in place of A_X: p = M^{-1} a, Schur complement
+  // sigma (b_w - b_X . p).
+  template <class Operator>
+  Krylov run(const Operator& op, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+             const Eigen::VectorXd& border, const Eigen::VectorXd& a, double goal) {
+    const int n = p_.size();
+    const double xs = p_.x_scale(), sigma = xs;
+    Krylov k;
+    if (border.size() == 0) {
+      k = gmres(op, [&](const Eigen::VectorXd& r) -> Eigen::VectorXd { return inverse(r) / xs; },
+                b, x, goal, kMaxIterations);
+    } else {
+      const Eigen::VectorXd pa = inverse(a) / xs;
+      const Eigen::VectorXd bx = border.head(n);
+      const double bw = border[n];
+      const double schur = sigma * (bw - bx.dot(pa));
+      const bool usable =
+          std::isfinite(schur) && std::abs(schur) > 1e-14 * sigma * (std::abs(bw) + bx.norm() * pa.norm());
+      k = gmres(
+          op,
+          [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
+            Eigen::VectorXd out(n + 1);
+            const Eigen::VectorXd u = inverse(r.head(n)) / xs;
+            if (usable) {
+              out[n] = (r[n] - sigma * bx.dot(u)) / schur;
+              out.head(n) = u - pa * out[n];
+            } else {
+              out.head(n) = u;
+              out[n] = bw != 0.0 ? r[n] / (sigma * bw) : 0.0;
+            }
+            return out;
+          },
+          b, x, goal, kMaxIterations);
+    }
+    if (CondensedStatistics* stats = hb_.statistics()) stats->krylov_iterations += k.iterations;
+    return k;
+  }
+
+  const CondensedHarmonicBalance& hb_;
+  const Scaled& p_;
+  std::shared_ptr<const CondensedJacobian> last_, kept_;
+  Eigen::VectorXd last_y_;
+  long kept_id_ = 0, built_id_ = -1;
+  bool built_ = false, stale_ = false, dense_ = false;
+  std::unique_ptr<CondensedPreconditioner> woodbury_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
+};
+
+std::unique_ptr<NewtonAlgebra> newton_algebra(const HarmonicSystem& hb, const Scaled& p) {
+  const auto* condensed = dynamic_cast<const CondensedHarmonicBalance*>(&hb);
+  if (condensed && condensed->has_local_forces())
+    return std::make_unique<CondensedAlgebra>(*condensed, p);
+  return std::make_unique<DenseAlgebra>(p, condensed ? condensed->statistics() : nullptr);
+}
+
+// Unit tangent of R(y) = 0 at the last point linearized, oriented along `previous`.
+Eigen::VectorXd tangent(const Scaled& p, NewtonAlgebra& algebra, const Eigen::VectorXd& previous) {
+  const auto n = previous.size() - 1;
+  // |t| ~ 1 before normalising: a residual 1e-11 x_scale is 1e-11 of A t's terms.
+  Eigen::VectorXd t =
+      algebra.solve(previous, Eigen::VectorXd::Unit(n + 1, n), 1e-11 * p.x_scale());
   t.normalize();
   if (t.dot(previous) < 0.0) t = -t;
   return t;
 }
 
+struct Corrected {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;
+};
+
+// Newton on [R(z); t . (z - z0)] = 0 (t empty: omega fixed, X alone), with a backtracking line
+// search on ||R|| (the constraint is linear, so every full or partial step keeps it satisfied
+// once it holds). The algebra keeps the linearization at the final z.
+Corrected correct(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
+                  const Eigen::VectorXd& t, const Eigen::VectorXd& z0, int max_iterations) {
+  const int n = p.size();
+  Corrected c;
+  Eigen::VectorXd R = algebra.residual(z, true);
+  for (;; ++c.iterations) {
+    const double arc = t.size() ? t.dot(z - z0) : 0.0;
+    c.residual = R.norm();
+    const double tolerance = p.tolerance(z);
+    if (c.residual <= tolerance && std::abs(arc) <= 1e-12 * std::max(1.0, z.norm())) {
+      c.converged = true;
+      return c;
+    }
+    if (c.iterations >= max_iterations || !R.allFinite()) return c;
+    // An iterative solve leaves at most 1 % of the tolerance in the linear residual, so the
+    // Newton iterates, their count and the converged points are those of an exact solve.
+    const double target = 0.01 * tolerance;
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(n + 1);
+    if (t.size()) {
+      Eigen::VectorXd rhs(n + 1);
+      rhs << R, arc;
+      delta = algebra.solve(t, rhs, target);
+    } else {
+      delta.head(n) = algebra.solve(Eigen::VectorXd(), R, target);
+    }
+    if (!delta.allFinite()) return c;
+    double alpha = 1.0;
+    Eigen::VectorXd trial = z - delta;
+    Eigen::VectorXd R_trial = algebra.residual(trial, false);
+    for (int halvings = 0; halvings < 4 && !(R_trial.norm() < c.residual); ++halvings) {
+      alpha *= 0.5;
+      trial = z - alpha * delta;
+      R_trial = algebra.residual(trial, false);
+    }
+    z = trial;
+    R = algebra.residual(z, true);
+  }
+}
+
 }  // namespace
 
-ContinuationResult continue_in_frequency(const HarmonicBalance& hb, const Eigen::VectorXd& X0,
+ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::VectorXd& X0,
                                          const ContinuationOptions& o) {
   ContinuationResult out;
   const int n = hb.size();
   if (X0.size() != n)
     throw InputError({}, "X0", fmt::format("{} coefficients", n), std::to_string(X0.size()));
-  if (!(o.step > 0.0 && o.min_step > 0.0 && o.max_step >= o.step && o.omega_end != o.omega_start))
+  if (!(o.step > 0.0 && o.min_step > 0.0 && o.max_step >= o.step && o.omega_end != o.omega_start &&
+        o.x_scale > 0.0 && o.omega_scale > 0.0))
     throw InputError({}, "continuation",
-                     "0 < min_step, 0 < step <= max_step and omega_end != omega_start",
-                     fmt::format("step {}, min {}, max {}, omega {} .. {}", o.step, o.min_step,
-                                 o.max_step, o.omega_start, o.omega_end));
+                     "0 < min_step, 0 < step <= max_step, omega_end != omega_start and positive "
+                     "scales",
+                     fmt::format("step {}, min {}, max {}, omega {} .. {}, scales {} and {}",
+                                 o.step, o.min_step, o.max_step, o.omega_start, o.omega_end,
+                                 o.x_scale, o.omega_scale));
   const double direction = o.omega_end > o.omega_start ? 1.0 : -1.0;
-  const double tol = o.tolerance * std::max(1.0, hb.external_force().norm());
+  const Scaled p(hb, o);
+  const std::unique_ptr<NewtonAlgebra> algebra = newton_algebra(hb, p);
 
   // First point: Newton in X at omega_start.
-  Eigen::VectorXd X = X0;
-  Eigen::MatrixXd J;
-  Eigen::VectorXd dRw;
-  int it = 0;
-  Eigen::VectorXd R = hb.residual(X, o.omega_start, &J, &dRw);
-  while (R.norm() > tol && it < o.max_iterations) {
-    X -= J.partialPivLu().solve(R);
-    R = hb.residual(X, o.omega_start, &J, &dRw);
-    ++it;
-  }
-  if (!(R.norm() <= tol)) {
+  Eigen::VectorXd y = p.pack(X0, o.omega_start);
+  Corrected c = correct(p, *algebra, y, Eigen::VectorXd(), y, o.max_iterations);
+  if (!c.converged) {
     out.status = Status::NotConverged;
     out.message = fmt::format(
         "no periodic solution found at the start frequency {:.6g}: residual {:.3e} after {} "
         "Newton iterations; start from a better guess or a frequency away from resonance",
-        o.omega_start, R.norm(), it);
+        o.omega_start, c.residual, c.iterations);
     return out;
   }
-  out.points.push_back({o.omega_start, X, it, R.norm()});
+  out.points.push_back({o.omega_start, p.X(y), c.iterations, c.residual});
 
-  Eigen::VectorXd y(n + 1);
-  y << X, o.omega_start;
-  Eigen::VectorXd t_prev = Eigen::VectorXd::Zero(n + 1);
-  t_prev[n] = direction;
-  Eigen::VectorXd t = tangent(J, dRw, t_prev);
+  Eigen::VectorXd t_prev = Eigen::VectorXd::Unit(n + 1, n) * direction;
+  Eigen::VectorXd t = tangent(p, *algebra, t_prev);
   double step = o.step;
   while (static_cast<int>(out.points.size()) < o.max_points) {
     const Eigen::VectorXd predicted = y + step * t;
     Eigen::VectorXd z = predicted;
-    bool converged = false;
-    int iterations = 0;
-    double res = 0.0;
-    for (; iterations < o.max_iterations; ++iterations) {
-      R = hb.residual(z.head(n), z[n], &J, &dRw);
-      const double arc = t.dot(z - predicted);
-      res = R.norm();
-      if (res <= tol && std::abs(arc) <= 1e-12 * std::max(1.0, z.norm())) {
-        converged = true;
-        break;
-      }
-      Eigen::MatrixXd A(n + 1, n + 1);
-      A.topLeftCorner(n, n) = J;
-      A.topRightCorner(n, 1) = dRw;
-      A.bottomRows(1) = t.transpose();
-      Eigen::VectorXd rhs(n + 1);
-      rhs << R, arc;
-      z -= A.partialPivLu().solve(rhs);
-      if (!z.allFinite()) break;
-    }
-    if (!converged) {
+    c = correct(p, *algebra, z, t, predicted, o.max_iterations);
+    if (!c.converged) {
       step *= 0.5;
       if (step < o.min_step) {
         out.status = Status::NotConverged;
         out.message = fmt::format(
             "continuation stopped at frequency {:.8g}: the corrector did not converge at the "
             "smallest step {:.1e} (residual {:.3e} after {} iterations); a bifurcation or a "
-            "non-smooth point is likely there -- lower min_step or raise max_iterations",
-            y[n], o.min_step, res, iterations);
+            "non-smooth point is likely there -- lower min_step, raise max_iterations or the "
+            "number of time samples",
+            p.omega(y), o.min_step, c.residual, c.iterations);
         return out;
       }
       continue;
     }
-    const Eigen::VectorXd t_new = tangent(J, dRw, t);
+    t = tangent(p, *algebra, t);
     y = z;
-    t = t_new;
-    out.points.push_back({y[n], y.head(n), iterations, res});
-    if (direction * (y[n] - o.omega_end) >= 0.0) break;
-    if (iterations <= 3)
+    out.points.push_back({p.omega(y), p.X(y), c.iterations, c.residual});
+    if (direction * (p.omega(y) - o.omega_end) >= 0.0) break;
+    if (c.iterations <= 3)
       step = std::min(1.5 * step, o.max_step);
-    else if (iterations > 6)
+    else if (c.iterations > 6)
       step *= 0.5;
   }
-  if (direction * (y[n] - o.omega_end) < 0.0) {
+  if (direction * (p.omega(y) - o.omega_end) < 0.0) {
     out.status = Status::NotConverged;
-    out.message =
-        fmt::format("continuation reached max_points = {} at frequency {:.8g}", o.max_points, y[n]);
+    out.message = fmt::format("continuation reached max_points = {} at frequency {:.8g}",
+                              o.max_points, p.omega(y));
   }
   return out;
 }

@@ -43,7 +43,25 @@ NonlinearForce cubic_spring(int dof, double alpha);
 /// analytic one of jenkins_response.
 NonlinearForce jenkins_force(int dof_a, int dof_b, JenkinsElement element);
 
-class HarmonicBalance {
+/// A harmonic-balance problem R(X, omega) = 0 in the unknowns X (Fourier coefficients in the
+/// HarmonicBasis layout, DOF-major): what continue_in_frequency traces. HarmonicBalance below is
+/// the form with physical M, C, K; CondensedHarmonicBalance (condensed.hpp) the form with the
+/// linear receptance at the nonlinear coordinates.
+class HarmonicSystem {
+ public:
+  virtual ~HarmonicSystem() = default;
+  /// Number of unknowns.
+  virtual int size() const = 0;
+  /// R(X, omega); with J non-null also dR/dX, with dR_domega non-null also dR/domega.
+  virtual Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega,
+                                   Eigen::MatrixXd* J = nullptr,
+                                   Eigen::VectorXd* dR_domega = nullptr) const = 0;
+  /// The magnitude against which ||R|| is judged converged (a force for the physical form, a
+  /// displacement for the receptance form), at (X, omega); > 0.
+  virtual double residual_scale(const Eigen::VectorXd& X, double omega) const = 0;
+};
+
+class HarmonicBalance final : public HarmonicSystem {
  public:
   /// M, C, K square of one size n_dof; F_ext of size n_dof (2H+1) in the unknowns' layout.
   /// Throws InputError on mismatched sizes.
@@ -52,13 +70,18 @@ class HarmonicBalance {
 
   int dofs() const { return static_cast<int>(K_.rows()); }
   /// Number of unknowns n_dof (2H+1).
-  int size() const { return dofs() * basis_.size(); }
+  int size() const override { return dofs() * basis_.size(); }
   const HarmonicBasis& basis() const { return basis_; }
   const Eigen::VectorXd& external_force() const { return F_ext_; }
 
   /// R(X, omega); with J non-null also dR/dX, with dR_domega non-null also dR/domega.
   Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega, Eigen::MatrixXd* J = nullptr,
-                           Eigen::VectorXd* dR_domega = nullptr) const;
+                           Eigen::VectorXd* dR_domega = nullptr) const override;
+  /// max(1, ||F_ext||): forces in the model's units.
+  double residual_scale(const Eigen::VectorXd& X, double omega) const override;
+  const Eigen::MatrixXd& mass() const { return M_; }
+  const Eigen::MatrixXd& damping() const { return C_; }
+  const Eigen::MatrixXd& stiffness() const { return K_; }
 
   /// Amplitude sqrt(a_n^2 + b_n^2) of harmonic n >= 1 of DOF d in X.
   double amplitude(const Eigen::VectorXd& X, int dof, int harmonic) const;
@@ -73,11 +96,16 @@ class HarmonicBalance {
 struct ContinuationOptions {
   double omega_start = 0.0;  ///< [rad/s] (any consistent unit)
   double omega_end = 0.0;
+  /// The arc length is measured in y = (X / x_scale, omega / omega_scale): choose the scales so
+  /// that a typical response amplitude and the frequency range are both of order one, or the
+  /// steps follow one of them only and turning points are cut.
+  double x_scale = 1.0;
+  double omega_scale = 1.0;
   double step = 0.01;  ///< first arc-length step (in the scaled (X, omega) norm)
   double min_step = 1e-7;
   double max_step = 0.1;
   int max_points = 20000;
-  double tolerance = 1e-10;  ///< ||R|| <= tolerance * max(1, ||F_ext||)
+  double tolerance = 1e-10;  ///< ||R|| <= tolerance * HarmonicSystem::residual_scale
   int max_iterations = 20;   ///< Newton iterations per point
 };
 
@@ -96,7 +124,7 @@ struct ContinuationResult {
 
 /// Traces the periodic solutions from omega_start to omega_end, starting from the guess X0 at
 /// omega_start (corrected by Newton first).
-ContinuationResult continue_in_frequency(const HarmonicBalance& hb, const Eigen::VectorXd& X0,
+ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::VectorXd& X0,
                                          const ContinuationOptions& options);
 
 }  // namespace geardyn::hbm
