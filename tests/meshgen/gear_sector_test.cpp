@@ -18,6 +18,7 @@
 #include <set>
 #include <tuple>
 
+#include "meshgen/damper_gear.hpp"
 #include "mesh_checks.hpp"
 
 namespace geardyn::meshgen {
@@ -26,26 +27,7 @@ namespace {
 using test::radius;
 using test::rotate_z;
 
-GearSectorParams damper_gear(int order = 2) {
-  GearSectorParams p;
-  p.num_sectors = 10;
-  p.num_teeth = 40;
-  p.bore_radius = 0.020;
-  p.hub_outer_radius = 0.035;
-  p.hub_width = 0.040;
-  p.web_thickness = 0.008;
-  p.rim_inner_radius = 0.070;
-  p.face_width = 0.030;
-  p.tooth.module = 0.0045;
-  p.groove = GrooveParams{0.009, 0.008, 0.004, RingParams{0.006, 0.009, 0.005}};
-  p.mesh.global = 0.010;
-  p.mesh.tooth = 0.003;
-  p.mesh.groove = 0.002;
-  p.mesh.element_order = order;
-  p.gear_material = {"steel", 1, 210e9, 0.3, 7850, {}};
-  p.ring_material = {"ring steel", 2, 200e9, 0.29, 7800, {}};
-  return p;
-}
+using test::damper_gear;
 
 // Generated once: each mesh takes about a second.
 const solid::Mesh& quadratic_mesh() {

@@ -1,0 +1,185 @@
+#pragma once
+// Damper ring in a gear-web groove: the friction-damped forced response of a cyclic gear to one
+// engine order of its tooth force, by harmonic balance condensed to the contact coordinates
+// (DESIGN 4.6-4.7; damper-ring thesis, /work/shared/references/000, ch. 4 and sec. 5.3).
+//
+// Model. One sector of the gear and one sector of the split ring (one mesh, two bodies, no
+// elements between them: meshgen::gear_sector with a groove) joined only by node-to-node friction
+// contacts at the coincident node pairs of the groove's contact face. Pairs on the right sector
+// interface are the left pairs of the next sector and are dropped (each contact counted once).
+// Cyclic symmetry: the excitation of engine order k has the pattern of nodal diameter h
+// (k = +-h mod N, forced/cyclic_forced_response.hpp); harmonic n of the periodic response at
+// w = k W carries the pattern of engine order n k, i.e. nodal diameter m = n k mod N (used
+// directly for m <= N/2, as the conjugate pattern of N - m otherwise).
+//
+// Contact coordinates per pair, from the relative displacement d = x_ring - x_gear in the
+// cylindrical frame of the pair's position (e_r outwards, e_theta = e_z x e_r, e_z the axis):
+//   v = e_r . d (the ring pressed outwards onto the groove bottom: approach > 0),
+//   2D contact:  u = cos(psi) e_theta . d + sin(psi) e_z . d  (psi the inclination of the ring's
+//                slip direction from the circumferential one, thesis sec. 4.2),
+//   3D contact:  u_1 = e_theta . d, u_2 = e_z . d.
+// Law: hbm/friction_contact.hpp (normal load N = max(N_0 + k_n v, 0), Coulomb slip with elastic
+// stick k_t, lift-off), with the centrifugal preload of the split ring shared by the contacts,
+//   N_0(W) = m_ring W^2 r_G / (N n_pairs),
+// m_ring the whole ring's mass, r_G the radius of its centre of mass (thesis sec. 4.3.1), and W
+// the speed: the preload follows the speed along the curve (W = w / k).
+//
+// Linear structure: per harmonic the modal receptance of the sector at its nodal diameter
+// (n_modes modes, modal damping zeta) plus the residual flexibility of the modes left out,
+// computed once per nodal diameter from (K_m - sigma M_m)^{-1} at the small negative shift sigma
+// of the eigen-solver (so a free ring's rigid-body modes are admitted); the mean (harmonic 0) is
+// held at the preloaded equilibrium (hbm/condensed.hpp). Limits: mu -> infinity is the linear
+// structure with the ring stuck by the contact springs; mu = 0 (or N_0 = 0 with k_n = 0) leaves
+// the gear alone (its linear response: the ring is not excited).
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/cyclic/cyclic_symmetry.hpp"
+#include "geardyn/forced/cyclic_forced_response.hpp"
+#include "geardyn/hbm/condensed.hpp"
+#include "geardyn/hbm/friction_contact.hpp"
+
+namespace geardyn::damper {
+
+struct ContactPair {
+  long gear_node = 0;
+  long ring_node = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< of the gear node [m]
+};
+
+struct ContactPairing {
+  std::vector<ContactPair> pairs;  ///< independent pairs (right-interface ones dropped)
+  int dropped_on_right_interface = 0;
+  double worst_gap = 0.0;  ///< largest distance between the nodes of a pair [m]
+  long worst_gear_node = 0;
+};
+
+/// Pairs each gear contact node with the ring contact node at the same position (within
+/// `tolerance` [m]); pairs whose gear node is a right-interface node of `interfaces` are dropped.
+/// Throws InputError (key `key`) when the sets differ in size, a node has no DOFs, or a gear node
+/// has no ring node within tolerance (the worst pair and its gap are named).
+ContactPairing pair_contact_nodes(const std::vector<solid::DofInfo>& dofs,
+                                  const std::vector<long>& gear_nodes,
+                                  const std::vector<long>& ring_nodes,
+                                  const cyclic::SectorInterfaces& interfaces, double tolerance,
+                                  const std::string& key);
+
+/// The sector interfaces of two bodies meshed together (gear and ring): each body's left nodes
+/// paired with its own right nodes (the contact twins on the sector edges coincide, so one
+/// nearest-node search over both bodies could pair a gear node with a ring node), merged. Nodes
+/// without DOFs (e.g. the clamped bore) are skipped. Throws InputError as cyclic::find_interfaces.
+cyclic::SectorInterfaces two_body_interfaces(const std::vector<solid::DofInfo>& dofs,
+                                             const cyclic::InterfaceOptions& options,
+                                             const std::vector<long>& gear_left,
+                                             const std::vector<long>& gear_right,
+                                             const std::vector<long>& ring_left,
+                                             const std::vector<long>& ring_right);
+
+struct ContactLaw {
+  int tangential_directions = 1;  ///< 1: 2D contact (v, u); 2: 3D contact (v, u_theta, u_z)
+  double inclination = 0.0;       ///< psi [rad] of the 2D contact's slip direction
+  double normal_stiffness = 0.0;      ///< k_n per contact pair [N/m]
+  double tangential_stiffness = 0.0;  ///< k_t per contact pair [N/m]
+  double friction_coefficient = 0.0;  ///< mu
+};
+
+struct DamperRingProblem {
+  Eigen::SparseMatrix<double> K, M;  ///< sector of gear and ring, rows in sector.dofs() order
+  std::optional<cyclic::CyclicSector> sector;  ///< required
+  std::vector<ContactPair> pairs;
+  ContactLaw contact;
+  double ring_mass = 0.0;    ///< whole ring [kg]
+  double ring_radius = 0.0;  ///< r_G, radius of the ring's centre of mass [m]
+  int nodal_diameter = 0;
+  int engine_order = 1;
+  forced::ToothLoad load;  ///< F_k at the excitation node of sector 0
+  std::vector<forced::CyclicSensor> sensors;
+  forced::ModalDamping damping;
+  int n_modes = 20;      ///< per nodal diameter
+  int harmonics = 1;     ///< H
+  int time_samples = 0;  ///< per period (0: hbm::default_time_samples(H))
+};
+
+/// The condensed model, built once: receptances per harmonic and the contact elements.
+struct DamperRingModel {
+  int n_sectors = 0;
+  int nodal_diameter = 0;
+  int engine_order = 1;
+  ContactLaw contact;
+  std::vector<ContactPair> pairs;
+  int coordinates_per_pair = 2;
+  double preload_per_speed_squared = 0.0;  ///< N_0 / W^2 = m_ring r_G / (N n_pairs) [kg m]
+  hbm::HarmonicBasis basis{1, 64};
+  std::vector<hbm::ModalReceptance> receptances;  ///< harmonic 0..H
+  std::vector<int> harmonic_diameter;             ///< nodal diameter of each harmonic
+  std::vector<bool> harmonic_conjugate;           ///< the conjugate pattern (N - m)
+  std::vector<std::string> sensor_names;
+  std::vector<std::string> notes;
+
+  int coordinates() const { return coordinates_per_pair * static_cast<int>(pairs.size()); }
+  /// N_0 at speed W [rad/s].
+  double preload(double speed) const { return preload_per_speed_squared * speed * speed; }
+  /// The harmonic-balance problem with the contacts' law (preload following the speed).
+  hbm::CondensedHarmonicBalance system(const ContactLaw& law) const;
+  /// Harmonic-1 sensor amplitudes of the linear structure at speed W: ring free (no contact
+  /// forces) or stuck (the contacts as linear springs k_n, k_t).
+  Eigen::VectorXcd free_response(double speed) const;
+  Eigen::VectorXcd stuck_response(double speed) const;
+};
+
+/// Throws InputError for inconsistent input (no pairs, h / k mismatch, bad damping, law values);
+/// NumericalError when the modes of a nodal diameter cannot be computed.
+DamperRingModel build_damper_ring_model(const DamperRingProblem& problem,
+                                        Progress& progress = null_progress());
+
+struct DamperRingOptions {
+  double speed_min = 0.0;  ///< [rad/s]
+  double speed_max = 0.0;
+  int linear_points = 400;  ///< speeds of the linear (free / stuck) curves
+  double max_step = 0.02;   ///< continuation step, relative to the speed range and amplitude
+  double tolerance = 1e-9;
+  std::vector<int> hysteresis_pairs;  ///< pair indices whose loops are kept at the peak
+};
+
+struct DampedPoint {
+  double speed = 0.0;                 ///< W [rad/s]
+  Eigen::VectorXd amplitude;          ///< harmonic-1 amplitude per sensor [m]
+  Eigen::VectorXd peak;               ///< largest |x(t)| over the period per sensor [m]
+  double energy_per_cycle = 0.0;      ///< dissipated by the whole ring per cycle of w [J]
+  double stick = 0.0, slip = 0.0, lift_off = 0.0;  ///< fractions over pairs and samples
+  int iterations = 0;
+  bool loops_closed = true;
+};
+
+struct HysteresisLoop {
+  int pair = 0;
+  Eigen::VectorXd slip;    ///< u over the period [m] (first tangential coordinate)
+  Eigen::VectorXd force;   ///< T [N]
+  Eigen::VectorXd normal;  ///< N [N]
+};
+
+struct DamperRingResult {
+  Status status = Status::Ok;
+  std::string message;
+  std::vector<DampedPoint> damped;
+  Eigen::VectorXd linear_speeds;
+  Eigen::MatrixXd free_amplitude, stuck_amplitude;  ///< linear_speeds x sensors
+  int peak_point = -1;  ///< index in `damped` of the largest sensor-0 amplitude
+  std::vector<HysteresisLoop> loops;  ///< at the peak
+  /// Per pair at the peak: stick, slip, lift-off fractions and energy per cycle.
+  Eigen::MatrixXd pair_states;
+  Eigen::VectorXd pair_energy;
+};
+
+/// Traces the damped response over [speed_min, speed_max] by continuation and evaluates the
+/// linear references. A continuation that stops early is returned with its status and message
+/// (the points reached are kept).
+DamperRingResult run_damper_ring(const DamperRingModel& model, const DamperRingOptions& options,
+                                 Progress& progress = null_progress());
+
+}  // namespace geardyn::damper
