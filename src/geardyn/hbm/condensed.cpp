@@ -48,9 +48,9 @@ struct CondensedHarmonicBalance::Structure {
     int columns() const { return static_cast<int>(U.cols()); }
   };
   std::vector<Cluster> clusters;
-  std::vector<int> force_cluster;                 // per force
-  std::vector<std::vector<int>> force_local;      // per force: local index of each coordinate
-  std::vector<Modal> modal;                       // per harmonic
+  std::vector<int> force_cluster;             // per force
+  std::vector<std::vector<int>> force_local;  // per force: local index of each coordinate
+  std::vector<Modal> modal;                   // per harmonic
   int capacity = 0;
   bool residual_couples_clusters = false;
 };
@@ -106,26 +106,31 @@ void ModalReceptance::validate(Eigen::Index n_c, const char* what) const {
   auto fail = [&](const std::string& expected, const std::string& found) {
     throw InputError({}, what, expected, found);
   };
-  if (damping_ratio.size() != m) fail(fmt::format("{} damping ratios", m), fmt::format("{}", damping_ratio.size()));
+  if (damping_ratio.size() != m)
+    fail(fmt::format("{} damping ratios", m), fmt::format("{}", damping_ratio.size()));
   if (left.rows() != n_c || left.cols() != m || right.rows() != n_c || right.cols() != m)
     fail(fmt::format("left and right shapes of {} coordinates x {} modes", n_c, m),
          fmt::format("{}x{} and {}x{}", left.rows(), left.cols(), right.rows(), right.cols()));
   if (residual.size() && (residual.rows() != n_c || residual.cols() != n_c))
-    fail(fmt::format("a residual of {0}x{0}", n_c), fmt::format("{}x{}", residual.rows(), residual.cols()));
+    fail(fmt::format("a residual of {0}x{0}", n_c),
+         fmt::format("{}x{}", residual.rows(), residual.cols()));
   if (modal_excitation.size() && modal_excitation.size() != m)
     fail(fmt::format("{} modal excitations", m), fmt::format("{}", modal_excitation.size()));
   if (residual_excitation.size() && residual_excitation.size() != n_c)
-    fail(fmt::format("{} residual excitations", n_c), fmt::format("{}", residual_excitation.size()));
+    fail(fmt::format("{} residual excitations", n_c),
+         fmt::format("{}", residual_excitation.size()));
   if (sensor_left.size() && sensor_left.cols() != m)
     fail(fmt::format("sensor shapes of {} modes", m), fmt::format("{}", sensor_left.cols()));
-  if (sensor_residual.size() && (sensor_residual.rows() != sensors() || sensor_residual.cols() != n_c))
+  if (sensor_residual.size() &&
+      (sensor_residual.rows() != sensors() || sensor_residual.cols() != n_c))
     fail(fmt::format("a sensor residual of {}x{}", sensors(), n_c),
          fmt::format("{}x{}", sensor_residual.rows(), sensor_residual.cols()));
   for (Eigen::Index r = 0; r < m; ++r)
     if (!(natural_frequency[r] >= 0.0 && std::isfinite(natural_frequency[r]) &&
           damping_ratio[r] >= 0.0 && std::isfinite(damping_ratio[r])))
-      fail("finite natural frequencies and damping ratios >= 0",
-           fmt::format("mode {}: {} rad/s, zeta {}", r + 1, natural_frequency[r], damping_ratio[r]));
+      fail(
+          "finite natural frequencies and damping ratios >= 0",
+          fmt::format("mode {}: {} rad/s, zeta {}", r + 1, natural_frequency[r], damping_ratio[r]));
 }
 
 namespace {
@@ -166,20 +171,37 @@ inline int b_row(int d, int n_c) { return n_c + d; }
 
 }  // namespace
 
-LocalForce local_friction_contact(std::vector<int> coordinates, FrictionContact contact) {
+LocalForce local_friction_contact(std::vector<int> coordinates, FrictionContact contact,
+                                  double preload_per_omega_squared) {
   validate(contact);
   const std::size_t count = static_cast<std::size_t>(1 + contact.tangential_directions);
   if (coordinates.size() != count)
     throw InputError({}, "coordinates",
                      fmt::format("{} coordinates (normal, then {} tangential)", count, count - 1),
                      fmt::format("{} indices", coordinates.size()));
+  const double c = preload_per_omega_squared;
+  if (!(c >= 0.0 && std::isfinite(c)))
+    throw InputError({}, "preload_per_omega_squared", "a finite coefficient >= 0 [N s^2]",
+                     fmt::format("{}", c));
+  if (c > 0.0 && !(contact.normal_stiffness > 0.0))
+    throw InputError({}, "normal_stiffness", "k_n > 0 N/m for a preload that follows the frequency",
+                     fmt::format("{}", contact.normal_stiffness));
   LocalForce f;
   f.coordinates = std::move(coordinates);
-  f.evaluate = [contact](const HarmonicBasis& b, const Eigen::VectorXd& w, double,
-                         Eigen::VectorXd& force, Eigen::MatrixXd* J, Eigen::VectorXd*) {
-    const ContactResponse r = friction_contact_response(contact, b, w);
+  f.evaluate = [contact, c](const HarmonicBasis& b, const Eigen::VectorXd& w, double omega,
+                            Eigen::VectorXd& force, Eigen::MatrixXd* J,
+                            Eigen::VectorXd* df_domega) {
+    FrictionContact law = contact;
+    law.normal_preload += c * omega * omega;
+    const ContactResponse r = friction_contact_response(law, b, w);
     force += r.coefficients;
     if (J) *J += r.jacobian;
+    if (df_domega && c > 0.0) {
+      // df/dN_0 = J e / k_n - e (e: the a_0 of v, the first unknown), dN_0/domega = 2 c omega.
+      Eigen::VectorXd df = r.jacobian.col(0) / law.normal_stiffness;
+      df[0] -= 1.0;
+      *df_domega += (2.0 * c * omega) * df;
+    }
   };
   return f;
 }
@@ -199,9 +221,10 @@ CondensedHarmonicBalance::CondensedHarmonicBalance(int coordinates, HarmonicBasi
       forces_(std::move(forces)) {
   if (n_c_ < 1) throw InputError({}, "coordinates", "at least 1", std::to_string(n_c_));
   if (static_cast<int>(harmonics_.size()) != basis_.harmonics() + 1)
-    throw InputError({}, "harmonics", fmt::format("{} receptances (harmonics 0..{})",
-                                                  basis_.harmonics() + 1, basis_.harmonics()),
-                     std::to_string(harmonics_.size()));
+    throw InputError(
+        {}, "harmonics",
+        fmt::format("{} receptances (harmonics 0..{})", basis_.harmonics() + 1, basis_.harmonics()),
+        std::to_string(harmonics_.size()));
   for (std::size_t n = 0; n < harmonics_.size(); ++n) {
     const auto& h = harmonics_[n];
     // An empty harmonic-0 entry (no modes, no residual) fixes the mean; give it its size.
@@ -264,7 +287,8 @@ CondensedHarmonicBalance::CondensedHarmonicBalance(int coordinates, HarmonicBasi
   }
   std::vector<int> cluster_of(static_cast<std::size_t>(n_c_), -1);
   for (std::size_t k = 0; k < st->clusters.size(); ++k)
-    for (int d : st->clusters[k].coordinates) cluster_of[static_cast<std::size_t>(d)] = static_cast<int>(k);
+    for (int d : st->clusters[k].coordinates)
+      cluster_of[static_cast<std::size_t>(d)] = static_cast<int>(k);
 
   // Real form of the modal sums.
   for (int n = 0; n <= basis_.harmonics(); ++n) {
@@ -324,8 +348,7 @@ CondensedHarmonicBalance::CondensedHarmonicBalance(int coordinates, HarmonicBasi
   structure_ = std::move(st);
 }
 
-Eigen::VectorXcd CondensedHarmonicBalance::complex_harmonic(const Eigen::VectorXd& v,
-                                                            int n) const {
+Eigen::VectorXcd CondensedHarmonicBalance::complex_harmonic(const Eigen::VectorXd& v, int n) const {
   const int s = basis_.size();
   Eigen::VectorXcd z(n_c_);
   for (int d = 0; d < n_c_; ++d)
@@ -347,8 +370,7 @@ Eigen::VectorXd CondensedHarmonicBalance::nonlinear_forces(const Eigen::VectorXd
 }
 
 void CondensedHarmonicBalance::evaluate_local(const Eigen::VectorXd& X, double omega,
-                                              Eigen::VectorXd& F,
-                                              std::vector<Eigen::MatrixXd>* J,
+                                              Eigen::VectorXd& F, std::vector<Eigen::MatrixXd>* J,
                                               Eigen::VectorXd* dF) const {
   const double started = statistics_ ? CondensedStatistics::now() : 0.0;
   const int s = basis_.size();
@@ -374,10 +396,11 @@ void CondensedHarmonicBalance::evaluate_local(const Eigen::VectorXd& X, double o
     local_forces_[i].evaluate(basis_, w, omega, f, J ? &Jf : nullptr, dF ? &df : nullptr);
     if (f.size() != q * s || (J && (Jf.rows() != q * s || Jf.cols() != q * s)) ||
         (dF && df.size() != q * s))
-      throw InputError({}, fmt::format("forces[{}].evaluate", i),
-                       fmt::format("f and df/domega of {0} and J of {0}x{0} values, as given", q * s),
-                       fmt::format("{}, {} and {}x{}", f.size(), dF ? df.size() : 0,
-                                   J ? Jf.rows() : 0, J ? Jf.cols() : 0));
+      throw InputError(
+          {}, fmt::format("forces[{}].evaluate", i),
+          fmt::format("f and df/domega of {0} and J of {0}x{0} values, as given", q * s),
+          fmt::format("{}, {} and {}x{}", f.size(), dF ? df.size() : 0, J ? Jf.rows() : 0,
+                      J ? Jf.cols() : 0));
     for (int j = 0; j < q; ++j) {
       const int row = coordinates[static_cast<std::size_t>(j)] * s;
       F.segment(row, s) += f.segment(j * s, s);
@@ -388,8 +411,8 @@ void CondensedHarmonicBalance::evaluate_local(const Eigen::VectorXd& X, double o
       const auto& local = st.force_local[i];
       for (int a = 0; a < q; ++a)
         for (int b = 0; b < q; ++b)
-          G.block(local[static_cast<std::size_t>(a)] * s, local[static_cast<std::size_t>(b)] * s,
-                  s, s) += Jf.block(a * s, b * s, s, s);
+          G.block(local[static_cast<std::size_t>(a)] * s, local[static_cast<std::size_t>(b)] * s, s,
+                  s) += Jf.block(a * s, b * s, s, s);
     }
   }
   if (statistics_) statistics_->element_seconds += CondensedStatistics::now() - started;
@@ -572,8 +595,8 @@ double CondensedHarmonicBalance::residual_scale(const Eigen::VectorXd& X, double
   return s > 0.0 ? s : 1e-30;
 }
 
-Eigen::VectorXcd CondensedHarmonicBalance::sensor_response(const Eigen::VectorXd& X,
-                                                           double omega, int n) const {
+Eigen::VectorXcd CondensedHarmonicBalance::sensor_response(const Eigen::VectorXd& X, double omega,
+                                                           int n) const {
   const Eigen::VectorXcd f = complex_harmonic(nonlinear_forces(X, omega), n);
   return harmonics_.at(static_cast<std::size_t>(n)).sensor_response(n * omega, f);
 }
@@ -600,8 +623,8 @@ Eigen::VectorXd CondensedJacobian::apply(const Eigen::VectorXd& v) const {
     const ModalReceptance& rec = sys.harmonics_[static_cast<std::size_t>(n)];
     if (rec.modes() == 0 && rec.residual.size() == 0) continue;
     const Eigen::VectorXcd f = sys.complex_harmonic(q, n);
-    Eigen::VectorXcd r = rec.left * factors_[static_cast<std::size_t>(n)].cwiseProduct(
-                                        rec.right.adjoint() * f);
+    Eigen::VectorXcd r =
+        rec.left * factors_[static_cast<std::size_t>(n)].cwiseProduct(rec.right.adjoint() * f);
     if (rec.residual.size()) r.noalias() += rec.residual * f;
     const int ca = HarmonicBasis::cos_index(n), sb = HarmonicBasis::sin_index(n);
     for (int d = 0; d < n_c; ++d) {
@@ -666,6 +689,27 @@ CondensedPreconditioner::CondensedPreconditioner(const CondensedHarmonicBalance&
   const auto& st = *system.structure_;
   const int s = system.basis_.size(), n_c = system.n_c_, N = system.size();
   exact_ = !st.residual_couples_clusters;
+  // Operation counts of a build and of one application of J and M^{-1} (rebuild_cost).
+  double build = 0.0, apply = 0.0;
+  {
+    const double k = st.capacity;
+    for (int n = 0; n <= system.basis_.harmonics(); ++n) {
+      const ModalReceptance& rec = system.harmonics_[static_cast<std::size_t>(n)];
+      const double rows = n == 0 ? n_c : 2.0 * n_c,
+                   columns = st.modal[static_cast<std::size_t>(n)].columns();
+      build += 2.0 * columns * rows * k;
+      apply += 8.0 * n_c * static_cast<double>(rec.modes()) * 2.0 + 4.0 * rows * columns;
+      if (rec.residual.size()) apply += 8.0 * n_c * n_c;
+    }
+    build += 2.0 / 3.0 * k * k * k;
+    apply += 2.0 * k * k;
+    for (const auto& c : st.clusters) {
+      const double coordinates = static_cast<double>(c.coordinates.size()), q = coordinates * s;
+      build += (c.residual.size() ? 4.0 * q * q * q : 0.0) + 4.0 * q * coordinates * k;
+      apply += (c.residual.size() ? 8.0 : 4.0) * q * q;
+    }
+  }
+  rebuild_cost_ = build / std::max(apply, 1.0);
   // B = J_nl (I + R_b J_nl)^{-1}, cluster by cluster.
   B_.resize(st.clusters.size());
   for (std::size_t k = 0; k < st.clusters.size(); ++k) {
@@ -757,7 +801,8 @@ Eigen::VectorXd CondensedPreconditioner::solve(const Eigen::VectorXd& r) const {
       if (Rb.size() == 0) continue;
       local.noalias() = Rb * product;
       for (int i = 0; i < nk; ++i)
-        out.segment(coordinates[static_cast<std::size_t>(i)] * s, s) += sign * local.segment(i * s, s);
+        out.segment(coordinates[static_cast<std::size_t>(i)] * s, s) +=
+            sign * local.segment(i * s, s);
     }
   };
   // u = (I - R_b B) r, q = B r.

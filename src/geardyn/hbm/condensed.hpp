@@ -29,6 +29,15 @@
 // Sensors: rows S = G_s phi_r and residual rows R_s give any response z_s = S diag(1/d)
 // (p - V^H f) + r_s - R_s f from the solved forces (recovery).
 //
+// Element-local forces (LocalForce) are the fast form: dF_nl/dX is kept as one small block per
+// element (per cluster of elements sharing coordinates) and H as its modal sum plus residual, so
+// the Newton matrix I + H dF_nl/dX (N = n_coordinates (2H + 1) square, dense) is never formed.
+// continue_in_frequency solves with it by GMRES, preconditioned by the exact inverse (Sherman-
+// Morrison-Woodbury identity, CondensedPreconditioner) of the same matrix without the residual
+// flexibility that couples different elements, built at an earlier Newton point and reused while
+// it pays: the only factorisation is of the size of the modal basis. Each Newton iteration then
+// costs O(N k + n_coordinates^2 H) (k: twice the modes of all harmonics) instead of O(N^3).
+//
 // Reference: the receptance ("FRF-based") condensation is the standard one of friction-damping
 // codes, e.g. Petrov & Ewins, "Analytical formulation of friction interface elements for
 // analysis of nonlinear multi-harmonic vibrations of bladed disks", J. Turbomach. 125 (2003)
@@ -46,12 +55,12 @@
 namespace geardyn::hbm {
 
 struct ModalReceptance {
-  Eigen::VectorXd natural_frequency;  ///< w_r [rad/s], >= 0
-  Eigen::VectorXd damping_ratio;      ///< zeta_r >= 0
-  Eigen::MatrixXcd left;              ///< U: coordinates x modes
-  Eigen::MatrixXcd right;             ///< V: coordinates x modes
-  Eigen::MatrixXcd residual;          ///< R_res: coordinates x coordinates; empty: none
-  Eigen::VectorXcd modal_excitation;  ///< p: modes; empty: no excitation
+  Eigen::VectorXd natural_frequency;     ///< w_r [rad/s], >= 0
+  Eigen::VectorXd damping_ratio;         ///< zeta_r >= 0
+  Eigen::MatrixXcd left;                 ///< U: coordinates x modes
+  Eigen::MatrixXcd right;                ///< V: coordinates x modes
+  Eigen::MatrixXcd residual;             ///< R_res: coordinates x coordinates; empty: none
+  Eigen::VectorXcd modal_excitation;     ///< p: modes; empty: no excitation
   Eigen::VectorXcd residual_excitation;  ///< r_res: coordinates; empty: none
   // Sensors (optional).
   Eigen::MatrixXcd sensor_left;                 ///< S: sensors x modes
@@ -80,7 +89,7 @@ struct ModalReceptance {
 /// dF/domega when dF_domega is non-null (sized and zero on entry). J may be null (forces only).
 using FrequencyDependentForce =
     std::function<void(const HarmonicBasis& basis, const Eigen::VectorXd& X, double omega,
-                        Eigen::VectorXd& F, Eigen::MatrixXd* J, Eigen::VectorXd* dF_domega)>;
+                       Eigen::VectorXd& F, Eigen::MatrixXd* J, Eigen::VectorXd* dF_domega)>;
 
 /// A nonlinear element acting on a few coordinates: w holds their coefficients coordinate-major
 /// (w[j * (2H+1) + c] for the j-th listed coordinate); it writes f (same layout, sized and zero on
@@ -96,22 +105,27 @@ struct LocalForce {
 
 /// `contact` (friction_contact.hpp) on the coordinates [normal, tangential...] (1 +
 /// tangential_directions distinct indices >= 0; InputError otherwise, and for an invalid
-/// contact), with its exact AFT Jacobian; frequency-independent (df/domega = 0).
-LocalForce local_friction_contact(std::vector<int> coordinates, FrictionContact contact);
+/// contact), with its exact AFT Jacobian. With preload_per_omega_squared = c != 0 the normal
+/// preload follows the frequency, N_0(omega) = contact.normal_preload + c omega^2 (a centrifugal
+/// preload; c finite >= 0, and k_n > 0), and df/domega is exact too: N_0 enters the law only
+/// through N_0 + k_n v, so f(w; N_0 + delta) = f(w + delta / k_n e; N_0) - delta e, e the unit
+/// vector of the mean a_0 of v, hence df/dN_0 = J e / k_n - e (no extra march).
+LocalForce local_friction_contact(std::vector<int> coordinates, FrictionContact contact,
+                                  double preload_per_omega_squared = 0.0);
 
 /// Work counters and CPU times (of the calling thread) of a CondensedHarmonicBalance and of the
 /// continuation that traces it, for benchmarks and profiling. Filled only while attached with
 /// CondensedHarmonicBalance::set_statistics; not synchronised: attach it only while one thread
 /// uses the system.
 struct CondensedStatistics {
-  long residual_evaluations = 0;   ///< R(X, omega), with or without the linearization
-  long linearizations = 0;         ///< of them, with the element Jacobians and dR/domega
-  double element_seconds = 0.0;    ///< nonlinear elements (the AFT: march, transforms, Jacobians)
-  double receptance_seconds = 0.0; ///< modal factors, H f, x_lin and their omega derivatives
-  long linear_solves = 0;          ///< Newton and tangent systems solved by the continuation
-  long krylov_iterations = 0;      ///< GMRES iterations over all solves
-  long preconditioner_builds = 0;  ///< factorised capacitance matrices (size: the modes)
-  long dense_factorizations = 0;   ///< LU of an N x N Jacobian (the general path, or fallback)
+  long residual_evaluations = 0;    ///< R(X, omega), with or without the linearization
+  long linearizations = 0;          ///< of them, with the element Jacobians and dR/domega
+  double element_seconds = 0.0;     ///< nonlinear elements (the AFT: march, transforms, Jacobians)
+  double receptance_seconds = 0.0;  ///< modal factors, H f, x_lin and their omega derivatives
+  long linear_solves = 0;           ///< Newton and tangent systems solved by the continuation
+  long krylov_iterations = 0;       ///< GMRES iterations over all solves
+  long preconditioner_builds = 0;   ///< factorised capacitance matrices (size: the modes)
+  long dense_factorizations = 0;    ///< LU of an N x N Jacobian (the general path, or fallback)
   double linear_algebra_seconds = 0.0;  ///< all linear solves, builds and factorisations
 
   /// CPU time of the calling thread [s], the clock of these statistics.
@@ -205,7 +219,7 @@ class CondensedHarmonicBalance final : public HarmonicSystem {
 /// term), against O(N^2) for a dense J. Keeps a reference to the system: must not outlive it.
 class CondensedJacobian {
  public:
-  const Eigen::VectorXd& residual() const { return R_; }          ///< R(X, omega)
+  const Eigen::VectorXd& residual() const { return R_; }                  ///< R(X, omega)
   const Eigen::VectorXd& omega_derivative() const { return dR_domega_; }  ///< dR/domega
   double omega() const { return omega_; }
   /// J v.
@@ -249,6 +263,9 @@ class CondensedPreconditioner {
   bool exact() const { return exact_; }
   /// Number of capacitance columns k.
   int capacity() const { return static_cast<int>(capacitance_.rows()); }
+  /// Floating-point operations of building it over those of one application of J and of
+  /// M^{-1}: the Krylov iterations a rebuild must save to pay for itself.
+  double rebuild_cost() const { return rebuild_cost_; }
   /// M^{-1} r.
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const;
 
@@ -260,6 +277,7 @@ class CondensedPreconditioner {
   Eigen::MatrixXd capacitance_;     // I + D V^T B U
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   std::vector<Eigen::VectorXcd> factors_;  // D per harmonic
+  double rebuild_cost_ = 0.0;
 };
 
 }  // namespace geardyn::hbm

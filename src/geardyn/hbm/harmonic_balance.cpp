@@ -175,8 +175,7 @@ class NewtonAlgebra {
 // Any HarmonicSystem: its dense Jacobian and a partial-pivoting LU per solve.
 class DenseAlgebra final : public NewtonAlgebra {
  public:
-  DenseAlgebra(const Scaled& p, CondensedStatistics* statistics)
-      : p_(p), statistics_(statistics) {}
+  DenseAlgebra(const Scaled& p, CondensedStatistics* statistics) : p_(p), statistics_(statistics) {}
   Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) override {
     return p_.residual(y, linearize ? &A_ : nullptr);
   }
@@ -210,24 +209,26 @@ class DenseAlgebra final : public NewtonAlgebra {
 struct Krylov {
   bool converged = false;
   int iterations = 0;
-  double residual = 0.0;
+  double initial = 0.0;   // ||b - A x|| at the start
+  double residual = 0.0;  // and at the end
 };
 
 // Right-preconditioned GMRES (the flexible variant, which keeps the preconditioned vectors) on
-// A x = b from the given x, until ||b - A x|| <= target or max_iterations. Right preconditioning
-// makes the monitored residual the true one of A x = b (checked explicitly at the end of each
-// cycle), which is what the Newton tolerance is about. Orthogonalisation: classical Gram-Schmidt
-// applied twice (as stable as modified Gram-Schmidt, in matrix-vector products).
+// A x = b from the given x, until ||b - A x|| <= target or max_iterations, restarted every
+// `restart` iterations. Right preconditioning makes the monitored residual the true one of
+// A x = b (checked explicitly at the end of each cycle), which is what the Newton tolerance is
+// about. Orthogonalisation: classical Gram-Schmidt applied twice (as stable as modified
+// Gram-Schmidt, in matrix-vector products).
 // Reference: Saad, "Iterative Methods for Sparse Linear Systems", 2nd ed., SIAM (2003), alg. 9.6.
 template <class Operator, class Preconditioner>
 Krylov gmres(const Operator& A, const Preconditioner& M, const Eigen::VectorXd& b,
-             Eigen::VectorXd& x, double target, int max_iterations) {
+             Eigen::VectorXd& x, double target, int max_iterations, int restart) {
   Krylov out;
   const auto n = b.size();
   Eigen::VectorXd r = x.isZero(0.0) ? b : Eigen::VectorXd(b - A(x));
-  out.residual = r.norm();
+  out.residual = out.initial = r.norm();
   while (out.residual > target && out.iterations < max_iterations && std::isfinite(out.residual)) {
-    const int m = max_iterations - out.iterations;
+    const int m = std::min(restart, max_iterations - out.iterations);
     Eigen::MatrixXd V(n, m + 1), Z(n, m), Hm = Eigen::MatrixXd::Zero(m + 1, m);
     Eigen::VectorXd cs(m), sn(m), g = Eigen::VectorXd::Zero(m + 1), w, h, h2;
     g[0] = out.residual;
@@ -277,10 +278,13 @@ Krylov gmres(const Operator& A, const Preconditioner& M, const Eigen::VectorXd& 
 // A CondensedHarmonicBalance built from LocalForce: J_X applied from its parts
 // (CondensedJacobian), the (bordered) systems solved by GMRES, preconditioned by the
 // Sherman-Morrison-Woodbury inverse of CondensedPreconditioner kept from an earlier Newton point
-// and rebuilt only when GMRES slows (a chord-like reuse: the capacitance LU is the only
-// factorisation, of the size of the modal basis, not of N). When even a fresh one does not
-// bring GMRES to the target (a residual flexibility strongly coupling the clusters), it falls
-// back to the LU of the dense J, kept and reused the same way.
+// (a chord-like reuse: the capacitance LU is the only factorisation, of the size of the modal
+// basis, not of N). Rebuilt when the GMRES iterations spent beyond those a fresh preconditioner
+// would have needed (from its convergence rate in its first solve) add up to the cost of a
+// rebuild: the decision depends on iteration counts only, so the results do not depend on the
+// machine or its load. When even a fresh one does not bring GMRES to the target (a residual
+// flexibility strongly coupling the clusters), it falls back to the LU of the dense J, kept and
+// reused the same way.
 class CondensedAlgebra final : public NewtonAlgebra {
  public:
   CondensedAlgebra(const CondensedHarmonicBalance& hb, const Scaled& p) : hb_(hb), p_(p) {}
@@ -323,7 +327,7 @@ class CondensedAlgebra final : public NewtonAlgebra {
     if (bordered) b[n] *= sigma;
     const double goal = std::max(target, kRelativeFloor * b.norm());
 
-    if (!built_ || stale_) build();
+    if (!built_ || excess_ > rebuild_cost_) build();
     Eigen::VectorXd x = Eigen::VectorXd::Zero(b.size());
     Krylov k = run(op, b, x, border, a, goal);
     if (!k.converged && built_id_ != kept_id_) {
@@ -335,7 +339,7 @@ class CondensedAlgebra final : public NewtonAlgebra {
       build();
       k = run(op, b, x, border, a, goal);
     }
-    stale_ = k.iterations > kRebuildAfter;
+    account(k);
     if (bordered) x += border * ((rhs[n] - border.dot(x)) / border.squaredNorm());
     if (stats) {
       ++stats->linear_solves;
@@ -345,12 +349,24 @@ class CondensedAlgebra final : public NewtonAlgebra {
   }
 
  private:
-  // GMRES iterations of one attempt; a solve that needed more rebuilds the preconditioner
-  // at the next one (one build costs about as much as this many iterations).
-  static constexpr int kMaxIterations = 40;
-  static constexpr int kRebuildAfter = 8;
+  // GMRES iterations of one attempt, and its restart length.
+  static constexpr int kMaxIterations = 100;
+  static constexpr int kRestart = 50;
   // No solve is asked to go below rounding.
   static constexpr double kRelativeFloor = 1e-13;
+
+  // The convergence rate of the first solve after a build is the fresh preconditioner's; later
+  // solves add the iterations beyond those it would have needed for their reduction.
+  void account(const Krylov& k) {
+    if (k.iterations == 0 || !(k.residual > 0.0) || !(k.initial > 0.0)) return;
+    const double log_rate = std::log(k.residual / k.initial) / k.iterations;
+    if (!(fresh_log_rate_ < 0.0)) {
+      fresh_log_rate_ = log_rate;
+      return;
+    }
+    const double needed = std::log(k.residual / k.initial) / fresh_log_rate_;
+    excess_ += std::max(0.0, k.iterations - needed);
+  }
 
   // M^{-1} r ~ J_X^{-1} r from the current preconditioner.
   Eigen::VectorXd inverse(const Eigen::VectorXd& r) const {
@@ -361,16 +377,21 @@ class CondensedAlgebra final : public NewtonAlgebra {
     CondensedStatistics* stats = hb_.statistics();
     if (!dense_) {
       woodbury_ = std::make_unique<CondensedPreconditioner>(hb_, *kept_);
+      rebuild_cost_ = woodbury_->rebuild_cost();
       if (stats) ++stats->preconditioner_builds;
       if (woodbury_->status() != Status::Ok) dense_ = true;
     }
     if (dense_) {
       dense_lu_.compute(kept_->dense());
+      // LU flops over those of a solve, 2/3 N^3 / 2 N^2; the solves run at memory speed once
+      // the factor outgrows the cache, about 5 times slower per flop (measured at N = 2200).
+      rebuild_cost_ = p_.size() / 15.0;
       if (stats) ++stats->dense_factorizations;
     }
     built_ = true;
-    stale_ = false;
     built_id_ = kept_id_;
+    excess_ = 0.0;
+    fresh_log_rate_ = 0.0;
   }
 
   // GMRES with the preconditioner of the bordered matrix [[A_X, a], [sigma b_X^T, sigma b_w]]
@@ -383,15 +404,16 @@ class CondensedAlgebra final : public NewtonAlgebra {
     const double xs = p_.x_scale(), sigma = xs;
     Krylov k;
     if (border.size() == 0) {
-      k = gmres(op, [&](const Eigen::VectorXd& r) -> Eigen::VectorXd { return inverse(r) / xs; },
-                b, x, goal, kMaxIterations);
+      k = gmres(
+          op, [&](const Eigen::VectorXd& r) -> Eigen::VectorXd { return inverse(r) / xs; }, b, x,
+          goal, kMaxIterations, kRestart);
     } else {
       const Eigen::VectorXd pa = inverse(a) / xs;
       const Eigen::VectorXd bx = border.head(n);
       const double bw = border[n];
       const double schur = sigma * (bw - bx.dot(pa));
-      const bool usable =
-          std::isfinite(schur) && std::abs(schur) > 1e-14 * sigma * (std::abs(bw) + bx.norm() * pa.norm());
+      const bool usable = std::isfinite(schur) &&
+                          std::abs(schur) > 1e-14 * sigma * (std::abs(bw) + bx.norm() * pa.norm());
       k = gmres(
           op,
           [&](const Eigen::VectorXd& r) -> Eigen::VectorXd {
@@ -406,7 +428,7 @@ class CondensedAlgebra final : public NewtonAlgebra {
             }
             return out;
           },
-          b, x, goal, kMaxIterations);
+          b, x, goal, kMaxIterations, kRestart);
     }
     if (CondensedStatistics* stats = hb_.statistics()) stats->krylov_iterations += k.iterations;
     return k;
@@ -417,7 +439,8 @@ class CondensedAlgebra final : public NewtonAlgebra {
   std::shared_ptr<const CondensedJacobian> last_, kept_;
   Eigen::VectorXd last_y_;
   long kept_id_ = 0, built_id_ = -1;
-  bool built_ = false, stale_ = false, dense_ = false;
+  bool built_ = false, dense_ = false;
+  double rebuild_cost_ = 0.0, excess_ = 0.0, fresh_log_rate_ = 0.0;
   std::unique_ptr<CondensedPreconditioner> woodbury_;
   Eigen::PartialPivLU<Eigen::MatrixXd> dense_lu_;
 };
@@ -433,8 +456,7 @@ std::unique_ptr<NewtonAlgebra> newton_algebra(const HarmonicSystem& hb, const Sc
 Eigen::VectorXd tangent(const Scaled& p, NewtonAlgebra& algebra, const Eigen::VectorXd& previous) {
   const auto n = previous.size() - 1;
   // |t| ~ 1 before normalising: a residual 1e-11 x_scale is 1e-11 of A t's terms.
-  Eigen::VectorXd t =
-      algebra.solve(previous, Eigen::VectorXd::Unit(n + 1, n), 1e-11 * p.x_scale());
+  Eigen::VectorXd t = algebra.solve(previous, Eigen::VectorXd::Unit(n + 1, n), 1e-11 * p.x_scale());
   t.normalize();
   if (t.dot(previous) < 0.0) t = -t;
   return t;
