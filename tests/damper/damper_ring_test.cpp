@@ -15,6 +15,8 @@
 //  * In between, the ring dissipates energy (positive energy per cycle with slip) and the damped
 //    peak lies at least 10 % below the stuck ring's peak.
 //  * Bad input: a ring contact node moved off its gear twin is reported with the worst pair.
+#include "geardyn/damper/damper_ring.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,7 +27,6 @@
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
-#include "geardyn/damper/damper_ring.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
 #include "geardyn/solid/assembly.hpp"
@@ -90,7 +91,8 @@ const Fixture& fixture() {
     const long exc = ids(x.mesh, "excitation").front();
     // Tangential load at the excitation node (e_theta at theta_0 = pi / 40).
     const double t0 = std::numbers::pi / 40;
-    p.load = forced::tooth_load(exc, cd(200.0, 0.0), Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0));
+    p.load =
+        forced::tooth_load(exc, cd(200.0, 0.0), Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0));
     p.sensors = {{"exc_x", exc, 0}, {"exc_y", exc, 1}};
     p.damping.damping_ratio = 0.002;
     p.n_modes = 12;
@@ -144,8 +146,8 @@ TEST(DamperRing, StuckResponseAgreesWithADirectSolveOfTheSpringCoupledSector) {
     Eigen::Vector3d er(pr.position[0], pr.position[1], 0.0);
     er.normalize();
     const Eigen::Vector3d et = Eigen::Vector3d::UnitZ().cross(er);
-    const Eigen::Matrix3d k =
-        p.contact.normal_stiffness * er * er.transpose() + p.contact.tangential_stiffness * et * et.transpose();
+    const Eigen::Matrix3d k = p.contact.normal_stiffness * er * er.transpose() +
+                              p.contact.tangential_stiffness * et * et.transpose();
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < 3; ++b)
         for (const auto& [na, sa] : {std::pair{pr.ring_node, 1.0}, std::pair{pr.gear_node, -1.0}})

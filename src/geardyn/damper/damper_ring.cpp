@@ -68,8 +68,9 @@ ContactPairing pair_contact_nodes(const std::vector<solid::DofInfo>& dofs,
                                   const cyclic::SectorInterfaces& interfaces, double tolerance,
                                   const std::string& key) {
   if (gear_nodes.size() != ring_nodes.size() || gear_nodes.empty())
-    throw InputError({}, key, "as many ring contact nodes as gear contact nodes (at least one)",
-                     fmt::format("{} gear and {} ring nodes", gear_nodes.size(), ring_nodes.size()));
+    throw InputError(
+        {}, key, "as many ring contact nodes as gear contact nodes (at least one)",
+        fmt::format("{} gear and {} ring nodes", gear_nodes.size(), ring_nodes.size()));
   std::map<long, Eigen::Vector3d> position;
   for (const auto& d : dofs) position[d.node_id] = d.x;
   auto where = [&](long id) {
@@ -99,14 +100,14 @@ ContactPairing pair_contact_nodes(const std::vector<solid::DofInfo>& dofs,
       out.worst_gear_node = g;
     }
     if (!(best <= tolerance))
-      throw InputError({}, key,
-                       fmt::format("each gear contact node coincident with a ring contact node "
-                                   "(tolerance {:.3g} m)",
-                                   tolerance),
-                       fmt::format("gear node {} is {:.3g} m from the nearest ring node {}", g, best,
-                                   partner),
-                       "the contact pairs must be meshed as coincident node twins "
-                       "(meshgen::gear_sector does this)");
+      throw InputError(
+          {}, key,
+          fmt::format("each gear contact node coincident with a ring contact node "
+                      "(tolerance {:.3g} m)",
+                      tolerance),
+          fmt::format("gear node {} is {:.3g} m from the nearest ring node {}", g, best, partner),
+          "the contact pairs must be meshed as coincident node twins "
+          "(meshgen::gear_sector does this)");
     if (!used.insert(partner).second)
       throw InputError({}, key, "one ring node per gear node",
                        fmt::format("ring node {} is nearest to two gear nodes", partner));
@@ -156,26 +157,36 @@ hbm::CondensedHarmonicBalance DamperRingModel::system(const ContactLaw& law) con
   const double c = preload_per_speed_squared;
   const double k = engine_order;
   for (std::size_t p = 0; p < pairs.size(); ++p) {
+    std::vector<int> coords;
+    for (int j = 0; j < cp; ++j) coords.push_back(static_cast<int>(p) * cp + j);
+    // N0 = c W^2 = (c / k^2) omega^2. With k_n > 0 the element gives df/domega exactly (no extra
+    // march); with a constant normal load (k_n = 0) the preload is differentiated numerically.
+    if (law.normal_stiffness > 0.0) {
+      forces.push_back(
+          hbm::local_friction_contact(coords, friction_contact(law, 0.0), c / (k * k)));
+      continue;
+    }
     hbm::LocalForce f;
-    for (int j = 0; j < cp; ++j) f.coordinates.push_back(static_cast<int>(p) * cp + j);
+    f.coordinates = std::move(coords);
     f.evaluate = [law, c, k](const hbm::HarmonicBasis& b, const Eigen::VectorXd& w, double omega,
                              Eigen::VectorXd& force, Eigen::MatrixXd* J,
                              Eigen::VectorXd* df_domega) {
       const double speed = omega / k;
       const double N0 = c * speed * speed;
-      const hbm::ContactResponse r = hbm::friction_contact_response(friction_contact(law, N0), b, w);
+      const hbm::ContactResponse r =
+          hbm::friction_contact_response(friction_contact(law, N0), b, w);
       force += r.coefficients;
       if (J) *J += r.jacobian;
       if (df_domega && c > 0.0) {
-        // dN0/domega = 2 c omega / k^2; df/dN0 by central differences (the element's law is
-        // piecewise smooth in N0; the step is far below any switching scale).
+        // dN0/domega = 2 c omega / k^2; df/dN0 by central differences (the law is piecewise
+        // smooth in N0; the step is far below any switching scale).
         const double h = 1e-6 * std::max(N0, 1e-12);
+        const double lo = std::max(N0 - h, 0.0);
         const Eigen::VectorXd up =
             hbm::friction_contact_response(friction_contact(law, N0 + h), b, w).coefficients;
         const Eigen::VectorXd down =
-            hbm::friction_contact_response(friction_contact(law, std::max(N0 - h, 0.0)), b, w)
-                .coefficients;
-        *df_domega += (up - down) / (N0 + h - std::max(N0 - h, 0.0)) * (2.0 * c * omega / (k * k));
+            hbm::friction_contact_response(friction_contact(law, lo), b, w).coefficients;
+        *df_domega += (up - down) / (N0 + h - lo) * (2.0 * c * omega / (k * k));
       }
     };
     forces.push_back(std::move(f));
@@ -230,8 +241,8 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
   m.preload_per_speed_squared =
       p.ring_mass * p.ring_radius / (N * static_cast<double>(p.pairs.size()));
   const int H = p.harmonics;
-  m.basis = hbm::HarmonicBasis(H, p.time_samples > 0 ? p.time_samples
-                                                     : hbm::default_time_samples(H));
+  m.basis =
+      hbm::HarmonicBasis(H, p.time_samples > 0 ? p.time_samples : hbm::default_time_samples(H));
   for (const auto& s : p.sensors) m.sensor_names.push_back(s.name);
 
   // Nodal diameter of each harmonic: pattern of engine order n k.
@@ -279,13 +290,15 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
   {
     std::vector<Eigen::Triplet<cd>> t;
     for (Eigen::Index i = 0; i < n_s; ++i)
-      t.emplace_back(i, dof(p.sensors[static_cast<std::size_t>(i)].node_id,
-                            p.sensors[static_cast<std::size_t>(i)].component, "damper_ring.sensors"),
+      t.emplace_back(i,
+                     dof(p.sensors[static_cast<std::size_t>(i)].node_id,
+                         p.sensors[static_cast<std::size_t>(i)].component, "damper_ring.sensors"),
                      cd(1.0, 0.0));
     Gs.setFromTriplets(t.begin(), t.end());
   }
   Eigen::VectorXcd f0 = Eigen::VectorXcd::Zero(n_dof);
-  for (int c = 0; c < 3; ++c) f0[dof(p.load.node_id, c, "damper_ring.excitation")] += p.load.force[c];
+  for (int c = 0; c < 3; ++c)
+    f0[dof(p.load.node_id, c, "damper_ring.excitation")] += p.load.force[c];
 
   // Modes of every nodal diameter used.
   cyclic::CyclicModesOptions mo;
@@ -306,9 +319,9 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     linalg::SparseLU<cd> lu;
     const Eigen::SparseMatrix<cd> shifted = Kh - cd(sigma, 0.0) * Mh;
     if (lu.compute(shifted) != Status::Ok)
-      throw NumericalError("damper_ring",
-                           fmt::format("nodal diameter {}: the shifted stiffness is singular ({})",
-                                       h, lu.message()));
+      throw NumericalError(
+          "damper_ring", fmt::format("nodal diameter {}: the shifted stiffness is singular ({})", h,
+                                     lu.message()));
     const Eigen::SparseMatrix<cd> A = G * T, As = Gs * T;
     const Eigen::MatrixXcd Y = lu.solve(Eigen::MatrixXcd(Eigen::MatrixXcd(A.adjoint())));
     const Eigen::MatrixXcd static_cc = A * Y, static_sc = As * Y;

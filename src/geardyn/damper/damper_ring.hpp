@@ -81,8 +81,8 @@ cyclic::SectorInterfaces two_body_interfaces(const std::vector<solid::DofInfo>& 
                                              const std::vector<long>& ring_right);
 
 struct ContactLaw {
-  int tangential_directions = 1;  ///< 1: 2D contact (v, u); 2: 3D contact (v, u_theta, u_z)
-  double inclination = 0.0;       ///< psi [rad] of the 2D contact's slip direction
+  int tangential_directions = 1;      ///< 1: 2D contact (v, u); 2: 3D contact (v, u_theta, u_z)
+  double inclination = 0.0;           ///< psi [rad] of the 2D contact's slip direction
   double normal_stiffness = 0.0;      ///< k_n per contact pair [N/m]
   double tangential_stiffness = 0.0;  ///< k_t per contact pair [N/m]
   double friction_coefficient = 0.0;  ///< mu
@@ -147,10 +147,10 @@ struct DamperRingOptions {
 };
 
 struct DampedPoint {
-  double speed = 0.0;                 ///< W [rad/s]
-  Eigen::VectorXd amplitude;          ///< harmonic-1 amplitude per sensor [m]
-  Eigen::VectorXd peak;               ///< largest |x(t)| over the period per sensor [m]
-  double energy_per_cycle = 0.0;      ///< dissipated by the whole ring per cycle of w [J]
+  double speed = 0.0;             ///< W [rad/s]
+  Eigen::VectorXd amplitude;      ///< harmonic-1 amplitude per sensor [m]
+  Eigen::VectorXd peak;           ///< largest |x(t)| over the period per sensor [m]
+  double energy_per_cycle = 0.0;  ///< dissipated by the whole ring per cycle of w [J]
   double stick = 0.0, slip = 0.0, lift_off = 0.0;  ///< fractions over pairs and samples
   int iterations = 0;
   bool loops_closed = true;
@@ -169,7 +169,7 @@ struct DamperRingResult {
   std::vector<DampedPoint> damped;
   Eigen::VectorXd linear_speeds;
   Eigen::MatrixXd free_amplitude, stuck_amplitude;  ///< linear_speeds x sensors
-  int peak_point = -1;  ///< index in `damped` of the largest sensor-0 amplitude
+  int peak_point = -1;                ///< index in `damped` of the largest sensor-0 amplitude
   std::vector<HysteresisLoop> loops;  ///< at the peak
   /// Per pair at the peak: stick, slip, lift-off fractions and energy per cycle.
   Eigen::MatrixXd pair_states;

@@ -520,12 +520,12 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
     throw InputError({}, "X0", fmt::format("{} coefficients", n), std::to_string(X0.size()));
   if (!(o.step > 0.0 && o.min_step > 0.0 && o.max_step >= o.step && o.omega_end != o.omega_start &&
         o.x_scale > 0.0 && o.omega_scale > 0.0))
-    throw InputError({}, "continuation",
-                     "0 < min_step, 0 < step <= max_step, omega_end != omega_start and positive "
-                     "scales",
-                     fmt::format("step {}, min {}, max {}, omega {} .. {}, scales {} and {}",
-                                 o.step, o.min_step, o.max_step, o.omega_start, o.omega_end,
-                                 o.x_scale, o.omega_scale));
+    throw InputError(
+        {}, "continuation",
+        "0 < min_step, 0 < step <= max_step, omega_end != omega_start and positive "
+        "scales",
+        fmt::format("step {}, min {}, max {}, omega {} .. {}, scales {} and {}", o.step, o.min_step,
+                    o.max_step, o.omega_start, o.omega_end, o.x_scale, o.omega_scale));
   const double direction = o.omega_end > o.omega_start ? 1.0 : -1.0;
   const Scaled p(hb, o);
   const std::unique_ptr<NewtonAlgebra> algebra = newton_algebra(hb, p);

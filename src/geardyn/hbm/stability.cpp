@@ -250,8 +250,8 @@ std::vector<FloquetResult> stability_along(const HarmonicBalance& hb,
   Eigen::MatrixXd J;
   for (const auto& p : curve.points) {
     hb.residual(p.X, p.omega, &J);
-    out.push_back(hill_stability(J, hb.mass(), hb.damping(), hb.basis().harmonics(), p.omega,
-                                 options));
+    out.push_back(
+        hill_stability(J, hb.mass(), hb.damping(), hb.basis().harmonics(), p.omega, options));
   }
   return out;
 }
