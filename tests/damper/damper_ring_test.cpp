@@ -23,6 +23,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <tuple>
 
 #include "geardyn/core/error.hpp"
@@ -91,8 +92,8 @@ const Fixture& fixture() {
     const long exc = ids(x.mesh, "excitation").front();
     // Tangential load at the excitation node (e_theta at theta_0 = pi / 40).
     const double t0 = std::numbers::pi / 40;
-    p.load =
-        forced::tooth_load(exc, cd(200.0, 0.0), Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0));
+    p.loads = {
+        {forced::tooth_load(exc, cd(200.0, 0.0), Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0))}};
     p.sensors = {{"exc_x", exc, 0}, {"exc_y", exc, 1}};
     p.damping.damping_ratio = 0.002;
     p.n_modes = 12;
@@ -160,7 +161,7 @@ TEST(DamperRing, StuckResponseAgreesWithADirectSolveOfTheSpringCoupledSector) {
   const Eigen::SparseMatrix<cd> Mh = p.sector->reduce(p.M, 2);
   const Eigen::SparseMatrix<cd> T = p.sector->transformation(2);
   Eigen::VectorXcd f0 = Eigen::VectorXcd::Zero(p.sector->num_dofs());
-  for (int c = 0; c < 3; ++c) f0[index.at({p.load.node_id, c})] = p.load.force[c];
+  for (int c = 0; c < 3; ++c) f0[index.at({p.loads[0][0].node_id, c})] = p.loads[0][0].force[c];
   const auto [lo, hi] = speed_band(m);
   double worst = 0.0;
   for (double speed : {0.3 * lo, 0.6 * lo, 0.8 * lo}) {
@@ -228,6 +229,100 @@ TEST(DamperRing, FrictionDissipatesAndLowersThePeak) {
   EXPECT_LT(peak.amplitude[0], 0.9 * r.stuck_amplitude.col(0).maxCoeff());
   ASSERT_EQ(r.loops.size(), 1u);
   EXPECT_EQ(r.pair_states.rows(), static_cast<Eigen::Index>(f.pairing.pairs.size()));
+}
+
+TEST(DamperRing, EngineOrderTwoKLoadsTheSecondHarmonicOnItsNodalDiameter) {
+  // Engine order 2k = 4 on harmonic 2, which carries nodal diameter 4 (N = 10), with the contacts
+  // transmitting nothing (mu = 0, k_n = 0): harmonic 2 at every sensor is the linear response of
+  // the sector at nodal diameter 4 and frequency 2 k W, solved directly (sparse LU of the reduced
+  // K - w^2 M). Same truncation argument as the stuck test (40 modes + residual): 2e-3.
+  const Fixture& f = fixture();
+  DamperRingProblem q = f.problem;
+  q.harmonics = 2;
+  q.n_modes = 40;
+  q.damping.damping_ratio = 1e-9;
+  q.contact.friction_coefficient = 0.0;
+  q.contact.normal_stiffness = 0.0;
+  const forced::ToothLoad load1 = q.loads[0][0];
+  const forced::ToothLoad load2{load1.node_id, 0.75 * load1.force};
+  q.loads = {{}, {load2}};
+  const DamperRingModel m = build_damper_ring_model(q);
+  EXPECT_EQ(m.harmonic_diameter[2], 4);
+  DamperRingOptions o;
+  const double lo = speed_band(m).first;
+  o.speed_min = 0.2 * lo;
+  o.speed_max = 0.4 * lo;
+  o.max_step = 0.2;
+  o.linear_points = 3;
+  const DamperRingResult r = run_damper_ring(m, o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  ASSERT_GE(r.damped.size(), 3u);
+
+  const cyclic::CyclicSector& sector = *q.sector;
+  std::map<std::pair<long, int>, int> index;
+  for (std::size_t i = 0; i < sector.dofs().size(); ++i)
+    index[{sector.dofs()[i].node_id, sector.dofs()[i].component}] = static_cast<int>(i);
+  const Eigen::SparseMatrix<cd> Kh = sector.reduce(q.K, 4), Mh = sector.reduce(q.M, 4);
+  const Eigen::SparseMatrix<cd> T = sector.transformation(4);
+  Eigen::VectorXcd f0 = Eigen::VectorXcd::Zero(sector.num_dofs());
+  for (int c = 0; c < 3; ++c) f0[index.at({load2.node_id, c})] = load2.force[c];
+  double worst = 0.0;
+  for (const DampedPoint& d : r.damped) {
+    const double w = 2.0 * q.engine_order * d.speed;
+    linalg::SparseLU<cd> lu;
+    ASSERT_EQ(lu.compute(Eigen::SparseMatrix<cd>(Kh - cd(w * w, 0.0) * Mh)), Status::Ok);
+    const Eigen::VectorXcd u = T * lu.solve(Eigen::VectorXcd(T.adjoint() * f0));
+    EXPECT_LT(d.amplitude.norm(), 1e-12 * d.harmonics.row(1).norm());  // harmonic 1 unloaded
+    for (int s = 0; s < 2; ++s) {
+      const double exact =
+          std::abs(u[index.at({q.sensors[static_cast<std::size_t>(s)].node_id, s})]);
+      worst = std::max(worst, std::abs(d.harmonics(1, s) - exact) / exact);
+    }
+  }
+  EXPECT_LT(worst, 2e-3);
+  RecordProperty("harmonic2_vs_direct_relative_error", std::to_string(worst));
+}
+
+TEST(DamperRing, RingMassAndRadiusFromTheMassMatrix) {
+  // The ring of tests/meshgen/damper_gear.hpp: r 0.069 .. 0.074 m, 6 mm wide, rho 7800, whole
+  // ring mass rho pi (r2^2 - r1^2) w and r_G = (2/3) (r2^3 - r1^3) / (r2^2 - r1^2) (the mass-
+  // weighted mean radius of a rectangular section). The tet4 mesh facets the curved faces with
+  // chords of about 3 mm on r = 0.07 m: a volume deficit of order (h / r)^2 / 12 = 1.5e-4, so
+  // 1e-3 relative on the mass and 2e-4 on r_G.
+  const Fixture& f = fixture();
+  std::vector<long> ring;
+  std::set<int> nodes;
+  for (int e : f.mesh.element_sets.at("ring"))
+    for (int n : f.mesh.elements[static_cast<std::size_t>(e)].nodes) nodes.insert(n);
+  for (int n : nodes) ring.push_back(f.mesh.node_ids[static_cast<std::size_t>(n)]);
+  const BodyMass b = body_mass(f.system.M, f.system.dofs, ring, 10, "ring");
+  const double r1 = 0.069, r2 = 0.074, w = 0.006, rho = 7800.0;
+  const double mass = rho * std::numbers::pi * (r2 * r2 - r1 * r1) * w;
+  const double rg = 2.0 / 3.0 * (r2 * r2 * r2 - r1 * r1 * r1) / (r2 * r2 - r1 * r1);
+  EXPECT_NEAR(b.mass / mass, 1.0, 1e-3);
+  EXPECT_NEAR(b.radius / rg, 1.0, 2e-4);
+  RecordProperty("ring_mass_relative_error", std::to_string(b.mass / mass - 1.0));
+}
+
+TEST(DamperRing, MindlinRatio) {
+  // Equal materials: k_t / k_n = 2 (1 - nu) / (2 - nu) (Johnson, Contact Mechanics, eq. 7.41);
+  // the general form is symmetric in the two bodies.
+  EXPECT_NEAR(mindlin_ratio(210e9, 0.3, 210e9, 0.3), 2.0 * 0.7 / 1.7, 1e-15);
+  EXPECT_NEAR(mindlin_ratio(210e9, 0.3, 70e9, 0.33), mindlin_ratio(70e9, 0.33, 210e9, 0.3), 1e-15);
+}
+
+TEST(DamperRing, ZeroFrictionWithZeroPreloadIsRefused) {
+  DamperRingProblem q = fixture().problem;
+  q.contact.friction_coefficient = 0.0;
+  q.ring_mass = 0.0;
+  try {
+    (void)build_damper_ring_model(q);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("zero friction together with zero preload"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(DamperRing, AContactNodeOffItsTwinIsReported) {

@@ -223,9 +223,19 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     throw InputError({}, "damper_ring.contact", "2d or 3d",
                      std::to_string(p.contact.tangential_directions + 1) + "d");
   hbm::validate(friction_contact(p.contact, 0.0));
-  if (!(p.ring_mass > 0.0 && p.ring_radius > 0.0))
-    throw InputError({}, "damper_ring.ring", "a ring of positive mass and radius",
+  if (!(p.ring_mass >= 0.0 && p.ring_radius > 0.0))
+    throw InputError({}, "damper_ring.ring", "a ring of non-negative mass and positive radius",
                      fmt::format("mass {} kg, radius {} m", p.ring_mass, p.ring_radius));
+  if (p.ring_mass == 0.0 && p.contact.friction_coefficient == 0.0)
+    throw InputError({}, "damper_ring.contact",
+                     "friction or a centrifugal preload (zero friction together with zero "
+                     "preload transmits no friction force: the ring cannot damp)",
+                     "friction coefficient 0 and ring mass 0",
+                     "give the ring its density and the contact its friction coefficient");
+  if (p.loads.empty() || static_cast<int>(p.loads.size()) > p.harmonics)
+    throw InputError({}, "damper_ring.loads",
+                     fmt::format("loads for 1 .. {} harmonics", p.harmonics),
+                     std::to_string(p.loads.size()));
   if (const auto problems = p.damping.validate(); !problems.empty())
     throw InputError({}, "damper_ring.damping", "a valid modal damping", problems.front());
   if (p.harmonics < 1)
@@ -296,9 +306,11 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
                      cd(1.0, 0.0));
     Gs.setFromTriplets(t.begin(), t.end());
   }
-  Eigen::VectorXcd f0 = Eigen::VectorXcd::Zero(n_dof);
-  for (int c = 0; c < 3; ++c)
-    f0[dof(p.load.node_id, c, "damper_ring.excitation")] += p.load.force[c];
+  // Sector-0 load of each loaded harmonic (engine order n k).
+  std::vector<Eigen::VectorXcd> f0(p.loads.size(), Eigen::VectorXcd::Zero(n_dof));
+  for (std::size_t n = 0; n < p.loads.size(); ++n)
+    for (const auto& l : p.loads[n])
+      for (int c = 0; c < 3; ++c) f0[n][dof(l.node_id, c, "damper_ring.excitation")] += l.force[c];
 
   // Modes of every nodal diameter used.
   cyclic::CyclicModesOptions mo;
@@ -348,10 +360,11 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
       rec.residual = conj ? Eigen::MatrixXcd(R_cc.conjugate()) : R_cc;
       rec.sensor_left = conj ? Eigen::MatrixXcd(S.conjugate()) : S;
       rec.sensor_residual = conj ? Eigen::MatrixXcd(R_sc.conjugate()) : R_sc;
-      if (n == 1) {
+      if (n <= static_cast<int>(f0.size())) {
         // The excitation: for the conjugate pattern everything is the conjugate of the
         // nodal-diameter-h response to conj(f0) (H_{-h} = conj H_h).
-        const Eigen::VectorXcd f = conj ? Eigen::VectorXcd(f0.conjugate()) : f0;
+        const Eigen::VectorXcd& fn = f0[static_cast<std::size_t>(n - 1)];
+        const Eigen::VectorXcd f = conj ? Eigen::VectorXcd(fn.conjugate()) : fn;
         const Eigen::VectorXcd yb = lu.solve(Eigen::VectorXcd(T.adjoint() * f));
         const Eigen::VectorXcd pm = psi.adjoint() * f;
         const Eigen::VectorXcd r_cf = A * yb - U * (inv_shifted.cast<cd>().cwiseProduct(pm));
@@ -408,7 +421,13 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
   for (int i = 0; i < nl; ++i) {
     out.free_amplitude.row(i) = m.free_response(out.linear_speeds[i]).cwiseAbs().transpose();
     out.stuck_amplitude.row(i) = m.stuck_response(out.linear_speeds[i]).cwiseAbs().transpose();
-    x_scale = std::max(x_scale, r1.linear_response(k * out.linear_speeds[i]).norm());
+  }
+  // The amplitude scale of the continuation: the largest linear response on a grid fine enough
+  // to meet a lightly damped resonance of the range (independent of linear_points).
+  const int n_scale = std::max(nl, 1000);
+  for (int i = 0; i < n_scale; ++i) {
+    const double speed = o.speed_min + (o.speed_max - o.speed_min) * i / (n_scale - 1.0);
+    x_scale = std::max(x_scale, r1.linear_response(k * speed).norm());
   }
 
   const hbm::CondensedHarmonicBalance hb = m.system(m.contact);
@@ -438,10 +457,12 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     d.iterations = pt.iterations;
     d.amplitude.resize(n_s);
     d.peak.setZero(n_s);
+    d.harmonics.resize(H, n_s);
     Eigen::MatrixXd signal = Eigen::MatrixXd::Zero(b.time_samples(), n_s);
     for (int n = 1; n <= H; ++n) {
       const Eigen::VectorXcd z = hb.sensor_response(pt.X, pt.omega, n);
       if (n == 1) d.amplitude = z.cwiseAbs();
+      d.harmonics.row(n - 1) = z.cwiseAbs().transpose();
       for (Eigen::Index i = 0; i < n_s; ++i) {
         Eigen::VectorXd c = Eigen::VectorXd::Zero(s);
         c[hbm::HarmonicBasis::cos_index(n)] = z[i].real();
@@ -480,10 +501,28 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     const Eigen::Index np = static_cast<Eigen::Index>(m.pairs.size());
     out.pair_states.resize(np, 3);
     out.pair_energy.resize(np);
+    // The truncation check: the same motion with 3H + 2 harmonics (their coefficients zero).
+    const int Hc = 3 * H + 2;
+    const hbm::HarmonicBasis bc(Hc, std::max(b.time_samples(), hbm::default_time_samples(Hc)));
+    const int sc = bc.size();
     for (Eigen::Index q = 0; q < np; ++q) {
       const Eigen::VectorXd w = pt.X.segment(q * cp * s, cp * s);
       const hbm::ContactResponse r =
           hbm::friction_contact_response(friction_contact(m.contact, N0), b, w);
+      Eigen::VectorXd wc = Eigen::VectorXd::Zero(cp * sc);
+      for (int j = 0; j < cp; ++j) wc.segment(j * sc, s) = w.segment(j * s, s);
+      const hbm::ContactResponse rc =
+          hbm::friction_contact_response(friction_contact(m.contact, N0), bc, wc);
+      double kept = 0.0, beyond = 0.0;
+      for (int j = 0; j < cp; ++j) {
+        kept += rc.coefficients.segment(j * sc + 1, s - 1).squaredNorm();
+        beyond += rc.coefficients.segment(j * sc + s, sc - s).squaredNorm();
+      }
+      const double share = kept + beyond > 0.0 ? std::sqrt(beyond / (kept + beyond)) : 0.0;
+      if (share > out.force_truncation) {
+        out.force_truncation = share;
+        out.truncation_pair = static_cast<int>(q);
+      }
       out.pair_states.row(q) << r.stick_fraction, r.slip_fraction, r.lift_off_fraction;
       out.pair_energy[q] = r.energy_per_cycle;
       if (std::find(o.hysteresis_pairs.begin(), o.hysteresis_pairs.end(), q) !=
@@ -498,6 +537,49 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     }
   }
   return out;
+}
+
+BodyMass body_mass(const Eigen::SparseMatrix<double>& M, const std::vector<solid::DofInfo>& dofs,
+                   const std::vector<long>& nodes, int n_sectors, const std::string& key) {
+  const auto index = dof_index(dofs);
+  std::vector<int> rows;
+  std::vector<double> radius;
+  for (long id : nodes) {
+    const auto it = index.find({id, 0});
+    if (it == index.end())
+      throw InputError({}, key, "nodes with a free x translation (the body's mass is summed there)",
+                       fmt::format("node {} without it", id));
+    rows.push_back(it->second);
+    const Eigen::Vector3d& x = dofs[static_cast<std::size_t>(it->second)].x;
+    radius.push_back(std::hypot(x.x(), x.y()));
+  }
+  std::vector<char> in_body(static_cast<std::size_t>(M.rows()), 0);
+  for (int r : rows) in_body[static_cast<std::size_t>(r)] = 1;
+  // m_n = sum over the body's x DOFs j of M(n_x, j_x) (M symmetric: column sums).
+  double mass = 0.0, moment = 0.0;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    double m_n = 0.0;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(M, rows[i]); it; ++it)
+      if (in_body[static_cast<std::size_t>(it.row())]) m_n += it.value();
+    mass += m_n;
+    moment += m_n * radius[i];
+  }
+  if (!(mass >= 0.0) || rows.empty())
+    throw InputError({}, key, "a body of non-negative mass with nodes",
+                     fmt::format("{} kg per sector, {} nodes", mass, rows.size()));
+  if (mass == 0.0) {  // a massless body: its mean node radius
+    double r = 0.0;
+    for (double x : radius) r += x;
+    return {0.0, r / static_cast<double>(radius.size())};
+  }
+  return {mass * n_sectors, moment / mass};
+}
+
+double mindlin_ratio(double E1, double nu1, double E2, double nu2) {
+  const double G1 = E1 / (2.0 * (1.0 + nu1)), G2 = E2 / (2.0 * (1.0 + nu2));
+  const double E_star = 1.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2);
+  const double G_star = 1.0 / ((2.0 - nu1) / G1 + (2.0 - nu2) / G2);
+  return 4.0 * G_star / E_star;
 }
 
 }  // namespace geardyn::damper

@@ -93,11 +93,14 @@ struct DamperRingProblem {
   std::optional<cyclic::CyclicSector> sector;  ///< required
   std::vector<ContactPair> pairs;
   ContactLaw contact;
-  double ring_mass = 0.0;    ///< whole ring [kg]
+  double ring_mass = 0.0;    ///< whole ring [kg] (0: no centrifugal preload)
   double ring_radius = 0.0;  ///< r_G, radius of the ring's centre of mass [m]
   int nodal_diameter = 0;
   int engine_order = 1;
-  forced::ToothLoad load;  ///< F_k at the excitation node of sector 0
+  /// The loads of engine order n k on harmonic n = 1, 2, ... at the excitation nodes of sector 0:
+  /// loads[n - 1] (F_k, F_2k, ...). Fewer entries than harmonics: the higher harmonics are
+  /// unloaded (they still carry the response the contacts generate).
+  std::vector<std::vector<forced::ToothLoad>> loads;
   std::vector<forced::CyclicSensor> sensors;
   forced::ModalDamping damping;
   int n_modes = 20;      ///< per nodal diameter
@@ -132,7 +135,8 @@ struct DamperRingModel {
   Eigen::VectorXcd stuck_response(double speed) const;
 };
 
-/// Throws InputError for inconsistent input (no pairs, h / k mismatch, bad damping, law values);
+/// Throws InputError for inconsistent input (no pairs, h / k mismatch, bad damping, law values,
+/// zero friction together with zero preload: contacts that transmit no friction force);
 /// NumericalError when the modes of a nodal diameter cannot be computed.
 DamperRingModel build_damper_ring_model(const DamperRingProblem& problem,
                                         Progress& progress = null_progress());
@@ -149,6 +153,7 @@ struct DamperRingOptions {
 struct DampedPoint {
   double speed = 0.0;             ///< W [rad/s]
   Eigen::VectorXd amplitude;      ///< harmonic-1 amplitude per sensor [m]
+  Eigen::MatrixXd harmonics;      ///< |z_n|, harmonic n = 1..H (rows) per sensor [m]
   Eigen::VectorXd peak;           ///< largest |x(t)| over the period per sensor [m]
   double energy_per_cycle = 0.0;  ///< dissipated by the whole ring per cycle of w [J]
   double stick = 0.0, slip = 0.0, lift_off = 0.0;  ///< fractions over pairs and samples
@@ -174,6 +179,11 @@ struct DamperRingResult {
   /// Per pair at the peak: stick, slip, lift-off fractions and energy per cycle.
   Eigen::MatrixXd pair_states;
   Eigen::VectorXd pair_energy;
+  /// At the peak: the largest share over the pairs of the contact force beyond the balanced
+  /// harmonics, ||F_{n > H}|| / ||F_{n >= 1}||, from the same motion marched with 3H + 2
+  /// harmonics (the balance neglects it; above a few per cent raise the harmonics).
+  double force_truncation = 0.0;
+  int truncation_pair = -1;
 };
 
 /// Traces the damped response over [speed_min, speed_max] by continuation and evaluates the
@@ -181,5 +191,24 @@ struct DamperRingResult {
 /// (the points reached are kept).
 DamperRingResult run_damper_ring(const DamperRingModel& model, const DamperRingOptions& options,
                                  Progress& progress = null_progress());
+
+/// Mass and centre-of-mass radius of one body of a cyclic sector, from the mass matrix: the
+/// x-translation row sums of the consistent mass, m_n = sum_j M(n_x, j_x) = integral rho N_n dV,
+/// give mass = N sum m_n (the whole ring, N sectors) and r_G = sum m_n r_n / sum m_n (r_n the
+/// node's distance from the z axis; exact for r interpolated by the shape functions, O(h^2 / r^2)
+/// otherwise; a massless body gets its mean node radius). InputError (key `key`) when a node has
+/// no x-translation DOF, there are no nodes, or the mass is negative.
+struct BodyMass {
+  double mass = 0.0;    ///< whole body (all sectors) [kg]
+  double radius = 0.0;  ///< r_G [m]
+};
+BodyMass body_mass(const Eigen::SparseMatrix<double>& M, const std::vector<solid::DofInfo>& dofs,
+                   const std::vector<long>& nodes, int n_sectors, const std::string& key);
+
+/// Tangential / normal stiffness of an elastic contact of two bodies (Mindlin 1949; Johnson,
+/// Contact Mechanics, 1985, sec. 7.2): k_t / k_n = 4 G* / E* with 1 / E* = (1 - nu_1^2) / E_1 +
+/// (1 - nu_2^2) / E_2 and 1 / G* = (2 - nu_1) / G_1 + (2 - nu_2) / G_2, G = E / (2 (1 + nu));
+/// 2 (1 - nu) / (2 - nu) for equal materials.
+double mindlin_ratio(double E1, double nu1, double E2, double nu2);
 
 }  // namespace geardyn::damper

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -522,6 +523,31 @@ struct CyclicForcedResponseSettings {
   double min_prominence_db = 6.0;
 };
 
+/// Friction-damped forced response of a cyclic gear with a damper ring in a groove, by harmonic
+/// balance condensed to the ring's contacts (damper/damper_ring.hpp, DESIGN 4.6-4.7). It is a
+/// cyclic forced response (the excitation, sensor, damping and speed keys are the same, for one
+/// engine order) plus the ring: its contacts, the harmonics balanced and an optional
+/// performance sweep.
+enum class DamperSweep { None, RingMass, FrictionCoefficient, ContactStiffness };
+struct DamperRingResponseSettings : CyclicForcedResponseSettings {
+  int engine_order = 0;  ///< k; the nodal diameter is h = +-k mod N
+  std::string gear_contact_set = "groove_contact";
+  std::string ring_contact_set = "ring_contact";
+  std::string ring_element_set = "ring";
+  int contact_directions = 1;          ///< 1: 2D contact (normal, one slip direction); 2: 3D
+  double ring_inclination = 0.0;       ///< psi [rad] of the 2D slip direction
+  double normal_stiffness = kNaN;      ///< k_n per contact pair [N/m] ...
+  double contact_stiffness = kNaN;     ///< ... or per contact area [N/m^3]
+  double tangential_stiffness = kNaN;  ///< k_t per pair [N/m] (NaN: Mindlin ratio of k_n)
+  double friction_coefficient = kNaN;  ///< mu
+  int harmonics = 1;                   ///< H balanced
+  int time_samples = 0;                ///< per period (0: from H)
+  std::vector<int> hysteresis_pairs;   ///< contact pairs whose loops are reported (empty: 3)
+  double max_step = 0.02;              ///< continuation step / (speed range, amplitude)
+  DamperSweep sweep = DamperSweep::None;
+  std::vector<double> sweep_values;  ///< ring-mass or stiffness factors, or mu
+};
+
 /// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
 /// over speed (forced/rotor_mesh_response.hpp, modal method).
 struct GearForcedResponseSettings {
@@ -555,11 +581,12 @@ enum class AnalysisType {
   MeshHarmonics,
   Correlation,
   CyclicForcedResponse,
-  GearForcedResponse
+  GearForcedResponse,
+  DamperRingResponse
 };
 
 /// The model-file name (`type = "..."`) of each AnalysisType, in enum order.
-inline constexpr std::array<const char*, 15> kAnalysisTypeNames = {"modal",
+inline constexpr std::array<const char*, 16> kAnalysisTypeNames = {"modal",
                                                                    "campbell",
                                                                    "harmonic",
                                                                    "unbalance",
@@ -573,9 +600,10 @@ inline constexpr std::array<const char*, 15> kAnalysisTypeNames = {"modal",
                                                                    "mesh_harmonics",
                                                                    "correlation",
                                                                    "cyclic_forced_response",
-                                                                   "gear_forced_response"};
+                                                                   "gear_forced_response",
+                                                                   "damper_ring_response"};
 static_assert(kAnalysisTypeNames.size() ==
-                  static_cast<std::size_t>(AnalysisType::GearForcedResponse) + 1,
+                  static_cast<std::size_t>(AnalysisType::DamperRingResponse) + 1,
               "one name per AnalysisType");
 
 struct Analysis {
@@ -588,10 +616,29 @@ struct Analysis {
   std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
                TransientSettings, SweepSettings, SolidModalSettings, CyclicModalSettings,
                ReductionSettings, GearPairSettings, MeshForceSettings, MeshHarmonicsSettings,
-               CorrelationSettings, CyclicForcedResponseSettings, GearForcedResponseSettings>
+               CorrelationSettings, CyclicForcedResponseSettings, GearForcedResponseSettings,
+               DamperRingResponseSettings>
       settings;
   SourceLocation where;
 };
+
+/// The analysis' settings as S when they are an S or derived from it (a damper-ring response is a
+/// cyclic forced response), else null.
+template <class S>
+const S* settings_as(const Analysis& a) {
+  return std::visit(
+      [](const auto& s) -> const S* {
+        if constexpr (std::is_base_of_v<S, std::decay_t<decltype(s)>>)
+          return &s;
+        else
+          return nullptr;
+      },
+      a.settings);
+}
+template <class S>
+S* settings_as(Analysis& a) {
+  return const_cast<S*>(settings_as<S>(static_cast<const Analysis&>(a)));
+}
 
 struct Model {
   int version = 1;

@@ -1237,7 +1237,7 @@ void Resolver::check_gear_analysis(const std::string& base, const Analysis& a) c
     dynamic = h->model == MeshForceModel::Dynamic;
   }
   // The forced responses use a pair only when they name one (else force_amplitude).
-  if (const auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings)) {
+  if (const auto* c = settings_as<CyclicForcedResponseSettings>(a)) {
     if (c->pair.empty()) return;
     pair = &c->pair;
     dynamic = c->model == MeshForceModel::Dynamic;
@@ -1334,7 +1334,7 @@ void Resolver::check_analyses() {
     check_gear_analysis(base, a);
     // cyclic_forced_response: a cyclic solid, nodal diameters and engine orders that fit its
     // sectors (k = +-h mod N), one tooth per sector when a gear pair gives the tooth force.
-    if (const auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings)) {
+    if (const auto* c = settings_as<CyclicForcedResponseSettings>(a)) {
       check_name(base + ".solid", c->solid, solids, "solid", "solids");
       const Solid& body = *m_.find_solid(c->solid);
       const int n = body.sectors;
@@ -1374,6 +1374,19 @@ void Resolver::check_analyses() {
                            c->gear, c->pair),
                fmt::format("teeth = {}", body.gear_sector.teeth));
       }
+    }
+    // damper_ring_response: a generated gear sector has its groove and ring.
+    if (const auto* d = std::get_if<DamperRingResponseSettings>(&a.settings)) {
+      const Solid& body = *m_.find_solid(d->solid);
+      if (body.source == SolidSource::GearSector && !body.gear_sector.groove)
+        fail(base + ".solid", "a gear sector with groove = true (the damper ring and its groove)",
+             fmt::format("\"{}\" without a groove", d->solid));
+      if (body.source == SolidSource::Reduced || body.source == SolidSource::Matrices)
+        fail(base + ".solid",
+             "a mesh solid (generated gear_sector with groove, or a mesh file with the contact "
+             "and ring sets): the contact pairs are found in its mesh",
+             fmt::format("\"{}\" of type \"{}\"", d->solid,
+                         body.source == SolidSource::Reduced ? "reduced" : "matrices"));
     }
     // gear_forced_response: a gear mesh with teeth, the pair (if any) with the same teeth.
     if (const auto* g = std::get_if<GearForcedResponseSettings>(&a.settings)) {

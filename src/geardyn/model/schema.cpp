@@ -268,6 +268,7 @@ constexpr Unit kMassEccentricity{"kg m", 1.0};
 constexpr Unit kSecond{"s", 1.0};
 constexpr Unit kPerSecond{"1/s", 1.0};
 constexpr Unit kStiffness{"N/m", 1.0};
+constexpr Unit kStiffnessPerArea{"N/m^3", 1.0};
 constexpr Unit kDampingCoefficient{"N s/m", 1.0};
 constexpr Unit kTiltStiffness{"N m/rad", 1.0};
 constexpr Unit kTiltDamping{"N m s/rad", 1.0};
@@ -461,7 +462,7 @@ class F {
   template <class M>
   static void assign_setting(Analysis& analysis, M member, const FieldValue& v) {
     using S = typename MemberTraits<M>::Class;
-    if (auto* s = std::get_if<S>(&analysis.settings)) assign(s->*member, v);
+    if (auto* s = settings_as<S>(analysis)) assign(s->*member, v);
   }
   void check_enum_size(std::size_t n) const {
     if (n != f_.choices.size())
@@ -984,8 +985,9 @@ std::vector<double> amplitudes_of(const FieldValue& v) {
   return v.is_array ? v.numbers : std::vector<double>{v.number};
 }
 
-void finish_cyclic_forced(Analysis& a, const TableContext& t) {
-  auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+/// The keys a cyclic forced response and a damper-ring response share: speeds, the gear pair's
+/// keys, the excitation and the sensors.
+void finish_tooth_excitation(CyclicForcedResponseSettings& s, const TableContext& t) {
   s.speeds = speed_range(t);
   if (s.speeds.front() <= 0.0)
     t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
@@ -1005,6 +1007,13 @@ void finish_cyclic_forced(Analysis& a, const TableContext& t) {
            "the speed of gear 1 at which the dynamic mesh force is computed (model = "
            "\"dynamic\")",
            "nothing", "give harmonics_rpm, or use model = \"infinite_inertia\"");
+  if (s.sensor_sets.empty() && s.sensor_nodes.empty())
+    t.fail("sensor_sets", "at least one sensor point: sensor_sets or sensor_nodes", "neither");
+}
+
+void finish_cyclic_forced(Analysis& a, const TableContext& t) {
+  auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+  finish_tooth_excitation(s, t);
   if (t.has("force_amplitude")) {
     const FieldValue& v = t.at("force_amplitude");
     if (v.is_array && v.count != s.engine_orders.size())
@@ -1032,11 +1041,37 @@ void finish_cyclic_forced(Analysis& a, const TableContext& t) {
            "the engine order compared with the measurement (the superposed sum needs superpose "
            "= true)",
            "0");
-  if (s.sensor_sets.empty() && s.sensor_nodes.empty())
-    t.fail("sensor_sets", "at least one sensor point: sensor_sets or sensor_nodes", "neither");
   if (s.reduction == ReductionMethod::Guyan)
     t.fail("reduction", "\"none\" or \"craig_bampton\" (the forced response sums modes)",
            "\"guyan\"");
+}
+
+void finish_damper_ring(Analysis& a, const TableContext& t) {
+  auto& s = std::get<DamperRingResponseSettings>(a.settings);
+  finish_tooth_excitation(s, t);
+  s.engine_orders = {s.engine_order};
+  if (t.has("force_amplitude")) {
+    const FieldValue& v = t.at("force_amplitude");
+    if (v.is_array && v.count > static_cast<std::size_t>(s.harmonics))
+      t.fail("force_amplitude",
+             fmt::format("at most {} amplitudes: F_k, F_2k, ... for harmonics 1 .. harmonics",
+                         s.harmonics),
+             fmt::format("{} amplitudes", v.count), "raise harmonics, or drop amplitudes");
+  }
+  if (s.time_samples > 0 && s.time_samples < 2 * s.harmonics + 1)
+    t.fail("time_samples",
+           fmt::format("at least 2 harmonics + 1 = {} samples per period", 2 * s.harmonics + 1),
+           std::to_string(s.time_samples));
+  const bool sweep = s.sweep != DamperSweep::None;
+  if (t.has("performance_values") && !sweep)
+    t.fail("performance_values", "a performance_parameter they are values of", "none");
+  if (sweep && s.sweep_values.empty())
+    t.fail("performance_values", "the values of performance_parameter (at least one)", "none");
+  if (sweep && s.sweep != DamperSweep::FrictionCoefficient)
+    for (std::size_t i = 0; i < s.sweep_values.size(); ++i)
+      if (!(s.sweep_values[i] > 0.0))
+        t.fail(fmt::format("performance_values[{}]", i), "factors > 0",
+               fmt::format("{}", s.sweep_values[i]));
 }
 
 void finish_gear_forced(Analysis& a, const TableContext& t) {
@@ -1095,7 +1130,8 @@ void set_analysis_type(Analysis& a, const FieldValue& v) {
                                      AnalysisType::MeshHarmonics,
                                      AnalysisType::Correlation,
                                      AnalysisType::CyclicForcedResponse,
-                                     AnalysisType::GearForcedResponse};
+                                     AnalysisType::GearForcedResponse,
+                                     AnalysisType::DamperRingResponse};
   a.type = kTypes[v.choice];
   switch (a.type) {
     case AnalysisType::Modal:
@@ -1142,6 +1178,9 @@ void set_analysis_type(Analysis& a, const FieldValue& v) {
       break;
     case AnalysisType::GearForcedResponse:
       a.settings = GearForcedResponseSettings{};
+      break;
+    case AnalysisType::DamperRingResponse:
+      a.settings = DamperRingResponseSettings{};
       break;
   }
 }
@@ -2197,11 +2236,15 @@ Section make_schema() {
                                                 "cyclic_modal",
                                                 "mesh_force",
                                                 "cyclic_forced_response",
-                                                "gear_forced_response"};
-  const std::vector<std::string> kSolidAnalyses = {"solid_modal", "cyclic_modal", "reduction",
-                                                   "cyclic_forced_response"};
+                                                "gear_forced_response",
+                                                "damper_ring_response"};
+  const std::vector<std::string> kSolidAnalyses = {
+      "solid_modal", "cyclic_modal", "reduction", "cyclic_forced_response", "damper_ring_response"};
   const std::vector<std::string> kForcedAnalyses = {"cyclic_forced_response",
-                                                    "gear_forced_response"};
+                                                    "gear_forced_response", "damper_ring_response"};
+  // Keys of the tooth-force excitation, sensors and damping shared by the cyclic forced
+  // responses (a damper-ring response is one).
+  const std::vector<std::string> kCyclicForced = {"cyclic_forced_response", "damper_ring_response"};
   const std::vector<std::string> kGearAnalyses = {"gear_pair", "mesh_force", "mesh_harmonics"};
   Section outputs =
       S("outputs", SectionKind::ArrayOfTables, "[[analyses.outputs]]",
@@ -2334,7 +2377,8 @@ Section make_schema() {
                   .ge(1)
                   .le(10000)
                   .only_in({"modal", "campbell", "solid_modal", "cyclic_modal", "reduction",
-                            "cyclic_forced_response", "gear_forced_response"})
+                            "cyclic_forced_response", "gear_forced_response",
+                            "damper_ring_response"})
                   .to_settings(&ModalSettings::n_modes, &CampbellSettings::n_modes,
                                &SolidModalSettings::n_modes, &CyclicModalSettings::n_modes,
                                &ReductionSettings::compare_modes,
@@ -2385,7 +2429,7 @@ Section make_schema() {
                                                             ReductionMethod::CraigBampton};
                     if (auto* c = std::get_if<CyclicModalSettings>(&a.settings))
                       c->reduction = v.given ? kMethods[v.choice] : ReductionMethod::None;
-                    if (auto* c = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                    if (auto* c = settings_as<CyclicForcedResponseSettings>(a))
                       c->reduction = v.given ? kMethods[v.choice] : ReductionMethod::None;
                     if (auto* r = std::get_if<ReductionSettings>(&a.settings))
                       r->method = kMethods[v.choice];
@@ -2660,20 +2704,21 @@ Section make_schema() {
                      "Mesh model: the dynamic one-DOF model along the line of action, or the "
                      "algebraic limit of infinite inertias F_d = F_s k(t) / k_mean.")
                   .def("\"dynamic\"")
-                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response"})
+                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response",
+                            "damper_ring_response"})
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
                     const MeshForceModel m =
                         v.choice == 0 ? MeshForceModel::Dynamic : MeshForceModel::InfiniteInertia;
                     if (auto* s = std::get_if<MeshForceSettings>(&a.settings)) s->model = m;
                     if (auto* s = std::get_if<MeshHarmonicsSettings>(&a.settings)) s->model = m;
-                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
-                      s->model = m;
+                    if (auto* s = settings_as<CyclicForcedResponseSettings>(a)) s->model = m;
                   }),
               boolean("contact_loss",
                       "Teeth separate when the dynamic transmission error falls to zero (false: "
                       "the linear time-periodic mesh law for every deflection).")
                   .def("true")
-                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response"})
+                  .only_in({"mesh_force", "mesh_harmonics", "cyclic_forced_response",
+                            "damper_ring_response"})
                   .to_settings(&MeshForceSettings::contact_loss,
                                &MeshHarmonicsSettings::contact_loss,
                                &CyclicForcedResponseSettings::contact_loss),
@@ -2693,7 +2738,7 @@ Section make_schema() {
                   .def("1")
                   .ge(1)
                   .le(2)
-                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .only_in({"mesh_harmonics", "cyclic_forced_response", "damper_ring_response"})
                   .to_settings(&MeshHarmonicsSettings::gear, &CyclicForcedResponseSettings::gear),
               number("window_shift", kNoUnit,
                      "Shift of the tooth-load window against the STE cycle start (the tooth "
@@ -2701,7 +2746,7 @@ Section make_schema() {
                   .def("0.0")
                   .ge(-3.0)
                   .le(3.0)
-                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .only_in({"mesh_harmonics", "cyclic_forced_response", "damper_ring_response"})
                   .to_settings(&MeshHarmonicsSettings::window_shift,
                                &CyclicForcedResponseSettings::window_shift),
               number("contact_ratio", kNoUnit,
@@ -2710,7 +2755,7 @@ Section make_schema() {
                   .ge(1.0)
                   .le(3.0)
                   .note("the pair's total contact ratio eps_gamma")
-                  .only_in({"mesh_harmonics", "cyclic_forced_response"})
+                  .only_in({"mesh_harmonics", "cyclic_forced_response", "damper_ring_response"})
                   .to_settings(&MeshHarmonicsSettings::contact_ratio,
                                &CyclicForcedResponseSettings::contact_ratio),
               F("nodal_diameters", FieldType::NumberArray,
@@ -2724,7 +2769,7 @@ Section make_schema() {
                     for (double h : v.numbers) nds.push_back(static_cast<int>(h));
                     if (auto* s = std::get_if<MeshHarmonicsSettings>(&a.settings))
                       s->nodal_diameters = nds;
-                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                    if (auto* s = settings_as<CyclicForcedResponseSettings>(a))
                       s->nodal_diameters = nds;
                   }),
               integer("orders_per_diameter",
@@ -2803,12 +2848,13 @@ Section make_schema() {
               F("force_amplitude", FieldType::NumberOrArray,
                 "Harmonic force amplitude [N] without a gear pair: one value for every order, "
                 "or one per entry of engine_orders (cyclic_forced_response) or per mesh order "
-                "1 .. max_mesh_order (gear_forced_response).")
+                "1 .. max_mesh_order (gear_forced_response), or F_k, F_2k, ... on harmonics "
+                "1, 2, ... (damper_ring_response).")
                   .unit(kNewton)
                   .gt(0)
                   .only_in(kForcedAnalyses)
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
-                    if (auto* s = std::get_if<CyclicForcedResponseSettings>(&a.settings))
+                    if (auto* s = settings_as<CyclicForcedResponseSettings>(a))
                       s->force_amplitude = amplitudes_of(v);
                     if (auto* s = std::get_if<GearForcedResponseSettings>(&a.settings))
                       s->force_amplitude = amplitudes_of(v);
@@ -2819,23 +2865,23 @@ Section make_schema() {
                      "at every speed of the range.")
                   .gt(0)
                   .note("required with model = \"dynamic\"")
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::harmonics_speed),
               vector3("force_direction", kNoUnit,
                       "Direction of an explicit force_amplitude in global components of the "
                       "sector (the rotating frame), normalised.")
                   .nonzero()
                   .note("tangential, -e_theta at each excitation node")
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::force_direction),
               choice("cone_apex", {"minus_z", "plus_z"},
                      "Side of the pitch-cone apex along the solid's z axis: the axial tooth "
                      "force (positive away from the apex, gear/tooth_forces.hpp) points the "
                      "other way.")
                   .def("\"minus_z\"")
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
-                    std::get<CyclicForcedResponseSettings>(a.settings).apex_below = v.choice == 0;
+                    settings_as<CyclicForcedResponseSettings>(a)->apex_below = v.choice == 0;
                   }),
               F("engine_orders", FieldType::NumberArray,
                 "Engine orders k excited (each k = +-h mod sectors for a listed nodal "
@@ -2845,7 +2891,7 @@ Section make_schema() {
                   .note("orders_per_diameter orders per nodal diameter: h, N - h, ...")
                   .only_in({"cyclic_forced_response"})
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
-                    auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+                    auto& s = *settings_as<CyclicForcedResponseSettings>(a);
                     s.engine_orders.clear();
                     for (double k : v.numbers) s.engine_orders.push_back(static_cast<int>(k));
                   }),
@@ -2853,22 +2899,22 @@ Section make_schema() {
                    "Node set of the sector carrying the tooth load (the load is shared equally "
                    "by its nodes).")
                   .def("\"excitation\"")
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::excitation_set),
               F("sensor_sets", FieldType::StringArray,
                 "Node sets of the sector whose response is reported: one point per set, its "
                 "node nearest to the set's centroid.")
                   .def("[]")
                   .unique()
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::sensor_sets),
               F("sensor_nodes", FieldType::NumberArray,
                 "Node ids of the sector mesh whose response is reported.")
                   .def("[]")
                   .ge(0)
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
-                    auto& s = std::get<CyclicForcedResponseSettings>(a.settings);
+                    auto& s = *settings_as<CyclicForcedResponseSettings>(a);
                     s.sensor_nodes.clear();
                     for (double n : v.numbers) s.sensor_nodes.push_back(static_cast<int>(n));
                   }),
@@ -2877,16 +2923,16 @@ Section make_schema() {
                 "(which turn with the gear: the rotating frame).")
                   .def("[\"ux\", \"uy\", \"uz\"]")
                   .choices(kComponentChoices)
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::sensor_components),
               number("damping_ratio", kNoUnit, "Modal damping ratio zeta of every mode.")
                   .gt(0)
                   .lt(1)
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::damping_ratio),
               number("q_factor", kNoUnit, "Quality factor Q = 1 / (2 zeta) of every mode.")
                   .gt(0.5)
-                  .only_in({"cyclic_forced_response"})
+                  .only_in(kCyclicForced)
                   .to_settings(&CyclicForcedResponseSettings::q_factor),
               boolean("superpose",
                       "Also report the superposition of all orders per sensor: the sum of "
@@ -2947,13 +2993,132 @@ Section make_schema() {
                   .def("true")
                   .only_in({"gear_forced_response"})
                   .to_settings(&GearForcedResponseSettings::residual_vectors),
+              // damper_ring_response
+              integer("engine_order",
+                      "Engine order k of the tooth force exciting the gear; it excites nodal "
+                      "diameter h = +-k mod sectors, and harmonic n of the response carries "
+                      "engine order n k.")
+                  .required()
+                  .ge(1)
+                  .le(100000)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::engine_order),
+              text("gear_contact_set",
+                   "Node set of the gear's contact face in the groove (its i-th node coincides "
+                   "with the i-th of ring_contact_set).")
+                  .def("\"groove_contact\"")
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::gear_contact_set),
+              text("ring_contact_set", "Node set of the ring's contact face.")
+                  .def("\"ring_contact\"")
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::ring_contact_set),
+              text("ring_element_set",
+                   "Element set of the ring (its mass and centre-of-mass radius give the "
+                   "centrifugal preload).")
+                  .def("\"ring\"")
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::ring_element_set),
+              choice("contact", {"2d", "3d"},
+                     "Contact model per node pair: \"2d\" normal + one slip direction "
+                     "(inclined by ring_inclination_deg from the circumferential one), \"3d\" "
+                     "normal + circumferential and axial slip.")
+                  .def("\"2d\"")
+                  .only_in({"damper_ring_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    std::get<DamperRingResponseSettings>(a.settings).contact_directions =
+                        v.choice + 1;
+                  }),
+              number("ring_inclination_deg", kDegree,
+                     "Inclination psi of the 2d contact's slip direction from the "
+                     "circumferential direction towards the axis.")
+                  .def("0.0")
+                  .ge(-90.0)
+                  .le(90.0)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::ring_inclination),
+              number("normal_stiffness", kStiffness, "Normal contact stiffness k_n per node pair.")
+                  .ge(0)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::normal_stiffness),
+              number("contact_stiffness", kStiffnessPerArea,
+                     "Normal contact stiffness per contact area: k_n = this x the contact face "
+                     "area of a sector / the pairs per sector.")
+                  .ge(0)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::contact_stiffness),
+              number("tangential_stiffness", kStiffness,
+                     "Tangential (stick) contact stiffness k_t per node pair.")
+                  .gt(0)
+                  .note("Mindlin: k_t = 4 G* / E* k_n, 2 (1 - nu) / (2 - nu) k_n for equal "
+                        "materials")
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::tangential_stiffness),
+              number("friction_coefficient", kNoUnit, "Coulomb friction coefficient mu.")
+                  .required()
+                  .ge(0)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::friction_coefficient),
+              integer("harmonics",
+                      "Harmonics H balanced (1: the fundamental; more resolve the contact "
+                      "forces' higher harmonics and engine orders n k).")
+                  .def("1")
+                  .ge(1)
+                  .le(50)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::harmonics),
+              integer("time_samples",
+                      "Time samples per period of the alternating frequency-time evaluation.")
+                  .ge(3)
+                  .le(65536)
+                  .note("(8 + 1) H + 1 rounded up to a power of two, at least 64")
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::time_samples),
+              F("hysteresis_pairs", FieldType::NumberArray,
+                "Contact pairs (0-based, in the order of the contact sets) whose hysteresis "
+                "loops at the resonance are reported.")
+                  .ge(0)
+                  .unique()
+                  .note("three pairs spread over the contact face")
+                  .only_in({"damper_ring_response"})
+                  .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
+                    auto& s = std::get<DamperRingResponseSettings>(a.settings);
+                    s.hysteresis_pairs.clear();
+                    for (double n : v.numbers) s.hysteresis_pairs.push_back(static_cast<int>(n));
+                  }),
+              number("max_step", kNoUnit,
+                     "Largest continuation step, relative to the speed range and the linear "
+                     "response amplitude.")
+                  .def("0.02")
+                  .gt(0)
+                  .le(0.5)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::max_step),
+              choice("performance_parameter",
+                     {"ring_mass", "friction_coefficient", "contact_stiffness"},
+                     "Damper performance curve: the response is traced again for each of "
+                     "performance_values of this parameter (ring_mass, contact_stiffness: "
+                     "factors on the ring's density and on k_n and k_t; friction_coefficient: "
+                     "values of mu), giving resonance speed, peak and Q against it.")
+                  .note("no performance curve")
+                  .only_in({"damper_ring_response"})
+                  .to_settings_enum(&DamperRingResponseSettings::sweep,
+                                    {DamperSweep::RingMass, DamperSweep::FrictionCoefficient,
+                                     DamperSweep::ContactStiffness}),
+              numbers("performance_values", kNoUnit, "Values of performance_parameter, increasing.")
+                  .ge(0)
+                  .increasing()
+                  .min_items(1)
+                  .only_in({"damper_ring_response"})
+                  .to_settings(&DamperRingResponseSettings::sweep_values),
           })
           .choices({{{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
                      true,
                      {"campbell", "unbalance", "mesh_force", "cyclic_forced_response",
-                      "gear_forced_response"}},
+                      "gear_forced_response", "damper_ring_response"}},
                     {{{"pair"}, {"force_amplitude"}}, true, kForcedAnalyses},
-                    {{{"damping_ratio"}, {"q_factor"}}, true, {"cyclic_forced_response"}},
+                    {{{"damping_ratio"}, {"q_factor"}}, true, kCyclicForced},
+                    {{{"normal_stiffness"}, {"contact_stiffness"}}, true, {"damper_ring_response"}},
                     {{{"speed_rpm"}, {"speed_start_rpm", "speed_stop_rpm", "speed_count"}},
                      false,
                      {"cyclic_modal"}},
@@ -3024,7 +3189,14 @@ Section make_schema() {
                                        "Forced response of the rotor to the mesh-order "
                                        "harmonics of one gear mesh over speed (modal basis), "
                                        "with the resonance peaks and their Q.",
-                                       finish_gear_forced)});
+                                       finish_gear_forced),
+                     variant<Analysis>("damper_ring_response",
+                                       "Friction-damped response over speed of a cyclic gear "
+                                       "with a damper ring in a groove (harmonic balance on the "
+                                       "ring's contacts): damped, free and stuck responses, Q "
+                                       "and resonance shift, energy, stick / slip / lift-off, "
+                                       "hysteresis loops, optional performance curve.",
+                                       finish_damper_ring)});
 
   Section root =
       S("", SectionKind::Root, "top level", "Keys at the top of the file, before any table.")

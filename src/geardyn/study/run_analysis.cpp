@@ -14,6 +14,7 @@
 #include "geardyn/analysis/unbalance.hpp"
 #include "geardyn/component/solid_analyses.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/forcedan/damper_analysis.hpp"
 #include "geardyn/forcedan/forced_analyses.hpp"
 #include "geardyn/gearan/gear_analyses.hpp"
 #include "geardyn/model/parse.hpp"
@@ -54,6 +55,8 @@ std::string analysis_type_name(model::AnalysisType type) {
       return "cyclic_forced_response";
     case model::AnalysisType::GearForcedResponse:
       return "gear_forced_response";
+    case model::AnalysisType::DamperRingResponse:
+      return "damper_ring_response";
   }
   return "unknown";
 }
@@ -178,6 +181,12 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
         const auto& s = std::get<model::CyclicForcedResponseSettings>(analysis.settings);
         out = forcedan::run_cyclic_forced_response(model, solid_for(s.solid), s, analysis.name,
                                                    progress);
+        break;
+      }
+      case model::AnalysisType::DamperRingResponse: {
+        const auto& s = std::get<model::DamperRingResponseSettings>(analysis.settings);
+        out = forcedan::run_damper_ring_response(model, solid_for(s.solid), s, analysis.name,
+                                                 progress);
         break;
       }
       case model::AnalysisType::GearForcedResponse:
