@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -138,6 +140,45 @@ TEST(SolidExamples, DamperRingStuckSteelRingAndAnInteriorMassOptimum) {
     EXPECT_GT(std::stod(pairs["energy_per_cycle_j"][i]), 0.0) << i;
   }
   EXPECT_TRUE(fs::exists(out / "damper_optimum" / "hysteresis_loops.csv"));
+}
+
+// Bad input of a damper-ring response (issue [friction-hbm] sec. 7): the example with one key
+// changed is refused before any result is written, exit code 2, naming the key and the reason.
+// (Zero friction together with zero preload cannot be written in a model file -- densities and
+// speeds are positive -- and is refused by the library: tests/damper.)
+TEST(SolidExamples, DamperRingBadInputIsRefusedWithItsKey) {
+  std::ifstream in(kSource + "/examples/damper_ring/model.toml");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string example = buffer.str();
+  struct Case {
+    std::string from, to, key, words;
+  };
+  const std::vector<Case> cases = {
+      // A contact pair index the sector does not have.
+      {"performance_values = [0.003, 0.01, 0.03, 0.1, 0.3, 1.0]",
+       "performance_values = [0.003, 0.01, 0.03, 0.1, 0.3, 1.0]\nhysteresis_pairs = [10]",
+       "analyses[0].hysteresis_pairs[0]", "a contact pair index 0 .. 9"},
+      // A gear sector without its groove.
+      {"groove = true\ngroove_position = 0.009\ngroove_width = 0.008\ngroove_depth = 0.004\n"
+       "ring_width = 0.006\nring_thickness = 0.005\nring_material = \"ring_steel\"\n",
+       "", "analyses[0].solid", "groove = true"},
+  };
+  for (const Case& c : cases) {
+    std::string text = example;
+    const auto at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    text.replace(at, c.from.size(), c.to);
+    const fs::path dir = fresh_dir("damper_ring_bad");
+    fs::create_directories(dir);
+    const fs::path model = dir / "model.toml";
+    std::ofstream(model) << text;
+    const ProcessResult r = run("run -q " + model.string() + " -o " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << c.key << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.key), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.words), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out" / "manifest.json")) << c.key;
+  }
 }
 
 }  // namespace
