@@ -637,6 +637,9 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
     pl.title = fmt::format("Damper performance curve: peak amplitude against {}", what);
     pl.x_label = what;
     pl.y_label = "peak amplitude [m]";
+    // Factors span decades; a friction coefficient may start at 0.
+    const bool x_log = s.sweep != model::DamperSweep::FrictionCoefficient;
+    pl.x_log = x_log;
     Trace tr = curve("damped peak", value, amp);
     tr.mode = Trace::Mode::LinesMarkers;
     pl.traces.push_back(std::move(tr));
@@ -648,6 +651,7 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
     ps.name = "performance_speed";
     ps.title = fmt::format("Resonance speed and Q against {}", what);
     ps.x_label = what;
+    ps.x_log = x_log;
     ps.y_label = "resonance speed [rpm] / Q";
     Trace trs = curve("resonance speed [rpm]", value, rpm);
     trs.mode = Trace::Mode::LinesMarkers;
