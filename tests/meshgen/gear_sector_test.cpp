@@ -18,8 +18,8 @@
 #include <set>
 #include <tuple>
 
-#include "meshgen/damper_gear.hpp"
 #include "mesh_checks.hpp"
+#include "meshgen/damper_gear.hpp"
 
 namespace geardyn::meshgen {
 namespace {

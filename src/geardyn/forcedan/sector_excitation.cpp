@@ -188,9 +188,13 @@ std::string tooth_force_harmonics(const model::Model& model, const std::string& 
     ks.push_back(f.engine_order);
     highest_order = std::max(highest_order, f.engine_order);
   }
+  // The key naming the orders: a damper-ring response has one (engine_order).
+  const model::Analysis* analysis = model.find_analysis(name);
+  const bool single = analysis != nullptr &&
+                      std::holds_alternative<model::DamperRingResponseSettings>(analysis->settings);
   if (2 * highest_order >= static_cast<int>(rev.tooth.size()))
     throw InputError(
-        where_of(model, name), key_of(model, name, "engine_orders"),
+        where_of(model, name), key_of(model, name, single ? "engine_order" : "engine_orders"),
         fmt::format("orders below {} (half the samples of one revolution)", rev.tooth.size() / 2),
         std::to_string(highest_order));
   const std::vector<gear::HarmonicComponents> comps = rev.components(ks);
