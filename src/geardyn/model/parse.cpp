@@ -1603,6 +1603,20 @@ void check_text(std::string_view text, const std::string& file_name) {
   auto starts = [&](std::size_t i, std::string_view what) {
     return text.compare(i, what.size(), what) == 0;
   };
+  // TOML escapes are ASCII (\n, \t, \", \\, \uXXXX, ... or a line-ending backslash). toml++
+  // 3.3 classifies the character after a backslash with a whitespace table that has undefined
+  // behaviour for some non-ASCII code points (e.g. U+FEFD), so those are refused here first.
+  auto escape_must_be_ascii = [&](std::size_t backslash, std::size_t k) {
+    if (k >= text.size() || static_cast<unsigned char>(text[k]) < 0x80) return;
+    const Utf8 next = decode_utf8(text, k);
+    column += static_cast<int>(k - backslash);  // the characters in between are ASCII
+    fail(
+        "an escape sequence after the backslash (\\b \\t \\n \\f \\r \\\" \\\\ \\uXXXX "
+        "\\UXXXXXXXX, or a line-ending backslash)",
+        next.length == 0
+            ? std::string("invalid UTF-8")
+            : fmt::format("the character U+{:04X}", static_cast<unsigned>(next.code_point)));
+  };
   for (std::size_t i = 0; i < text.size();) {
     const char c = text[i];
     const Utf8 u = decode_utf8(text, i);
@@ -1640,9 +1654,10 @@ void check_text(std::string_view text, const std::string& file_name) {
         if (c == '\n') state = State::Normal;
         break;
       case State::Basic:
-        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n')
+        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+          escape_must_be_ascii(i, i + 1);
           advance = 2;
-        else if (c == '"' || c == '\n')
+        } else if (c == '"' || c == '\n')
           state = State::Normal;
         break;
       case State::Literal:
@@ -1652,6 +1667,7 @@ void check_text(std::string_view text, const std::string& file_name) {
         if (c == '\\') {
           std::size_t k = i + 1;
           while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r')) ++k;
+          escape_must_be_ascii(i, k);
           if (k < text.size() && text[k] == '\n')
             continued_line = true;
           else if (k < text.size() && static_cast<unsigned char>(text[k]) < 0x80)
