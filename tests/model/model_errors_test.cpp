@@ -93,6 +93,8 @@ const ErrorCase kCases[] = {
      "(syntax)", "an escape sequence after the backslash", "the character U+00A7", "", true},
     {"NonAsciiEscapeInString", "version = 1\ntitle = \"a \\\xc2\xa7\"\n", 2, 13, "(syntax)",
      "an escape sequence after the backslash", "the character U+00A7", "", true},
+    {"QuoteAfterBareValue", "version = 1\ntitle = 0x\"a\"\n", 2, 11, "(syntax)",
+     "a string only after", "a quote after 'x'", "", true},
     {"UnknownKeyDidYouMean", "lenght = 0.1\n", 1, 1, "shafts[0].elements[0].lenght",
      "a key of [[shafts.elements]]", "the unknown key 'lenght'", "did you mean 'length'?"},
     {"UnknownKeyWithoutUnitSuffix",

@@ -416,6 +416,26 @@ TEST(ModelParse, FuzzSeedsAreValidModels) {
   EXPECT_GE(seeds, 2);
 }
 
+TEST(ModelParse, FuzzRegressionInputsAreRefusedWithASyntaxError) {
+  // Inputs on which fuzz/model_fuzz once found undefined behaviour inside toml++ 3.3 (its
+  // whitespace table reaches an unreachable branch for some non-ASCII code points after a
+  // backslash or in a bare value): geardyn's text check must refuse them before toml++ runs.
+  const std::string dir = std::string(GEARDYN_SOURCE_DIR) + "/fuzz/regressions/model";
+  int inputs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    SCOPED_TRACE(entry.path().string());
+    try {
+      (void)load_document(entry.path().string());
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.key_path(), "(syntax)");
+      EXPECT_GE(e.where().line, 1);
+    }
+    ++inputs;
+  }
+  EXPECT_GE(inputs, 2);
+}
+
 TEST(ModelParse, StationNames) { EXPECT_EQ(station_name("rotor", 3), "rotor.3"); }
 
 }  // namespace

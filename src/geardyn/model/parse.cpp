@@ -1597,6 +1597,7 @@ void check_text(std::string_view text, const std::string& file_name) {
   State state = State::Normal;
   int line = 1, column = 1;
   bool continued_line = false;  // inside """: after a line-ending backslash, before content
+  char before = '\n';           // outside strings and comments: the last non-blank character
   auto fail = [&](std::string expected, std::string found) {
     throw InputError({file_name, line, column}, "(syntax)", std::move(expected), std::move(found));
   };
@@ -1634,10 +1635,18 @@ void check_text(std::string_view text, const std::string& file_name) {
             "the TOML reader)",
             fmt::format("the character U+{:04X}", static_cast<unsigned>(u.code_point)));
     }
+    const State was = state;
     switch (state) {
       case State::Normal:
         if (c == '#') {
           state = State::Comment;
+        } else if ((c == '"' || c == '\'') &&
+                   std::string_view("=[,{.\n").find(before) == std::string_view::npos) {
+          // TOML starts a string only there; toml++ 3.3 would scan a quote after a bare value
+          // (x = 0x"...") as part of that value, classifying its characters with the table that
+          // has undefined behaviour for some non-ASCII code points.
+          fail("valid TOML: a string only after '=', ',', '[', '{', '.' or first on a line",
+               fmt::format("a quote after '{}'", before));
         } else if (starts(i, "\"\"\"")) {
           state = State::MultiBasic;
           advance = 3;
@@ -1686,6 +1695,14 @@ void check_text(std::string_view text, const std::string& file_name) {
           advance = 3;
         }
         break;
+    }
+    if (state == State::Normal) {
+      if (was == State::Comment)
+        before = '\n';
+      else if (was != State::Normal)
+        before = '"';  // a string ended
+      else if (c != ' ' && c != '\t' && c != '\r')
+        before = c;
     }
     for (std::size_t k = 0; k < advance && i + k < text.size(); ++k) {
       if (text[i + k] == '\n') {
