@@ -126,8 +126,9 @@ cyclic::SectorInterfaces two_body_interfaces(const std::vector<solid::DofInfo>& 
                                              const std::vector<long>& gear_right,
                                              const std::vector<long>& ring_left,
                                              const std::vector<long>& ring_right) {
-  std::set<long> with_dofs;
-  for (const auto& d : dofs) with_dofs.insert(d.node_id);
+  std::set<long> with_dofs;  // physical DOFs only (a reduced sector's modal DOFs have -1)
+  for (const auto& d : dofs)
+    if (d.component >= 0) with_dofs.insert(d.node_id);
   auto kept = [&](const std::vector<long>& ids) {
     std::vector<long> out;
     for (long id : ids)

@@ -42,6 +42,8 @@ struct DamperSetup {
   SectorPoints points;
   std::vector<solid::DofInfo> dofs;
   cyclic::SectorInterfaces interfaces;
+  /// Node ids of the sector faces: gear left, gear right, ring left, ring right.
+  std::vector<long> faces[4];
   damper::ContactPairing pairing;
   std::vector<long> ring_ids;
   damper::BodyMass ring;
@@ -85,10 +87,10 @@ DamperSetup damper_setup(const model::Model& model, const std::string& name,
   io.n_sectors = c.sectors;
   io.tolerance = c.interface_tolerance;
   try {
-    d.interfaces = damper::two_body_interfaces(d.dofs, io, ids_of(mesh, node_set("left", "solid")),
-                                               ids_of(mesh, node_set("right", "solid")),
-                                               ids_of(mesh, node_set("ring_left", "solid")),
-                                               ids_of(mesh, node_set("ring_right", "solid")));
+    const char* face_sets[4] = {"left", "right", "ring_left", "ring_right"};
+    for (int f = 0; f < 4; ++f) d.faces[f] = ids_of(mesh, node_set(face_sets[f], "solid"));
+    d.interfaces =
+        damper::two_body_interfaces(d.dofs, io, d.faces[0], d.faces[1], d.faces[2], d.faces[3]);
     d.pairing = damper::pair_contact_nodes(d.dofs, gear_contact, ring_contact, d.interfaces,
                                            c.interface_tolerance, "ring_contact_set");
   } catch (const InputError& e) {
@@ -318,9 +320,41 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
   std::string force_note;
   damper::DamperRingProblem p;
   p.loads = harmonic_loads(model, name, c, s, setup.points, orders, force_note, progress);
-  p.K = c.stiffness();
-  p.M = c.mass();
-  p.sector = cyclic::CyclicSector(setup.dofs, setup.interfaces);
+  // The sector: the mesh, or its Craig-Bampton reduction keeping the sector faces, the contact
+  // pairs, the excitation and the sensor nodes as physical masters (all the condensed model
+  // addresses by node).
+  std::vector<long> masters;
+  for (const auto& face : setup.faces) masters.insert(masters.end(), face.begin(), face.end());
+  for (const auto& pr : setup.pairing.pairs) {
+    masters.push_back(pr.gear_node);
+    masters.push_back(pr.ring_node);
+  }
+  for (int n : setup.points.excitation)
+    masters.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
+  for (int n : setup.points.sensor_nodes)
+    masters.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
+  // K, M and the cyclic sector of a problem from the mesh's mass matrix `mass` (reduced again
+  // when the sector is reduced: the fixed-interface modes depend on the mass).
+  auto set_sector = [&](damper::DamperRingProblem& q, const Eigen::SparseMatrix<double>& mass) {
+    SolvedSector solved = solved_sector(
+        c, s, masters, "sector faces of gear and ring, contact pairs, excitation and sensor nodes",
+        name, progress, &mass);
+    q.K = std::move(solved.K);
+    q.M = std::move(solved.M);
+    if (solved.cb) {
+      cyclic::InterfaceOptions io;
+      io.n_sectors = N;
+      io.tolerance = c.interface_tolerance;
+      q.sector = cyclic::CyclicSector(
+          solved.dofs, damper::two_body_interfaces(solved.dofs, io, setup.faces[0], setup.faces[1],
+                                                   setup.faces[2], setup.faces[3]));
+    } else {
+      q.sector = cyclic::CyclicSector(setup.dofs, setup.interfaces);
+    }
+    return solved.note;
+  };
+  const std::string reduction_note = set_sector(p, c.mass());
+  if (!reduction_note.empty()) out.notes.push_back(reduction_note);
   p.pairs = setup.pairing.pairs;
   p.contact = setup.law;
   p.ring_mass = setup.ring.mass;
@@ -568,7 +602,7 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
                            ? "friction_coefficient"
                            : "contact_stiffness_factor";
     std::vector<PerformancePoint> points;
-    // The ring's DOFs, for scaling its mass (gear and ring share no node).
+    // The ring's DOFs in the mesh, for scaling its mass (gear and ring share no node).
     std::vector<char> in_ring;
     if (s.sweep == model::DamperSweep::RingMass) {
       std::set<long> ids(setup.ring_ids.begin(), setup.ring_ids.end());
@@ -582,11 +616,13 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
       if (s.sweep == model::DamperSweep::RingMass) {
         damper::DamperRingProblem q = p;
         q.ring_mass = v * p.ring_mass;
-        for (int col = 0; col < q.M.outerSize(); ++col)
-          for (Eigen::SparseMatrix<double>::InnerIterator it(q.M, col); it; ++it)
+        Eigen::SparseMatrix<double> mass = c.mass();
+        for (int col = 0; col < mass.outerSize(); ++col)
+          for (Eigen::SparseMatrix<double>::InnerIterator it(mass, col); it; ++it)
             if (in_ring[static_cast<std::size_t>(it.row())] &&
                 in_ring[static_cast<std::size_t>(col)])
               it.valueRef() *= v;
+        (void)set_sector(q, mass);
         points.push_back(performance_point(damper::build_damper_ring_model(q), o, v, progress));
       } else {
         damper::DamperRingModel q = m;

@@ -180,37 +180,17 @@ AnalysisOutput run_cyclic_forced_response(const model::Model& model,
     left_ids.push_back(pr.left_node_id);
     right_ids.push_back(pr.right_node_id);
   }
-  std::optional<reduce::ReducedComponent> cb;
-  std::vector<solid::DofInfo> dofs = mesh_dofs;
-  Eigen::SparseMatrix<double> K = c.stiffness(), M = c.mass();
-  if (s.reduction == model::ReductionMethod::CraigBampton) {
-    std::vector<long> ids = left_ids;
-    ids.insert(ids.end(), right_ids.begin(), right_ids.end());
-    for (int n : points.excitation) ids.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
-    for (int n : points.sensor_nodes) ids.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
-    for (const auto& set : s.master_sets)
-      for (int n : c.mesh.node_sets.at(set))
-        if (c.system.node_dof(n, 0) >= 0 || c.system.node_dof(n, 1) >= 0 ||
-            c.system.node_dof(n, 2) >= 0)
-          ids.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
-    std::sort(ids.begin(), ids.end());
-    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-    reduce::CraigBamptonOptions o;
-    o.n_modes = s.cb_modes;
-    progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", name), 0);
-    cb = reduce::craig_bampton(K, M, mesh_dofs, reduce::select_dofs(mesh_dofs, ids), o,
-                               c.source_sha256, kVersion, progress);
-    progress.finish();
-    dofs = cb->reduced_dofs();
-    K = cb->K.sparseView();
-    M = cb->M.sparseView();
-    out.notes.push_back(fmt::format(
-        "Sector reduced by Craig-Bampton: {} physical masters (interfaces, excitation and sensor "
-        "nodes{}) + {} fixed-interface modes (up to {:.1f} Hz) from {} DOFs; loads are projected "
-        "and sensor values recovered through the reduction basis.",
-        cb->n_masters(), s.master_sets.empty() ? "" : ", master sets", cb->n_modal,
-        cb->n_modal > 0 ? cb->fixed_interface_hz[cb->n_modal - 1] : 0.0, mesh_dofs.size()));
-  }
+  std::vector<long> masters = left_ids;
+  masters.insert(masters.end(), right_ids.begin(), right_ids.end());
+  for (int n : points.excitation) masters.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
+  for (int n : points.sensor_nodes) masters.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
+  SolvedSector solved = solved_sector(c, s, std::move(masters),
+                                      "interfaces, excitation and sensor nodes", name, progress);
+  if (!solved.note.empty()) out.notes.push_back(solved.note);
+  const std::optional<reduce::ReducedComponent>& cb = solved.cb;
+  const std::vector<solid::DofInfo>& dofs = solved.dofs;
+  const Eigen::SparseMatrix<double>& K = solved.K;
+  const Eigen::SparseMatrix<double>& M = solved.M;
   cyclic::InterfaceOptions rio = io;
   rio.left_nodes = left_ids;
   rio.right_nodes = right_ids;

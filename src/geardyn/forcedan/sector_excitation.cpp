@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/version.hpp"
 #include "geardyn/gearan/pair_model.hpp"
 #include "geardyn/gearan/tooth_force.hpp"
 
@@ -133,6 +135,45 @@ SectorPoints sector_points(const model::Model& model, const std::string& name,
                        fmt::format("a node set of solid '{}' ({})", c.name, set_list(mesh)),
                        fmt::format("\"{}\"", s.master_sets[k]));
   return p;
+}
+
+SolvedSector solved_sector(const component::SolidComponent& c,
+                           const model::CyclicForcedResponseSettings& s, std::vector<long> masters,
+                           const std::string& masters_are, const std::string& name,
+                           Progress& progress, const Eigen::SparseMatrix<double>* mass) {
+  SolvedSector out;
+  out.dofs = c.dofs();
+  out.K = c.stiffness();
+  out.M = mass ? *mass : c.mass();
+  if (s.reduction != model::ReductionMethod::CraigBampton) return out;
+  for (const auto& set : s.master_sets)
+    for (int n : c.mesh.node_sets.at(set))
+      if (c.system.node_dof(n, 0) >= 0 || c.system.node_dof(n, 1) >= 0 ||
+          c.system.node_dof(n, 2) >= 0)
+        masters.push_back(c.mesh.node_ids[static_cast<std::size_t>(n)]);
+  std::sort(masters.begin(), masters.end());
+  masters.erase(std::unique(masters.begin(), masters.end()), masters.end());
+  std::set<long> with_dofs;  // nodes of fixed faces (e.g. a clamped bore) have none
+  for (const auto& d : out.dofs)
+    if (d.component >= 0) with_dofs.insert(d.node_id);
+  std::erase_if(masters, [&](long id) { return !with_dofs.count(id); });
+  reduce::CraigBamptonOptions o;
+  o.n_modes = s.cb_modes;
+  progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", name), 0);
+  out.cb = reduce::craig_bampton(out.K, out.M, out.dofs, reduce::select_dofs(out.dofs, masters), o,
+                                 c.source_sha256, kVersion, progress);
+  progress.finish();
+  const reduce::ReducedComponent& cb = *out.cb;
+  out.note = fmt::format(
+      "Sector reduced by Craig-Bampton: {} physical masters ({}{}) + {} fixed-interface modes "
+      "(up to {:.1f} Hz) from {} DOFs; loads are projected and sensor values recovered through "
+      "the reduction basis.",
+      cb.n_masters(), masters_are, s.master_sets.empty() ? "" : ", master sets", cb.n_modal,
+      cb.n_modal > 0 ? cb.fixed_interface_hz[cb.n_modal - 1] : 0.0, out.dofs.size());
+  out.dofs = cb.reduced_dofs();
+  out.K = cb.K.sparseView();
+  out.M = cb.M.sparseView();
+  return out;
 }
 
 LoadFrame load_frame(const Eigen::Vector3d& x, bool apex_below) {

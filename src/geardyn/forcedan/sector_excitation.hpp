@@ -6,6 +6,7 @@
 // amplitude-over-speed plots.
 #include <Eigen/Dense>
 #include <complex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "geardyn/core/table.hpp"
 #include "geardyn/forced/cyclic_forced_response.hpp"
 #include "geardyn/model/model.hpp"
+#include "geardyn/reduce/craig_bampton.hpp"
 
 namespace geardyn::forcedan {
 
@@ -35,6 +37,23 @@ struct SectorPoints {
 SectorPoints sector_points(const model::Model& model, const std::string& name,
                            const component::SolidComponent& c,
                            const model::CyclicForcedResponseSettings& s);
+
+/// The sector matrices a forced response solves: the assembled mesh, or its Craig-Bampton
+/// reduction (s.reduction) with `masters` (node ids) and the nodes of s.master_sets with DOFs as
+/// physical masters and s.cb_modes fixed-interface modes. The masters keep their node ids, so
+/// loads and sensors at them are found in `dofs` as in the mesh.
+struct SolvedSector {
+  std::vector<solid::DofInfo> dofs;
+  Eigen::SparseMatrix<double> K, M;
+  std::optional<reduce::ReducedComponent> cb;  ///< set when reduced
+  std::string note;                            ///< what the reduction kept (empty: none)
+};
+/// `masters_are` names the masters for the note, e.g. "interfaces, excitation and sensor nodes".
+/// `mass`: the sector's mass matrix if not c.mass() (e.g. with a body's mass scaled).
+SolvedSector solved_sector(const component::SolidComponent& c,
+                           const model::CyclicForcedResponseSettings& s, std::vector<long> masters,
+                           const std::string& masters_are, const std::string& name,
+                           Progress& progress, const Eigen::SparseMatrix<double>* mass = nullptr);
 
 /// Unit vectors of the tooth load at node x (forced_analyses.hpp: tangential -e_theta, radial
 /// -e_r, axial +z with the pitch-cone apex below).

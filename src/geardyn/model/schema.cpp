@@ -1049,6 +1049,9 @@ void finish_cyclic_forced(Analysis& a, const TableContext& t) {
 void finish_damper_ring(Analysis& a, const TableContext& t) {
   auto& s = std::get<DamperRingResponseSettings>(a.settings);
   finish_tooth_excitation(s, t);
+  if (s.reduction == ReductionMethod::Guyan)
+    t.fail("reduction", "\"none\" or \"craig_bampton\" (the receptance sums the sector's modes)",
+           "\"guyan\"");
   s.engine_orders = {s.engine_order};
   if (t.has("force_amplitude")) {
     const FieldValue& v = t.at("force_amplitude");
@@ -2421,8 +2424,9 @@ Section make_schema() {
                      "Sector reduction before the cyclic solve (cyclic_modal), or the method of "
                      "a reduction analysis.")
                   .def("\"craig_bampton\"")
-                  .note("cyclic_modal, cyclic_forced_response: \"none\"")
-                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
+                  .note("cyclic_modal, cyclic_forced_response, damper_ring_response: \"none\"")
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response",
+                            "damper_ring_response"})
                   .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
                     constexpr ReductionMethod kMethods[] = {ReductionMethod::None,
                                                             ReductionMethod::Guyan,
@@ -2438,7 +2442,8 @@ Section make_schema() {
                   .def("40")
                   .ge(0)
                   .le(100000)
-                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response",
+                            "damper_ring_response"})
                   .to_settings(&CyclicModalSettings::cb_modes, &ReductionSettings::n_modes,
                                &CyclicForcedResponseSettings::cb_modes),
               number("reduced_f_max_hz", kHertz,
@@ -2450,9 +2455,11 @@ Section make_schema() {
               F("master_sets", FieldType::StringArray,
                 "Node sets kept as physical masters (contact, excitation, sensor, connection "
                 "nodes); cyclic_modal adds the sector interfaces itself, "
-                "cyclic_forced_response the interfaces, the excitation and the sensor nodes.")
+                "cyclic_forced_response the interfaces, the excitation and the sensor nodes, "
+                "damper_ring_response also the contact pairs.")
                   .def("[]")
-                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response"})
+                  .only_in({"cyclic_modal", "reduction", "cyclic_forced_response",
+                            "damper_ring_response"})
                   .to_settings(&CyclicModalSettings::master_sets, &ReductionSettings::master_sets,
                                &CyclicForcedResponseSettings::master_sets),
               integer("interface_modes",
