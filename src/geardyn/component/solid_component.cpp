@@ -119,7 +119,7 @@ solid::Mesh generate_gear(const model::Model& model, const model::Solid& s, Prog
   }
   p.mesh.global = g.element_size;
   p.mesh.tooth = std::isnan(g.tooth_element_size) ? g.element_size : g.tooth_element_size;
-  p.mesh.groove = p.mesh.tooth;
+  p.mesh.groove = std::isnan(g.groove_element_size) ? p.mesh.tooth : g.groove_element_size;
   p.mesh.element_order = g.order;
   p.gear_material = solid_material(material_of(model, s.material));
   const std::string base = key_of(model, s, "");
@@ -137,12 +137,16 @@ std::string generator_text(const model::Solid& s) {
                        p.outer_radius, p.thickness, p.radial_elements, p.circumferential_elements,
                        p.layers, p.order, s.sectors);
   return fmt::format(
-      "gear_sector z {} m {} a {} b {} bore {} hub {} {} {} web {} {} rim {} groove {} {} {} {} "
-      "ring {} {} size {} {} order {} sectors {}",
-      g.teeth, g.module, g.pressure_angle, g.face_width, g.bore_radius, g.hub_radius, g.hub_width,
-      g.hub_offset, g.web_thickness, g.web_offset, g.rim_inner_radius, g.groove, g.groove_position,
-      g.groove_width, g.groove_depth, g.ring_width, g.ring_thickness, g.element_size,
-      g.tooth_element_size, g.order, s.sectors);
+             "gear_sector z {} m {} a {} b {} bore {} hub {} {} {} web {} {} rim {} groove {} {} "
+             "{} {} "
+             "ring {} {} size {} {} order {} sectors {}",
+             g.teeth, g.module, g.pressure_angle, g.face_width, g.bore_radius, g.hub_radius,
+             g.hub_width, g.hub_offset, g.web_thickness, g.web_offset, g.rim_inner_radius, g.groove,
+             g.groove_position, g.groove_width, g.groove_depth, g.ring_width, g.ring_thickness,
+             g.element_size, g.tooth_element_size, g.order, s.sectors) +
+         (std::isnan(g.groove_element_size)
+              ? std::string()
+              : fmt::format(" groove_size {}", g.groove_element_size));
 }
 
 }  // namespace

@@ -201,16 +201,35 @@ Eigen::VectorXcd DamperRingModel::free_response(double speed) const {
 }
 
 Eigen::VectorXcd DamperRingModel::stuck_response(double speed) const {
-  const hbm::ModalReceptance& r = receptances.at(1);
-  const double w = engine_order * speed;
-  Eigen::VectorXd kc(coordinates());
-  for (int i = 0; i < coordinates(); ++i)
-    kc[i] = i % coordinates_per_pair == 0 ? contact.normal_stiffness : contact.tangential_stiffness;
-  // (I + H Kc) x = x_lin, f = Kc x.
-  Eigen::MatrixXcd A = r.receptance(w) * kc.asDiagonal();
-  A += Eigen::MatrixXcd::Identity(coordinates(), coordinates());
-  const Eigen::VectorXcd x = A.partialPivLu().solve(r.linear_response(w));
-  return r.sensor_response(w, kc.cast<cd>().cwiseProduct(x));
+  return StuckRingResponse(*this)(speed);
+}
+
+StuckRingResponse::StuckRingResponse(const DamperRingModel& model)
+    : receptance_(&model.receptances.at(1)), engine_order_(model.engine_order) {
+  const hbm::ModalReceptance& r = *receptance_;
+  const Eigen::Index n = model.coordinates();
+  kc_.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    kc_[i] = i % model.coordinates_per_pair == 0 ? model.contact.normal_stiffness
+                                                 : model.contact.tangential_stiffness;
+  Eigen::MatrixXcd B = Eigen::MatrixXcd::Identity(n, n);
+  if (r.residual.size() > 0) B += r.residual * kc_.asDiagonal();
+  b_lu_.compute(B);
+  w_ = r.right.adjoint() * kc_.asDiagonal();
+  p_ = b_lu_.solve(r.left);
+  q_ = w_ * p_;
+}
+
+Eigen::VectorXcd StuckRingResponse::operator()(double speed) const {
+  const hbm::ModalReceptance& r = *receptance_;
+  const double w = engine_order_ * speed;
+  const Eigen::VectorXcd f = r.modal_factors(w);
+  const Eigen::VectorXcd y = b_lu_.solve(r.linear_response(w));
+  Eigen::MatrixXcd small = q_ * f.asDiagonal();
+  small += Eigen::MatrixXcd::Identity(small.rows(), small.cols());
+  const Eigen::VectorXcd x =
+      y - p_ * f.cwiseProduct(small.partialPivLu().solve(Eigen::VectorXcd(w_ * y)));
+  return r.sensor_response(w, kc_.cast<cd>().cwiseProduct(x));
 }
 
 DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& progress) {
@@ -324,6 +343,7 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     throw NumericalError("damper_ring", "cyclic modes: " + modes.message);
 
   m.receptances.assign(H + 1, hbm::ModalReceptance{});
+  progress.start("damper ring: residual flexibility and excitation", 0);
   for (const auto& nd : modes.diameters) {
     const int h = nd.nodal_diameter;
     const Eigen::SparseMatrix<cd> T = sector.transformation(h);
@@ -331,7 +351,9 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     const double sigma = eig::automatic_shift(Kh, Mh);
     linalg::SparseLU<cd> lu;
     const Eigen::SparseMatrix<cd> shifted = Kh - cd(sigma, 0.0) * Mh;
-    if (lu.compute(shifted) != Status::Ok)
+    // K - sigma M with sigma below the spectrum: well conditioned, no iterative refinement
+    // (the residual flexibility solves one right-hand side per contact coordinate).
+    if (lu.compute(shifted, false) != Status::Ok)
       throw NumericalError(
           "damper_ring", fmt::format("nodal diameter {}: the shifted stiffness is singular ({})", h,
                                      lu.message()));
@@ -376,6 +398,7 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
       }
     }
   }
+  progress.finish();
   // Harmonic 0 stays empty: the mean held at the preloaded equilibrium.
   m.receptances[0].left.resize(n_c, 0);
   m.receptances[0].right.resize(n_c, 0);
@@ -413,15 +436,17 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
   const Eigen::Index n_s = static_cast<Eigen::Index>(m.sensor_names.size());
 
   // Linear references.
+  progress.start("damper ring: linear references", 0);
   const int nl = std::max(o.linear_points, 2);
   out.linear_speeds = Eigen::VectorXd::LinSpaced(nl, o.speed_min, o.speed_max);
   out.free_amplitude.resize(nl, n_s);
   out.stuck_amplitude.resize(nl, n_s);
   double x_scale = 0.0;
   const hbm::ModalReceptance& r1 = m.receptances.at(1);
+  const StuckRingResponse stuck(m);
   for (int i = 0; i < nl; ++i) {
     out.free_amplitude.row(i) = m.free_response(out.linear_speeds[i]).cwiseAbs().transpose();
-    out.stuck_amplitude.row(i) = m.stuck_response(out.linear_speeds[i]).cwiseAbs().transpose();
+    out.stuck_amplitude.row(i) = stuck(out.linear_speeds[i]).cwiseAbs().transpose();
   }
   // The amplitude scale of the continuation: the largest linear response on a grid fine enough
   // to meet a lightly damped resonance of the range (independent of linear_points).
@@ -430,6 +455,7 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     const double speed = o.speed_min + (o.speed_max - o.speed_min) * i / (n_scale - 1.0);
     x_scale = std::max(x_scale, r1.linear_response(k * speed).norm());
   }
+  progress.finish();
 
   const hbm::CondensedHarmonicBalance hb = m.system(m.contact);
   hbm::ContinuationOptions co;

@@ -130,9 +130,29 @@ struct DamperRingModel {
   /// The harmonic-balance problem with the contacts' law (preload following the speed).
   hbm::CondensedHarmonicBalance system(const ContactLaw& law) const;
   /// Harmonic-1 sensor amplitudes of the linear structure at speed W: ring free (no contact
-  /// forces) or stuck (the contacts as linear springs k_n, k_t).
+  /// forces) or stuck (the contacts as linear springs k_n, k_t; for many speeds use
+  /// StuckRingResponse, which factors once).
   Eigen::VectorXcd free_response(double speed) const;
   Eigen::VectorXcd stuck_response(double speed) const;
+};
+
+/// The linear response with the ring stuck (the contacts as springs k_n, k_t), for many speeds:
+/// (I + H(w) K_c) x = x_lin(w) with H = U F(w) V^H + R solved by Woodbury around the part that
+/// does not depend on w, B = I + R K_c (factored once): x = y - P F (I + Q F)^-1 W y with
+/// y = B^-1 x_lin, W = V^H K_c, P = B^-1 U, Q = W P. Per speed one solve with the LU of B and a
+/// modes-sized system, instead of forming and factoring the coordinates-sized H.
+class StuckRingResponse {
+ public:
+  explicit StuckRingResponse(const DamperRingModel& model);
+  /// Harmonic-1 sensor amplitudes at speed W [rad/s].
+  Eigen::VectorXcd operator()(double speed) const;
+
+ private:
+  const hbm::ModalReceptance* receptance_ = nullptr;
+  double engine_order_ = 1.0;
+  Eigen::VectorXd kc_;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> b_lu_;
+  Eigen::MatrixXcd p_, q_, w_;
 };
 
 /// Throws InputError for inconsistent input (no pairs, h / k mismatch, bad damping, law values,

@@ -410,10 +410,11 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
         "without ring (free) and with the ring stuck",
         m.sensor_names.front(), k);
     const forced::SpeedPeak dp = main_peak(damped_speed, damped_column(0, false));
+    const damper::StuckRingResponse stuck(m);
     const forced::SpeedPeak fp = refined_linear_peak(linear_speed, column(r.free_amplitude, 0),
                                                      [&](double w) { return m.free_response(w); });
     const forced::SpeedPeak sp = refined_linear_peak(linear_speed, column(r.stuck_amplitude, 0),
-                                                     [&](double w) { return m.stuck_response(w); });
+                                                     [&](double w) { return stuck(w); });
     std::vector<double> rpm, amp, q, vs_free, vs_stuck, shift_free, shift_stuck;
     for (const auto* x : {&dp, &fp, &sp}) {
       rpm.push_back(x->speed * kRpm);

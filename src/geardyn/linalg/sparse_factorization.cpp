@@ -39,7 +39,7 @@ template <class Scalar>
 SparseLU<Scalar>& SparseLU<Scalar>::operator=(SparseLU&&) noexcept = default;
 
 template <class Scalar>
-Status SparseLU<Scalar>::compute(const Matrix& A) {
+Status SparseLU<Scalar>::compute(const Matrix& A, bool refine) {
   impl_ = std::make_unique<Impl>();
   n_ = A.rows();
   ok_ = false;
@@ -50,6 +50,7 @@ Status SparseLU<Scalar>::compute(const Matrix& A) {
   }
   impl_->matrix = A;
   impl_->matrix.makeCompressed();
+  if (!refine) impl_->lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
   impl_->lu.compute(impl_->matrix);
   if (impl_->lu.info() != Eigen::Success) {
     message_ = "UMFPACK LU found the matrix singular (return code " +

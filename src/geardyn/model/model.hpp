@@ -225,24 +225,25 @@ struct AnnularPlateSpec {
 /// Gear-blank sector about the z axis with an optional damper-ring groove and ring.
 struct GearSectorSpec {
   int teeth = 0;
-  double module = kNaN;              ///< [m]
-  double pressure_angle = kNaN;      ///< [rad]
-  double face_width = kNaN;          ///< [m]
-  double bore_radius = kNaN;         ///< [m]
-  double hub_radius = kNaN;          ///< [m]
-  double hub_width = kNaN;           ///< [m]
-  double hub_offset = 0.0;           ///< axial centre of the hub from mid-face [m]
-  double web_thickness = kNaN;       ///< [m]
-  double web_offset = 0.0;           ///< axial centre of the web from mid-face [m]
-  double rim_inner_radius = kNaN;    ///< [m]
-  bool groove = false;               ///< damper-ring groove and ring
-  double groove_position = 0.0;      ///< axial position of the groove centre from mid-face [m]
-  double groove_width = kNaN;        ///< [m]
-  double groove_depth = kNaN;        ///< [m]
-  double ring_width = kNaN;          ///< axial width of the ring [m] (NaN: groove_width)
-  double ring_thickness = kNaN;      ///< radial thickness of the ring [m]
-  double element_size = kNaN;        ///< global target size [m]
-  double tooth_element_size = kNaN;  ///< at the teeth and the groove [m]
+  double module = kNaN;               ///< [m]
+  double pressure_angle = kNaN;       ///< [rad]
+  double face_width = kNaN;           ///< [m]
+  double bore_radius = kNaN;          ///< [m]
+  double hub_radius = kNaN;           ///< [m]
+  double hub_width = kNaN;            ///< [m]
+  double hub_offset = 0.0;            ///< axial centre of the hub from mid-face [m]
+  double web_thickness = kNaN;        ///< [m]
+  double web_offset = 0.0;            ///< axial centre of the web from mid-face [m]
+  double rim_inner_radius = kNaN;     ///< [m]
+  bool groove = false;                ///< damper-ring groove and ring
+  double groove_position = 0.0;       ///< axial position of the groove centre from mid-face [m]
+  double groove_width = kNaN;         ///< [m]
+  double groove_depth = kNaN;         ///< [m]
+  double ring_width = kNaN;           ///< axial width of the ring [m] (NaN: groove_width)
+  double ring_thickness = kNaN;       ///< radial thickness of the ring [m]
+  double element_size = kNaN;         ///< global target size [m]
+  double tooth_element_size = kNaN;   ///< at the teeth (and the groove) [m]
+  double groove_element_size = kNaN;  ///< at the groove and ring (NaN: tooth_element_size) [m]
   int order = 2;
 };
 

@@ -1985,6 +1985,13 @@ Section make_schema() {
                   .note("element_size")
                   .only_in(kGear)
                   .to_fn<Solid>(gear(&GearSectorSpec::tooth_element_size)),
+              number("groove_element_size", kMetre,
+                     "Target element size at the groove and the ring (sets how many contact "
+                     "pairs the ring has).")
+                  .gt(0)
+                  .note("tooth_element_size")
+                  .only_in(kGear)
+                  .to_fn<Solid>(gear(&GearSectorSpec::groove_element_size)),
           })
           .variants("type",
                     {variant<Solid>("mesh", "A mesh file: Gmsh .msh (v4) or Nastran bulk data."),
