@@ -205,6 +205,31 @@ TEST(ForcedWiring, CyclicModelFileEqualsDirectSectorSolve) {
   }
 }
 
+// groove_element_size meshes the groove and ring finer than the teeth (it sets how many contact
+// pairs a damper ring has) and leaves the teeth alone: the contact faces get more nodes, the tooth
+// tip keeps its count. Without it the groove takes tooth_element_size.
+TEST(ForcedWiring, GrooveElementSizeRefinesTheGrooveOnly) {
+  const std::string groove =
+      "groove = true\ngroove_position = 0.0035\ngroove_width = 0.0028\ngroove_depth = 0.0015\n"
+      "ring_width = 0.002\nring_thickness = 0.0015\nring_material = \"steel\"\n";
+  auto solid_with = [&](const std::string& extra) {
+    std::string text = kGearModel;
+    const std::string at = "order = 1\n";
+    text.insert(text.find(at), groove + extra);
+    const model::Model m = model::parse_model(text, "gear.toml");
+    return component::build_solid(m, m.solids.front());
+  };
+  const component::SolidComponent coarse = solid_with("");
+  const component::SolidComponent fine = solid_with("groove_element_size = 0.001\n");
+  const auto count = [](const component::SolidComponent& c, const char* set) {
+    return c.mesh.node_sets.at(set).size();
+  };
+  EXPECT_GT(count(fine, "ring_contact"), 2 * count(coarse, "ring_contact"));
+  EXPECT_EQ(count(fine, "ring_contact"), count(fine, "groove_contact"));
+  EXPECT_EQ(count(fine, "tooth_tip"), count(coarse, "tooth_tip"));
+  EXPECT_NE(fine.description, coarse.description);
+}
+
 // Craig-Bampton: the analysis keeps the interfaces, the excitation and the sensor nodes as
 // masters (DESIGN 4.2) and sums every mode of the reduced sector. Oracle: the direct solve of
 // the same reduced sector (masters as documented, 12 fixed-interface modes), on which loads and
