@@ -502,6 +502,29 @@ Eigen::VectorXd CondensedHarmonicBalance::linear_response(double omega) const {
   return X;
 }
 
+Eigen::MatrixXd CondensedHarmonicBalance::nonlinear_jacobian(const Eigen::VectorXd& X,
+                                                             double omega) const {
+  const int s = basis_.size(), N = size();
+  if (X.size() != N)
+    throw InputError({}, "X", fmt::format("{} coefficients", N), std::to_string(X.size()));
+  Eigen::MatrixXd Jn = Eigen::MatrixXd::Zero(N, N);
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(N);
+  if (!structure_) {
+    for (const auto& f : forces_) f(basis_, X, omega, F, &Jn, nullptr);
+    return Jn;
+  }
+  std::vector<Eigen::MatrixXd> blocks;
+  evaluate_local(X, omega, F, &blocks, nullptr);
+  for (std::size_t k = 0; k < structure_->clusters.size(); ++k) {
+    const auto& co = structure_->clusters[k].coordinates;
+    for (std::size_t a = 0; a < co.size(); ++a)
+      for (std::size_t b = 0; b < co.size(); ++b)
+        Jn.block(co[a] * s, co[b] * s, s, s) = blocks[k].block(
+            static_cast<Eigen::Index>(a) * s, static_cast<Eigen::Index>(b) * s, s, s);
+  }
+  return Jn;
+}
+
 Eigen::VectorXd CondensedHarmonicBalance::residual(const Eigen::VectorXd& X, double omega,
                                                    Eigen::MatrixXd* J,
                                                    Eigen::VectorXd* dR_domega) const {

@@ -172,6 +172,9 @@ class CondensedHarmonicBalance final : public HarmonicSystem {
   Eigen::VectorXcd complex_harmonic(const Eigen::VectorXd& v, int n) const;
   /// Sensor amplitudes of harmonic n >= 0 at the solution X (recovery).
   Eigen::VectorXcd sensor_response(const Eigen::VectorXd& X, double omega, int n) const;
+  /// dF_nl/dX at (X, omega), dense N x N in the unknowns' layout (both forms; for stability
+  /// analysis, condensed_stability.hpp).
+  Eigen::MatrixXd nonlinear_jacobian(const Eigen::VectorXd& X, double omega) const;
 
   // ---- Newton linear algebra of the LocalForce form ---------------------------------------
   // J = I + H(omega) J_nl, with J_nl block diagonal (one block per cluster of elements that share

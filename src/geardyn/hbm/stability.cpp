@@ -229,17 +229,18 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
   }
   out.max_real_part = out.exponents[0].real();
   out.stable = out.max_real_part <= options.stability_tolerance * omega;
-  if (!out.stable) {
-    const Complex top = out.exponents[0];
-    if (std::abs(reduced_imag(top, omega)) <= kind_band)
-      out.kind = FloquetResult::Instability::Fold;
-    else if (is_half(top))
-      out.kind = FloquetResult::Instability::PeriodDoubling;
-    else
-      out.kind = FloquetResult::Instability::NeimarkSacker;
-  }
+  if (!out.stable) out.kind = instability_kind(out.exponents[0], omega, options.kind_tolerance);
   out.status = Status::Ok;
   return out;
+}
+
+FloquetResult::Instability instability_kind(Complex lambda, double omega, double kind_tolerance) {
+  const double band = kind_tolerance * omega;
+  const double reduced = reduced_imag(lambda, omega);
+  if (std::abs(reduced) <= band) return FloquetResult::Instability::Fold;
+  if (std::abs(0.5 * omega - std::abs(reduced)) <= band)
+    return FloquetResult::Instability::PeriodDoubling;
+  return FloquetResult::Instability::NeimarkSacker;
 }
 
 std::vector<FloquetResult> stability_along(const HarmonicBalance& hb,

@@ -65,6 +65,7 @@
 // hysteretic (friction) forces the Jacobian is that of the force's harmonic description and the
 // result is the common engineering approximation, not a proven Floquet analysis.
 #include <Eigen/Dense>
+#include <complex>
 #include <limits>
 #include <string>
 #include <vector>
@@ -128,6 +129,12 @@ struct FloquetResult {
 FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                              const Eigen::MatrixXd& C, int harmonics, double omega,
                              const HillOptions& options = {});
+
+/// The kind of instability an exponent lambda with Re lambda > 0 stands for at frequency omega:
+/// Fold when Im lambda, reduced modulo omega, is within kind_tolerance omega of 0, period
+/// doubling when within it of omega / 2, Neimark-Sacker otherwise (see the header comment).
+FloquetResult::Instability instability_kind(std::complex<double> lambda, double omega,
+                                            double kind_tolerance);
 
 /// "none", "fold", "period_doubling", "neimark_sacker".
 const char* to_string(FloquetResult::Instability kind);
