@@ -140,6 +140,14 @@ TEST(SolidExamples, DamperRingStuckSteelRingAndAnInteriorMassOptimum) {
     EXPECT_GT(std::stod(pairs["energy_per_cycle_j"][i]), 0.0) << i;
   }
   EXPECT_TRUE(fs::exists(out / "damper_optimum" / "hysteresis_loops.csv"));
+  // Stability by the fold count (hbm::fold_unstable, validated against Hill on the Duffing
+  // curve in tests/hbm): both damped curves rise and fall without turning, so no point is
+  // unstable by a fold.
+  for (const char* analysis : {"damper", "damper_optimum"}) {
+    auto curve = read_csv(out / analysis / "damped_response.csv");
+    ASSERT_FALSE(curve["unstable_fold"].empty()) << analysis;
+    for (const auto& v : curve["unstable_fold"]) EXPECT_EQ(v, "0") << analysis;
+  }
 
   // The same analysis on the Craig-Bampton reduced sector (sector faces, contact pairs,
   // excitation and sensor nodes as masters, 40 fixed-interface modes; the ring-mass curve reduces

@@ -167,6 +167,31 @@ void check_duffing_branches(int harmonics) {
   EXPECT_EQ(changes, 2);  // stable -> unstable at the upper fold, back at the lower one
 }
 
+// The fold count needs no Jacobian: it must give Hill's verdict at every point of the Duffing
+// curve off the two turning points, and an unstable middle branch only.
+TEST(FoldCount, AgreesWithHillOnTheDuffingCurve) {
+  const HarmonicBalance hb = testing::duffing_system(3);
+  const ContinuationResult curve = testing::duffing_continuation(hb);
+  ASSERT_EQ(curve.status, Status::Ok) << curve.message;
+  const auto [upper_fold, lower_fold] = testing::fold_points(curve);
+  std::vector<double> omega;
+  for (const auto& p : curve.points) omega.push_back(p.omega);
+  const std::vector<char> folds = fold_unstable(omega);
+  ASSERT_EQ(folds.size(), omega.size());
+  const std::vector<FloquetResult> hill = stability_along(hb, curve);
+  int unstable = 0;
+  for (int i = 0; i < static_cast<int>(omega.size()); ++i) {
+    if (i == upper_fold || i == lower_fold) continue;
+    EXPECT_EQ(folds[static_cast<std::size_t>(i)] != 0, !hill[static_cast<std::size_t>(i)].stable)
+        << "omega " << omega[static_cast<std::size_t>(i)];
+    unstable += folds[static_cast<std::size_t>(i)];
+  }
+  EXPECT_GT(unstable, 10);
+  EXPECT_EQ(fold_unstable({1.0, 2.0, 2.0, 3.0}), (std::vector<char>{0, 0, 0, 0}));
+  EXPECT_EQ(fold_unstable({1.0, 3.0, 2.0, 2.5, 4.0}), (std::vector<char>{0, 0, 1, 0, 0}));
+  EXPECT_TRUE(fold_unstable({}).empty());
+}
+
 TEST(HillStability, DuffingSingleHarmonicUnstableBetweenTheFolds) { check_duffing_branches(1); }
 TEST(HillStability, DuffingFiveHarmonicsUnstableBetweenTheFolds) { check_duffing_branches(5); }
 

@@ -19,6 +19,7 @@
 #include "geardyn/core/error.hpp"
 #include "geardyn/damper/damper_ring.hpp"
 #include "geardyn/eig/hermitian_eigen.hpp"
+#include "geardyn/hbm/stability.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 
 namespace geardyn::damper {
@@ -520,6 +521,19 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
       out.peak_point = static_cast<int>(out.damped.size());
     }
     out.damped.push_back(std::move(d));
+  }
+
+  // Fold-type instability: the branch after an odd number of turning points in speed.
+  {
+    std::vector<double> speeds;
+    for (const auto& d : out.damped) speeds.push_back(d.speed);
+    const std::vector<char> unstable = hbm::fold_unstable(speeds);
+    for (std::size_t i = 0; i < out.damped.size(); ++i) {
+      out.damped[i].fold_unstable = unstable[i] != 0;
+      if (i > 0 && i + 1 < out.damped.size() &&
+          (speeds[i] - speeds[i - 1]) * (speeds[i + 1] - speeds[i]) < 0.0)
+        out.turning_points.push_back(speeds[i]);
+    }
   }
 
   if (out.peak_point >= 0) {

@@ -179,6 +179,9 @@ struct DampedPoint {
   double stick = 0.0, slip = 0.0, lift_off = 0.0;  ///< fractions over pairs and samples
   int iterations = 0;
   bool loops_closed = true;
+  /// Unstable by the fold count along the curve (hbm::fold_unstable: after an odd number of
+  /// turning points in speed, the jump phenomenon's middle branch).
+  bool fold_unstable = false;
 };
 
 struct HysteresisLoop {
@@ -204,6 +207,8 @@ struct DamperRingResult {
   /// harmonics (the balance neglects it; above a few per cent raise the harmonics).
   double force_truncation = 0.0;
   int truncation_pair = -1;
+  /// Speeds [rad/s] of the turning points of the damped curve (folds).
+  std::vector<double> turning_points;
 };
 
 /// Traces the damped response over [speed_min, speed_max] by continuation and evaluates the

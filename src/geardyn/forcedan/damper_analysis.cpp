@@ -8,6 +8,7 @@
 #pragma GCC diagnostic pop
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -476,6 +477,9 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
     t.add("lift_off_fraction", "", lift);
     t.add("newton_iterations", "", iterations);
     t.add("loops_closed", "", closed);
+    std::vector<double> fold;
+    for (const auto& d : r.damped) fold.push_back(d.fold_unstable ? 1.0 : 0.0);
+    t.add("unstable_fold", "", fold);
     out.tables.push_back(std::move(t));
 
     Plot e;
@@ -518,7 +522,33 @@ AnalysisOutput run_damper_ring_response(const model::Model& model,
       pl.traces.push_back(curve(sn + " free", linear_rpm, column(r.free_amplitude, j), "dot"));
       pl.traces.push_back(curve(sn + " stuck", linear_rpm, column(r.stuck_amplitude, j), "dash"));
     }
+    std::vector<double> unstable_rpm, unstable_amplitude;
+    for (const auto& d : r.damped)
+      if (d.fold_unstable && n_s > 0) {
+        unstable_rpm.push_back(d.speed * kRpm);
+        unstable_amplitude.push_back(d.amplitude[0]);
+      }
+    if (!unstable_rpm.empty()) {
+      Trace u = curve(m.sensor_names.front() + " unstable (between folds)", unstable_rpm,
+                      unstable_amplitude);
+      u.mode = Trace::Mode::Markers;
+      pl.traces.push_back(std::move(u));
+    }
     out.plots.push_back(std::move(pl));
+    std::vector<std::string> turns;
+    for (double w : r.turning_points) turns.push_back(fmt::format("{:.6g}", w * kRpm));
+    out.notes.push_back(
+        (r.turning_points.empty()
+             ? std::string("Stability: the damped curve has no turning point in speed, so no "
+                           "fold-type instability (jump)")
+             : fmt::format("Stability: the damped curve turns at {} rpm; the {} points after an "
+                           "odd number of turns are unstable (a real Floquet multiplier > 1, the "
+                           "jump phenomenon), marked on the response plot and in "
+                           "damped_response.unstable_fold",
+                           fmt::join(turns, ", "), unstable_rpm.size())) +
+        ". Period doubling and quasi-periodic losses of stability are not assessed: Hill's "
+        "method with the stick-slip Jacobian gives spurious flutter exponents here "
+        "(hbm/condensed_stability.hpp).");
   }
 
   // --- the contacts at the damped peak

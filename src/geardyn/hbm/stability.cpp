@@ -243,6 +243,22 @@ FloquetResult::Instability instability_kind(Complex lambda, double omega, double
   return FloquetResult::Instability::NeimarkSacker;
 }
 
+std::vector<char> fold_unstable(const std::vector<double>& omega) {
+  std::vector<char> out(omega.size(), 0);
+  int direction = 0;  // of the last non-zero step
+  bool unstable = false;
+  for (std::size_t i = 1; i < omega.size(); ++i) {
+    const double step = omega[i] - omega[i - 1];
+    const int d = step > 0.0 ? 1 : (step < 0.0 ? -1 : 0);
+    if (d != 0) {
+      if (direction != 0 && d != direction) unstable = !unstable;  // turned at point i - 1
+      direction = d;
+    }
+    out[i] = unstable ? 1 : 0;
+  }
+  return out;
+}
+
 std::vector<FloquetResult> stability_along(const HarmonicBalance& hb,
                                            const ContinuationResult& curve,
                                            const HillOptions& options) {

@@ -136,6 +136,16 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
 FloquetResult::Instability instability_kind(std::complex<double> lambda, double omega,
                                             double kind_tolerance);
 
+/// Fold-type instability along a response curve traced by arc length from a stable start
+/// (e.g. a forced response from a frequency below its resonances): at each turning point of the
+/// frequency (d omega / ds changes sign) one real Floquet multiplier crosses +1 (Seydel,
+/// "Practical Bifurcation and Stability Analysis", 3rd ed., Springer (2010), ch. 7), so the
+/// points after an odd number of turning points are unstable (the jump phenomenon's middle
+/// branch). Returns 1 per such point of `omega` (the curve's frequencies in order), 0 otherwise.
+/// Needs no Jacobian, so it holds for hysteretic forces too; it does not see period doubling or
+/// Neimark-Sacker losses of stability, nor a start that is already unstable.
+std::vector<char> fold_unstable(const std::vector<double>& omega);
+
 /// "none", "fold", "period_doubling", "neimark_sacker".
 const char* to_string(FloquetResult::Instability kind);
 
