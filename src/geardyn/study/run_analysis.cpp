@@ -6,6 +6,7 @@
 #include <chrono>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 
 #include "geardyn/analysis/campbell.hpp"
 #include "geardyn/analysis/harmonic.hpp"
@@ -75,6 +76,15 @@ AnalysisOutput run_analysis(const model::Model& model, const fe::LinearSystem& s
     plain.overrides.clear();
     RunContext variant_context = context;
     variant_context.document = &variant;
+    // Solids built before the run come from the base model: a variant that changes a solid or
+    // a material builds its own.
+    for (const auto& o : analysis.overrides) {
+      const std::size_t b = o.find_first_not_of(" \t");
+      const std::string_view key =
+          b == std::string::npos ? std::string_view() : std::string_view(o).substr(b);
+      if (key.starts_with("solids") || key.starts_with("materials"))
+        variant_context.solids = nullptr;
+    }
     try {
       const fe::LinearSystem variant_system = analysis::build_system(variant_model);
       AnalysisOutput out = run_analysis(variant_model, variant_system, plain, variant_context);
