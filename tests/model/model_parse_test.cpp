@@ -436,6 +436,19 @@ TEST(ModelParse, FuzzRegressionInputsAreRefusedWithASyntaxError) {
   EXPECT_GE(inputs, 2);
 }
 
+TEST(ModelParse, BenchmarkModelsAreValid) {
+  // bench/ runs these outside the test suite; they must not rot.
+  int models = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(GEARDYN_SOURCE_DIR) + "/bench/data")) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW((void)load_model(entry.path().string()));
+    ++models;
+  }
+  EXPECT_GE(models, 1);
+}
+
 TEST(ModelParse, StationNames) { EXPECT_EQ(station_name("rotor", 3), "rotor.3"); }
 
 }  // namespace
