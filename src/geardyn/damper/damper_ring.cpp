@@ -530,9 +530,8 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     const std::vector<char> unstable = hbm::fold_unstable(speeds);
     for (std::size_t i = 0; i < out.damped.size(); ++i) {
       out.damped[i].fold_unstable = unstable[i] != 0;
-      if (i > 0 && i + 1 < out.damped.size() &&
-          (speeds[i] - speeds[i - 1]) * (speeds[i + 1] - speeds[i]) < 0.0)
-        out.turning_points.push_back(speeds[i]);
+      if (i > 0 && unstable[i] != unstable[i - 1])  // the curve turned at point i - 1
+        out.turning_points.push_back(speeds[i - 1]);
     }
   }
 

@@ -176,7 +176,8 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
   }
   const double kind_band = options.kind_tolerance * omega;
   auto is_half = [&](Complex l) {
-    return std::abs(0.5 * omega - std::abs(reduced_imag(l, omega))) <= kind_band;
+    return instability_kind(l, omega, options.kind_tolerance) ==
+           FloquetResult::Instability::PeriodDoubling;
   };
   std::vector<char> used(static_cast<std::size_t>(n_all), 0);  // accepted or skipped twin
   std::vector<int> accepted;
