@@ -12,11 +12,12 @@
 #include <map>
 #include <string>
 
-#include "geardyn/component/solid_component.hpp"
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/run_analysis.hpp"
+#include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/hbm/condensed.hpp"
 #include "geardyn/model/parse.hpp"
-#include "geardyn/study/run_analysis.hpp"
 
 namespace geardyn {
 namespace {
@@ -43,19 +44,17 @@ class StageClock final : public Progress {
 
 void BM_DamperRingAnalysis(benchmark::State& state) {
   const model::Model m =
-      model::load_model(std::string(GEARDYN_SOURCE_DIR) + "/bench/data/damper_ring_100.toml");
-  const component::SolidComponents solids = component::build_solids(m);
-  const fe::LinearSystem system;
+      analyses::load_model(std::string(GEARDYN_SOURCE_DIR) + "/bench/data/damper_ring_100.toml");
+  const assembly::SolidComponents solids = assembly::build_solids(m);
   StageClock clock;
-  study::RunContext context;
-  context.solids = &solids;
-  context.progress = &clock;
+  analyses::Context context(m, m.analyses.front());
+  context.with_solids(&solids).with_progress(&clock);
   AnalysisOutput out;
   double total = 0.0;
   for (auto _ : state) {
     clock.seconds.clear();
     const double started = hbm::CondensedStatistics::now();
-    out = study::run_analysis(m, system, m.analyses.front(), context);
+    out = analyses::run_analysis(m, m.analyses.front(), context).output;
     total = hbm::CondensedStatistics::now() - started;
   }
   if (out.status != Status::Ok) {

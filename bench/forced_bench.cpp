@@ -10,8 +10,8 @@
 #include <numbers>
 
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
-#include "geardyn/forced/cyclic_forced_response.hpp"
 #include "geardyn/reduce/craig_bampton.hpp"
+#include "geardyn/response/cyclic_forced_response.hpp"
 #include "geardyn/solid/assembly.hpp"
 #include "geardyn/solid/structured_mesh.hpp"
 
@@ -25,8 +25,8 @@ struct ReducedSectorCase {
   reduce::ReducedComponent rc;
   std::unique_ptr<cyclic::CyclicSector> sector;
   cyclic::NodalDiameterModes modes;
-  std::vector<forced::ToothLoad> loads;
-  std::vector<forced::CyclicSensor> sensors;
+  std::vector<response::ToothLoad> loads;
+  std::vector<response::CyclicSensor> sensors;
   Eigen::VectorXd speeds;
 
   ReducedSectorCase() {
@@ -71,8 +71,8 @@ struct ReducedSectorCase {
     modes = cyclic::solve_cyclic_modes(K, M, *sector, mo).diameters.at(0);
     const long tooth_id = mesh.node_ids[static_cast<std::size_t>(tooth)];
     const long probe_id = mesh.node_ids[static_cast<std::size_t>(probe)];
-    loads = {forced::tooth_load(tooth_id, {100.0, 20.0},
-                                Eigen::Vector3d(-std::sin(half), std::cos(half), 0.2))};
+    loads = {response::tooth_load(tooth_id, {100.0, 20.0},
+                                  Eigen::Vector3d(-std::sin(half), std::cos(half), 0.2))};
     sensors = {{"probe_uz", probe_id, 2}, {"tooth_uz", tooth_id, 2}, {"tooth_ux", tooth_id, 0}};
     const double w1 = std::sqrt(modes.eigen.eigenvalues[0]);
     speeds = Eigen::VectorXd::LinSpaced(1000, 0.5 * w1 / 21, 3.0 * w1 / 21);
@@ -87,9 +87,9 @@ const ReducedSectorCase& the_case() {
 // Per-speed cost only: the (h, k) model is built once, then 1000 speeds are evaluated.
 void BM_CyclicOrderResponse1000Speeds(benchmark::State& state) {
   const ReducedSectorCase& c = the_case();
-  forced::ModalDamping damping;
+  response::ModalDamping damping;
   damping.q_factor = 100.0;
-  const forced::CyclicOrderModel model = forced::make_cyclic_order_model(
+  const response::CyclicOrderModel model = response::make_cyclic_order_model(
       *c.sector, c.modes, 21, c.loads, c.sensors, damping, 0, &c.rc);
   for (auto _ : state) {
     Eigen::MatrixXcd u = model.response(c.speeds);
@@ -105,14 +105,14 @@ BENCHMARK(BM_CyclicOrderResponse1000Speeds)->Unit(benchmark::kMillisecond);
 // The whole analysis call: model build, 1000 speeds, resonance table and half-power peaks.
 void BM_RunCyclicForcedResponse1000Speeds(benchmark::State& state) {
   const ReducedSectorCase& c = the_case();
-  forced::CyclicForcedSettings settings;
+  response::CyclicForcedSettings settings;
   settings.excitations = {{3, 21, c.loads}};
   settings.sensors = c.sensors;
   settings.speeds = c.speeds;
   settings.damping.q_factor = 100.0;
   for (auto _ : state) {
-    forced::CyclicForcedResult r =
-        forced::run_cyclic_forced_response(*c.sector, {c.modes}, settings, &c.rc);
+    response::CyclicForcedResult r =
+        response::run_cyclic_forced_response(*c.sector, {c.modes}, settings, &c.rc);
     benchmark::DoNotOptimize(r.amplitude_sum.data());
   }
 }

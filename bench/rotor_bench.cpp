@@ -5,11 +5,11 @@
 #include <cmath>
 #include <numbers>
 
-#include "geardyn/analysis/campbell.hpp"
-#include "geardyn/analysis/harmonic.hpp"
-#include "geardyn/analysis/modal.hpp"
-#include "geardyn/analysis/system_builder.hpp"
-#include "geardyn/analysis/unbalance.hpp"
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/unbalance.hpp"
+#include "geardyn/assembly/system_builder.hpp"
 
 namespace {
 
@@ -76,7 +76,7 @@ model::Model rotor(int n_elements) {
 
 void BM_Assemble(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(analysis::build_system(m));
+  for (auto _ : state) benchmark::DoNotOptimize(assembly::build_system(m));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Assemble)
@@ -88,24 +88,24 @@ BENCHMARK(BM_Assemble)
 
 void BM_Modal(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
-  const auto system = analysis::build_system(m);
-  model::ModalSettings settings;
+  const auto system = assembly::build_system(m);
+  analyses::ModalSettings settings;
   settings.n_modes = 10;
   settings.speed = 3000 * 2 * std::numbers::pi / 60;
   for (auto _ : state)
-    benchmark::DoNotOptimize(analysis::run_modal(system, settings, null_progress()));
+    benchmark::DoNotOptimize(analyses::run_modal(system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Modal)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
 
 void BM_Campbell100(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
-  const auto system = analysis::build_system(m);
-  model::CampbellSettings settings;
+  const auto system = assembly::build_system(m);
+  analyses::CampbellSettings settings;
   settings.n_modes = 6;
   for (int i = 0; i < 100; ++i) settings.speeds.push_back(i * 100.0 * 2 * std::numbers::pi / 60);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analysis::run_campbell(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(analyses::run_campbell(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Campbell100)
@@ -118,15 +118,15 @@ BENCHMARK(BM_Campbell100)
 
 void BM_Frf10k(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
-  const auto system = analysis::build_system(m);
-  model::HarmonicSettings settings;
+  const auto system = assembly::build_system(m);
+  analyses::HarmonicSettings settings;
   settings.f_min = 2 * std::numbers::pi * 1.0;
   settings.f_max = 2 * std::numbers::pi * 2000.0;
   settings.n_points = 10000;
   settings.adaptive = false;
   settings.input_node = "s." + std::to_string(state.range(0) / 4);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analysis::run_harmonic(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(analyses::run_harmonic(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Frf10k)
@@ -138,11 +138,11 @@ BENCHMARK(BM_Frf10k)
 
 void BM_Unbalance1k(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
-  const auto system = analysis::build_system(m);
-  model::UnbalanceSettings settings;
+  const auto system = assembly::build_system(m);
+  analyses::UnbalanceSettings settings;
   for (int i = 1; i <= 1000; ++i) settings.speeds.push_back(i * 10.0 * 2 * std::numbers::pi / 60);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analysis::run_unbalance(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(analyses::run_unbalance(m, system, settings, null_progress()));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Unbalance1k)

@@ -4,8 +4,9 @@
 
 #include <string>
 
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/sweep.hpp"
 #include "geardyn/model/parse.hpp"
-#include "geardyn/study/sweep.hpp"
 
 namespace {
 
@@ -77,11 +78,12 @@ outputs = [{ quantity = "peak_amplitude", sensor = "x" }]
 )";
 
 void BM_Sweep100(benchmark::State& state) {
-  const auto doc = model::parse_document(kRotor, "bench.toml");
+  const auto doc = analyses::parse_document(kRotor, "bench.toml");
   const model::Model m = model::build_model(doc);
-  auto settings = std::get<model::SweepSettings>(m.analyses[1].settings);
+  auto settings = m.analyses[1].settings_of<analyses::SweepSettings>();
   settings.threads = static_cast<int>(state.range(0));
-  for (auto _ : state) benchmark::DoNotOptimize(study::run_sweep(doc, settings, null_progress()));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analyses::run_sweep(doc, settings, null_progress()));
 }
 BENCHMARK(BM_Sweep100)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
 

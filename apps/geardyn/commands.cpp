@@ -7,25 +7,24 @@
 #include <filesystem>
 #include <memory>
 
-#include "geardyn/analysis/system_builder.hpp"
-#include "geardyn/component/solid_component.hpp"
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/run_analysis.hpp"
+#include "geardyn/assembly/solid_component.hpp"
+#include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
-#include "geardyn/forcedan/forced_analyses.hpp"
-#include "geardyn/gearan/pair_model.hpp"
 #include "geardyn/io/results_writer.hpp"
 #include "geardyn/io/sha256.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/model/schema.hpp"
 #include "geardyn/report/html_report.hpp"
-#include "geardyn/study/run_analysis.hpp"
 
 namespace geardyn::app {
 namespace {
 
 model::Model load_model(const std::string& path, const std::vector<std::string>& overrides,
                         model::ModelDocument& document) {
-  document = model::load_document(path);
+  document = analyses::load_document(path);
   for (const auto& o : overrides) model::apply_override(document, o);
   return model::build_model(document);
 }
@@ -90,18 +89,16 @@ int command_run(const RunOptions& options, int argc, char** argv) {
 
   // Solid components are read, generated and checked before anything runs: a bad mesh is bad
   // input (exit 2), found before any result is written.
-  const component::SolidComponents solids = component::build_solids(m, *progress);
-  component::check_solid_analyses(m, solids);
   // Gear pairs (geometry, contact ratio, STE files) and measured files likewise.
-  gearan::check_gear_analyses(m);
-  forcedan::check_forced_analyses(m, solids);
+  const assembly::SolidComponents solids = assembly::build_solids(m, *progress);
+  analyses::check_inputs(m, solids);
 
   std::vector<AnalysisOutput> outputs;
   bool failed = false;
   fe::LinearSystem system;
   try {
     if (!m.shafts.empty() || !m.nodes.empty())
-      system = analysis::build_system(m, &solids, *progress);
+      system = assembly::build_system(m, &solids, *progress);
   } catch (const NumericalError& e) {
     AnalysisOutput out;
     out.name = "build";
@@ -124,11 +121,10 @@ int command_run(const RunOptions& options, int argc, char** argv) {
               ? a.enabled
               : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end();
       if (!selected) continue;
-      study::RunContext context;
-      context.document = &document;
-      context.progress = progress.get();
-      context.solids = &solids;
-      AnalysisOutput out = study::run_analysis(m, system, a, context);
+      analyses::Context context(m, a);
+      context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
+      if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
+      AnalysisOutput out = analyses::run_analysis(m, a, context).output;
       std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
                   std::string(to_string(out.status)).c_str(), out.run_time_s);
       if (out.status != Status::Ok) {
@@ -156,10 +152,8 @@ int command_check(const std::string& model_path, const std::vector<std::string>&
   for (const auto& s : m.shafts)
     for (const auto& e : s.elements) elements += static_cast<std::size_t>(e.divisions);
   // Meshes are read and checked too (inverted elements, missing sets, bad cards).
-  const component::SolidComponents solids = component::build_solids(m);
-  component::check_solid_analyses(m, solids);
-  gearan::check_gear_analyses(m);
-  forcedan::check_forced_analyses(m, solids);
+  const assembly::SolidComponents solids = assembly::build_solids(m);
+  analyses::check_inputs(m, solids);
   std::printf(
       "%s: ok — %zu shafts (%zu beam elements), %zu disks, %zu bearings, %zu gear meshes, "
       "%zu solids, %zu gear pairs, %zu analyses\n",
@@ -173,7 +167,7 @@ int command_check(const std::string& model_path, const std::vector<std::string>&
 }
 
 int command_schema() {
-  std::fputs(model::schema_markdown().c_str(), stdout);
+  std::fputs(analyses::schema_markdown().c_str(), stdout);
   return 0;
 }
 

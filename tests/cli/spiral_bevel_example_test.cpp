@@ -42,7 +42,7 @@ TEST(SpiralBevelExample, EngineOrderResonancesAndHarmonics) {
   for (const auto& a : manifest["analyses"]) EXPECT_EQ(a["status"], "ok") << a["name"];
 
   // (1) The harmonic forces of the forced response are those mesh_harmonics tabulates (the
-  // same computation, gearan::tooth_force_over_revolution; CSV digits: 1e-12).
+  // same computation, analyses::tooth_force_over_revolution; CSV digits: 1e-12).
   auto forces = read_csv(out / "forced" / "harmonic_forces.csv");
   auto harmonics = read_csv(out / "harmonics" / "harmonics.csv");
   std::map<int, double> tangential;

@@ -92,8 +92,8 @@ const Fixture& fixture() {
     const long exc = ids(x.mesh, "excitation").front();
     // Tangential load at the excitation node (e_theta at theta_0 = pi / 40).
     const double t0 = std::numbers::pi / 40;
-    p.loads = {
-        {forced::tooth_load(exc, cd(200.0, 0.0), Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0))}};
+    p.loads = {{response::tooth_load(exc, cd(200.0, 0.0),
+                                     Eigen::Vector3d(std::sin(t0), -std::cos(t0), 0))}};
     p.sensors = {{"exc_x", exc, 0}, {"exc_y", exc, 1}};
     p.damping.damping_ratio = 0.002;
     p.n_modes = 12;
@@ -243,8 +243,8 @@ TEST(DamperRing, EngineOrderTwoKLoadsTheSecondHarmonicOnItsNodalDiameter) {
   q.damping.damping_ratio = 1e-9;
   q.contact.friction_coefficient = 0.0;
   q.contact.normal_stiffness = 0.0;
-  const forced::ToothLoad load1 = q.loads[0][0];
-  const forced::ToothLoad load2{load1.node_id, 0.75 * load1.force};
+  const response::ToothLoad load1 = q.loads[0][0];
+  const response::ToothLoad load2{load1.node_id, 0.75 * load1.force};
   q.loads = {{}, {load2}};
   const DamperRingModel m = build_damper_ring_model(q);
   EXPECT_EQ(m.harmonic_diameter[2], 4);

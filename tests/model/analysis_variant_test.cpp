@@ -4,9 +4,18 @@
 
 #include <optional>
 
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/sweep.hpp"
+#include "geardyn/analyses/transient.hpp"
+#include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/model/parse.hpp"
 
 namespace geardyn::model {
+
+using namespace ::geardyn::analyses;  // NOLINT: the settings types of every analysis
 namespace {
 
 const std::string kFullModel =
@@ -22,18 +31,18 @@ std::optional<InputError> build_error(ModelDocument doc) {
 }
 
 TEST(AnalysisVariant, SetEntriesAreReadAndValidated) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "analyses[0].set=[\"gear_meshes[0].stiffness=0\", \"bearings[0].kxx=5e6\"]");
   const Model m = build_model(doc);
   ASSERT_EQ(m.analyses[0].overrides.size(), 2u);
   EXPECT_EQ(m.analyses[0].overrides[0], "gear_meshes[0].stiffness=0");
   // The base model is unchanged: the variant applies to this analysis only.
   EXPECT_EQ(m.gear_meshes[0].stiffness,
-            build_model(load_document(kFullModel)).gear_meshes[0].stiffness);
+            build_model(analyses::load_document(kFullModel)).gear_meshes[0].stiffness);
 }
 
 TEST(AnalysisVariant, UnknownKeyInSetIsAnInputErrorAtTheAnalysis) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "analyses[0].set=[\"gear_meshes[0].stifness=0\"]");
   const auto e = build_error(doc);
   ASSERT_TRUE(e.has_value());
@@ -42,7 +51,7 @@ TEST(AnalysisVariant, UnknownKeyInSetIsAnInputErrorAtTheAnalysis) {
 }
 
 TEST(AnalysisVariant, OutOfRangeValueInSetIsAnInputError) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "analyses[0].set=[\"bearings[0].kxx=-1\"]");
   const auto e = build_error(doc);
   ASSERT_TRUE(e.has_value());
@@ -51,14 +60,14 @@ TEST(AnalysisVariant, OutOfRangeValueInSetIsAnInputError) {
 }
 
 TEST(SweepLinkedParameters, ReadAndChecked) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "analyses[6].linked_parameters=[\"bearings[0].kyy\"]");
   const Model m = build_model(doc);
-  const auto& s = std::get<SweepSettings>(m.analyses[6].settings);
+  const auto& s = m.analyses[6].settings_of<analyses::SweepSettings>();
   ASSERT_EQ(s.linked_parameters.size(), 1u);
   EXPECT_EQ(s.linked_parameters[0], "bearings[0].kyy");
 
-  ModelDocument bad = load_document(kFullModel);
+  ModelDocument bad = analyses::load_document(kFullModel);
   apply_override(bad, "analyses[6].linked_parameters=[\"bearings[0].name\"]");
   const auto e = build_error(bad);
   ASSERT_TRUE(e.has_value());

@@ -5,9 +5,48 @@
 #include <string>
 #include <variant>
 
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/correlation.hpp"
+#include "geardyn/analyses/cyclic_forced_response.hpp"
+#include "geardyn/analyses/cyclic_modal.hpp"
+#include "geardyn/analyses/damper_ring_response.hpp"
+#include "geardyn/analyses/gear_forced_response.hpp"
+#include "geardyn/analyses/gear_pair.hpp"
+#include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/mesh_force.hpp"
+#include "geardyn/analyses/mesh_harmonics.hpp"
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/reduction.hpp"
+#include "geardyn/analyses/solid_modal.hpp"
+#include "geardyn/analyses/sweep.hpp"
+#include "geardyn/analyses/transient.hpp"
+#include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::model::test {
+
+using namespace ::geardyn::analyses;  // NOLINT: the settings types of every analysis
+
+/// Calls f with the analysis's settings as their own type (most derived first).
+template <class F>
+void visit_settings(F&& f, const Analysis& a) {
+  if (const auto* s = a.settings_as<analyses::DamperRingResponseSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::ModalSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::CampbellSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::HarmonicSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::UnbalanceSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::TransientSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::SweepSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::SolidModalSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::CyclicModalSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::ReductionSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::GearPairSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::MeshForceSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::MeshHarmonicsSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::CorrelationSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::CyclicForcedResponseSettings>()) return f(*s);
+  if (const auto* s = a.settings_as<analyses::GearForcedResponseSettings>()) return f(*s);
+}
 
 inline std::string num(double x) { return fmt::format("{:.17g}", x); }
 
@@ -87,9 +126,8 @@ inline std::string dump(const Model& m) {
   for (const auto& b : d.bands)
     o += fmt::format("  band {} {} {}\n", num(b.f_min), num(b.f_max), num(b.ratio));
   for (const auto& a : m.analyses) {
-    o += fmt::format("analysis {} type={} enabled={}: ", a.name, static_cast<int>(a.type),
-                     a.enabled);
-    std::visit(
+    o += fmt::format("analysis {} type={} enabled={}: ", a.name, a.type, a.enabled);
+    visit_settings(
         [&](const auto& s) {
           using S = std::decay_t<decltype(s)>;
           if constexpr (std::is_same_v<S, ModalSettings>)
@@ -120,12 +158,11 @@ inline std::string dump(const Model& m) {
             o += fmt::format("param={} values={} analysis={} log={} threads={}", s.parameter,
                              nums(s.values), s.analysis, s.log_x, s.threads);
             for (const auto& out : s.outputs)
-              o += fmt::format(" | q={} mode={} sensor={} at={} label={}",
-                               static_cast<int>(out.quantity), out.mode, out.sensor, num(out.at),
-                               out.label);
+              o += fmt::format(" | q={} mode={} sensor={} at={} label={}", out.quantity, out.mode,
+                               out.sensor, num(out.at), out.label);
           }
         },
-        a.settings);
+        a);
     o += "\n";
   }
   return o;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "geardyn/analyses/model_file.hpp"
 #include "geardyn/model/parse.hpp"
 
 namespace geardyn::model {
@@ -45,7 +46,7 @@ struct ErrorCase {
 
 std::optional<InputError> error_of(const std::string& text) {
   try {
-    (void)parse_model(text, "model.toml");
+    (void)analyses::parse_model(text, "model.toml");
   } catch (const InputError& e) {
     return e;
   }
@@ -317,7 +318,7 @@ INSTANTIATE_TEST_SUITE_P(AllClasses, ModelErrors, ::testing::ValuesIn(kCases),
 
 TEST(ModelErrorsFile, MissingFileIsAnInputError) {
   try {
-    (void)load_document("/nonexistent/model.toml");
+    (void)analyses::load_document("/nonexistent/model.toml");
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, "/nonexistent/model.toml");

@@ -7,9 +7,18 @@
 #include <optional>
 #include <thread>
 
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/sweep.hpp"
+#include "geardyn/analyses/transient.hpp"
+#include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/model/parse.hpp"
 
 namespace geardyn::model {
+
+using namespace ::geardyn::analyses;  // NOLINT: the settings types of every analysis
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -27,7 +36,7 @@ std::optional<InputError> error_of(F&& f) {
 }
 
 TEST(ModelOverride, SetsValuesWithTheirUnits) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "bearings[0].kxx=2e7");
   apply_override(doc, "analyses[0].speed_rpm=6000");  // modal: rpm -> rad/s
   apply_override(doc, "gear_meshes[0].stiffness=1e8");
@@ -38,18 +47,18 @@ TEST(ModelOverride, SetsValuesWithTheirUnits) {
   apply_override(doc, "analyses[1].engine_orders=[1, 2, 3]");
   const Model m = build_model(doc);
   EXPECT_EQ(m.bearings[0].stiffness[0][0], 2e7);
-  EXPECT_DOUBLE_EQ(std::get<ModalSettings>(m.analyses[0].settings).speed, 6000 * 2 * kPi / 60);
+  EXPECT_DOUBLE_EQ(m.analyses[0].settings_of<analyses::ModalSettings>().speed, 6000 * 2 * kPi / 60);
   EXPECT_EQ(m.gear_meshes[0].stiffness, 1e8);
   EXPECT_DOUBLE_EQ(m.gear_meshes[0].helix_angle, kPi / 6);
   EXPECT_EQ(m.shafts[0].theory, BeamTheory::EulerBernoulli);
   EXPECT_EQ(m.shafts[0].elements[1].divisions, 3);
   EXPECT_EQ(m.damping.bands[1].ratio, 0.2);
-  EXPECT_EQ(std::get<CampbellSettings>(m.analyses[1].settings).engine_orders,
+  EXPECT_EQ(m.analyses[1].settings_of<analyses::CampbellSettings>().engine_orders,
             (std::vector<double>{1, 2, 3}));
 }
 
 TEST(ModelOverride, AddsKeysAndTablesThatAreNotInTheFile) {
-  ModelDocument doc = parse_document(R"(version = 1
+  ModelDocument doc = analyses::parse_document(R"(version = 1
 [[nodes]]
 name = "a"
 position = [0, 0, 0]
@@ -57,7 +66,7 @@ position = [0, 0, 0]
 node = "a"
 kxx = 1e6
 )",
-                                     "small.toml");
+                                               "small.toml");
   apply_override(doc, "bearings[0].cyy=50");
   apply_override(doc, "damping.rayleigh_beta=1e-5");  // no [damping] table in the file
   const Model m = build_model(doc);
@@ -66,7 +75,7 @@ kxx = 1e6
 }
 
 TEST(ModelOverride, LaterOverrideOfTheSameKeyWins) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "bearings[0].kxx=2e7");
   apply_override(doc, "bearings[0].kxx=3e7");
   EXPECT_EQ(doc.overrides().size(), 1u);
@@ -74,7 +83,7 @@ TEST(ModelOverride, LaterOverrideOfTheSameKeyWins) {
 }
 
 TEST(ModelOverride, CopiesAreIndependent) {
-  const ModelDocument base = load_document(kFullModel);
+  const ModelDocument base = analyses::load_document(kFullModel);
   ModelDocument copy = base;
   set_number(copy, "bearings[0].kxx", 5e7);
   EXPECT_EQ(build_model(copy).bearings[0].stiffness[0][0], 5e7);
@@ -85,7 +94,7 @@ TEST(ModelOverride, CopiesAreIndependent) {
 
 TEST(ModelOverride, SweepPointsOnThreadsMatchSerialResults) {
   // What a threaded sweep does: copy the document per point, set the value, build.
-  const ModelDocument base = load_document(kFullModel);
+  const ModelDocument base = analyses::load_document(kFullModel);
   const std::vector<double> values = {1e6, 2e6, 4e6, 8e6, 1.6e7, 3.2e7};
   std::vector<double> got(values.size(), 0.0);
   std::vector<std::thread> workers;
@@ -101,18 +110,18 @@ TEST(ModelOverride, SweepPointsOnThreadsMatchSerialResults) {
 }
 
 TEST(ModelOverride, SetNumberUsesTheUnitOfTheKey) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   set_number(doc, "analyses[0].speed_rpm", 60.0);
   set_number(doc, "unbalances[0].phase_deg", 90.0);
   set_number(doc, "analyses[0].n_modes", 4.0);  // integer key, integral value
   const Model m = build_model(doc);
-  EXPECT_DOUBLE_EQ(std::get<ModalSettings>(m.analyses[0].settings).speed, 2 * kPi);
+  EXPECT_DOUBLE_EQ(m.analyses[0].settings_of<analyses::ModalSettings>().speed, 2 * kPi);
   EXPECT_DOUBLE_EQ(m.unbalances[0].phase, kPi / 2);
-  EXPECT_EQ(std::get<ModalSettings>(m.analyses[0].settings).n_modes, 4);
+  EXPECT_EQ(m.analyses[0].settings_of<analyses::ModalSettings>().n_modes, 4);
 }
 
 TEST(ModelOverride, UnknownKeyGetsDidYouMean) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   auto e = error_of([&] { apply_override(doc, "bearings[0].kxy2=1"); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->where().file, "--set bearings[0].kxy2=1");
@@ -133,7 +142,7 @@ TEST(ModelOverride, UnknownKeyGetsDidYouMean) {
 }
 
 TEST(ModelOverride, PathErrors) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   struct Case {
     const char* assignment;
     const char* key;
@@ -176,7 +185,7 @@ TEST(ModelOverride, PathErrors) {
 }
 
 TEST(ModelOverride, BadValuesAreReportedAtTheAssignment) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   apply_override(doc, "materials[0].density=-5");
   auto e = error_of([&] { (void)build_model(doc); });
   ASSERT_TRUE(e);
@@ -185,13 +194,13 @@ TEST(ModelOverride, BadValuesAreReportedAtTheAssignment) {
   EXPECT_NE(e->expected().find("> 0"), std::string::npos);
   EXPECT_EQ(e->found(), "-5");
 
-  ModelDocument doc2 = load_document(kFullModel);
+  ModelDocument doc2 = analyses::load_document(kFullModel);
   apply_override(doc2, "shafts[0].theory=timoshenco");
   e = error_of([&] { (void)build_model(doc2); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->hint(), "did you mean 'timoshenko'?");
 
-  ModelDocument doc3 = load_document(kFullModel);
+  ModelDocument doc3 = analyses::load_document(kFullModel);
   set_number(doc3, "shafts[0].elements[0].outer_diameter", 0.0);
   e = error_of([&] { (void)build_model(doc3); });
   ASSERT_TRUE(e);
@@ -200,7 +209,7 @@ TEST(ModelOverride, BadValuesAreReportedAtTheAssignment) {
 }
 
 TEST(ModelOverride, SetNumberChecksTheKeyType) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   auto e = error_of([&] { set_number(doc, "shafts[0].material", 1.0); });
   ASSERT_TRUE(e);
   EXPECT_EQ(e->expected(), "the path of a number or integer key");
@@ -214,7 +223,7 @@ TEST(ModelOverride, SetNumberChecksTheKeyType) {
 }
 
 TEST(ModelOverride, ChangingTheTypeChangesTheAllowedKeys) {
-  ModelDocument doc = load_document(kFullModel);
+  ModelDocument doc = analyses::load_document(kFullModel);
   // analyses[0] is modal: speed_count is not one of its keys ...
   EXPECT_TRUE(error_of([&] { apply_override(doc, "analyses[0].speed_count=3"); }));
   // ... until its type is set to campbell; the modal keys in the file are then errors.

@@ -9,10 +9,19 @@
 #include <numbers>
 #include <sstream>
 
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/sweep.hpp"
+#include "geardyn/analyses/transient.hpp"
+#include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/model/parse.hpp"
 #include "model/model_dump.hpp"
 
 namespace geardyn::model {
+
+using namespace ::geardyn::analyses;  // NOLINT: the settings types of every analysis
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -33,11 +42,11 @@ template <class T>
 const T& settings(const Model& m, const std::string& name) {
   const Analysis* a = m.find_analysis(name);
   EXPECT_NE(a, nullptr) << name;
-  return std::get<T>(a->settings);
+  return a->settings_of<T>();
 }
 
 TEST(ModelParse, FullModelEverySection) {
-  const Model m = load_model(kFullModel);
+  const Model m = analyses::load_model(kFullModel);
   EXPECT_EQ(m.version, 1);
   EXPECT_EQ(m.title, "Two-shaft geared rotor, every section");
   EXPECT_EQ(m.source_file, kFullModel);
@@ -247,7 +256,7 @@ TEST(ModelParse, FullModelEverySection) {
   EXPECT_EQ(sweep.analysis, "modes");
   EXPECT_EQ(sweep.threads, 2);
   ASSERT_EQ(sweep.outputs.size(), 1u);
-  EXPECT_EQ(sweep.outputs[0].quantity, SweepOutput::Quantity::NaturalFrequency);
+  EXPECT_EQ(sweep.outputs[0].quantity, "natural_frequency");
   EXPECT_EQ(sweep.outputs[0].mode, 2);
   EXPECT_EQ(sweep.outputs[0].label, "natural_frequency_2");
 
@@ -257,23 +266,23 @@ TEST(ModelParse, FullModelEverySection) {
   EXPECT_EQ(mesh_sweep.threads, 0);
   ASSERT_EQ(mesh_sweep.outputs.size(), 2u);
   EXPECT_EQ(mesh_sweep.outputs[0].label, "peak_amplitude_s1");
-  EXPECT_EQ(mesh_sweep.outputs[1].quantity, SweepOutput::Quantity::AmplitudeAt);
+  EXPECT_EQ(mesh_sweep.outputs[1].quantity, "amplitude_at");
   EXPECT_REL(mesh_sweep.outputs[1].at, 2000.0 * kRpm);
   EXPECT_EQ(mesh_sweep.outputs[1].label, "s2_at_2000");
 }
 
 TEST(ModelParse, PrintedDocumentReadsBackTheSameModel) {
-  const ModelDocument doc = load_document(kFullModel);
+  const ModelDocument doc = analyses::load_document(kFullModel);
   std::ostringstream printed;
   printed << doc.table();
   const Model original = build_model(doc);
-  const Model again = parse_model(printed.str(), "printed.toml");
+  const Model again = analyses::parse_model(printed.str(), "printed.toml");
   EXPECT_EQ(test::dump(original), test::dump(again));
   EXPECT_GT(test::dump(original).size(), 3000u);  // the dump covers the whole model
 }
 
 TEST(ModelParse, DefaultsComeFromTheSchema) {
-  const Model m = parse_model(R"(version = 1
+  const Model m = analyses::parse_model(R"(version = 1
 [[materials]]
 name = "steel"
 youngs_modulus = 2.1e11
@@ -300,7 +309,7 @@ type = "transient"
 duration = 1
 time_step = 0.001
 )",
-                              "defaults.toml");
+                                        "defaults.toml");
   EXPECT_EQ(m.title, "");
   EXPECT_EQ(m.shafts[0].origin, (Vec3{0, 0, 0}));
   EXPECT_EQ(m.shafts[0].axis, (Vec3{0, 0, 1}));
@@ -312,12 +321,12 @@ time_step = 0.001
   EXPECT_EQ(m.gear_meshes[0].name, "gear_meshes[0]");
   EXPECT_EQ(m.damping.rayleigh_alpha, 0.0);
   EXPECT_FALSE(m.damping.any_modal());
-  const auto& modal = std::get<ModalSettings>(m.analyses[0].settings);
+  const auto& modal = m.analyses[0].settings_of<analyses::ModalSettings>();
   EXPECT_EQ(modal.speed, 0.0);
   EXPECT_EQ(modal.n_modes, 10);
   EXPECT_TRUE(modal.complex_modes);
   EXPECT_EQ(modal.method, EigenMethod::Auto);
-  const auto& t = std::get<TransientSettings>(m.analyses[1].settings);
+  const auto& t = m.analyses[1].settings_of<analyses::TransientSettings>();
   EXPECT_EQ(t.integrator, Integrator::GeneralizedAlpha);
   EXPECT_EQ(t.rho_infinity, 0.9);
   EXPECT_EQ(t.steady_fraction, 0.5);
@@ -328,7 +337,7 @@ time_step = 0.001
 TEST(ModelParse, UnitConversionsAreExact) {
   // 60 rpm = 1 rev/s = 2 pi rad/s; 1 Hz = 2 pi rad/s; 180 deg = pi rad. Checked with exact
   // multiples so a wrong factor (e.g. rpm taken as rev/s, Hz left as is) cannot pass.
-  const Model m = parse_model(R"(version = 1
+  const Model m = analyses::parse_model(R"(version = 1
 [[nodes]]
 name = "hub"
 position = [0, 0, 0]
@@ -361,20 +370,20 @@ speed_start_rpm = 0
 speed_stop_rpm = 120
 speed_count = 3
 )",
-                              "units.toml");
-  const auto& h = std::get<HarmonicSettings>(m.analyses[0].settings);
+                                        "units.toml");
+  const auto& h = m.analyses[0].settings_of<analyses::HarmonicSettings>();
   EXPECT_DOUBLE_EQ(h.speed, 2.0 * kPi);
   EXPECT_DOUBLE_EQ(h.f_min, 2.0 * kPi);
   EXPECT_DOUBLE_EQ(h.f_max, 4.0 * kPi);
   EXPECT_DOUBLE_EQ(m.unbalances[0].phase, kPi);
-  const auto& u = std::get<UnbalanceSettings>(m.analyses[1].settings);
+  const auto& u = m.analyses[1].settings_of<analyses::UnbalanceSettings>();
   ASSERT_EQ(u.speeds.size(), 3u);
   EXPECT_DOUBLE_EQ(u.speeds[1], 2.0 * kPi);
   EXPECT_DOUBLE_EQ(u.speeds[2], 4.0 * kPi);
 }
 
 TEST(ModelParse, InlineTablesAndCommentsAreFine) {
-  const Model m = parse_model(R"(version = 1  # format
+  const Model m = analyses::parse_model(R"(version = 1  # format
 nodes = [ { name = "a", position = [0, 0, 0] }, { name = "b", position = [1, 0, 0] } ]
 couplings = [ { node1 = "a", node2 = "b", stiffness = [
   [1, 0, 0, 0, 0, 0, -1, 0, 0, 0, 0, 0], [0, 1, 0, 0, 0, 0, 0, -1, 0, 0, 0, 0],
@@ -384,14 +393,14 @@ couplings = [ { node1 = "a", node2 = "b", stiffness = [
   [0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 0, 0], [0, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 0],
   [0, 0, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0], [0, 0, 0, 0, 0, -1, 0, 0, 0, 0, 0, 1] ] } ]
 )",
-                              "inline.toml");
+                                        "inline.toml");
   ASSERT_EQ(m.couplings.size(), 1u);
   EXPECT_EQ(m.couplings[0].stiffness[6], -1.0);
   EXPECT_EQ(m.nodes[1].position[0], 1.0);
 }
 
 TEST(ModelParse, NonAsciiTextInStringsAndComments) {
-  const Model m = parse_model(
+  const Model m = analyses::parse_model(
       "version = 1  # Drehzahl in 1/min, \xc3\xbc\n"
       "title = \"Getriebe \xe2\x80\x93 Stufe 1 (\xc2\xb0)\"\n"
       "[[nodes]]\nname = \"a\"\nposition = [0, 0, 0]\n",
@@ -406,7 +415,7 @@ TEST(ModelParse, FuzzSeedsAreValidModels) {
   int seeds = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     SCOPED_TRACE(entry.path().string());
-    ModelDocument doc = load_document(entry.path().string());
+    ModelDocument doc = analyses::load_document(entry.path().string());
     std::ifstream in(entry.path());
     for (std::string line; std::getline(in, line);)
       if (line.rfind("#--set ", 0) == 0) apply_override(doc, line.substr(7));
@@ -425,7 +434,7 @@ TEST(ModelParse, FuzzRegressionInputsAreRefusedWithASyntaxError) {
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     SCOPED_TRACE(entry.path().string());
     try {
-      (void)load_document(entry.path().string());
+      (void)analyses::load_document(entry.path().string());
       ADD_FAILURE() << "accepted";
     } catch (const InputError& e) {
       EXPECT_EQ(e.key_path(), "(syntax)");
@@ -443,7 +452,7 @@ TEST(ModelParse, BenchmarkModelsAreValid) {
        std::filesystem::directory_iterator(std::string(GEARDYN_SOURCE_DIR) + "/bench/data")) {
     if (entry.path().extension() != ".toml") continue;
     SCOPED_TRACE(entry.path().string());
-    EXPECT_NO_THROW((void)load_model(entry.path().string()));
+    EXPECT_NO_THROW((void)analyses::load_model(entry.path().string()));
     ++models;
   }
   EXPECT_GE(models, 1);

@@ -1,6 +1,6 @@
-// The declaration table documents itself: schema_markdown() lists every key, the checked-in
-// docs/model-reference.md and fuzz/model.dict are what the table generates, and key names
-// follow the unit convention (only *_rpm, *_hz, *_deg keys take non-SI units).
+// The declaration table documents itself: analyses::schema_markdown() lists every key, the
+// checked-in docs/model-reference.md and fuzz/model.dict are what the table generates, and key
+// names follow the unit convention (only *_rpm, *_hz, *_deg keys take non-SI units).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "geardyn/analyses/model_file.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/model/schema.hpp"
 
@@ -55,7 +56,7 @@ std::string fuzz_dictionary() {
       walk(sub, name);
     }
   };
-  walk(model_schema(), "");
+  walk(analyses::model_schema(), "");
   std::string out =
       "# libFuzzer dictionary for fuzz/model_fuzz, generated from the model schema by\n"
       "# tests/model/model_reference_test.cpp (GEARDYN_UPDATE_DOCS=1 test_model).\n";
@@ -84,9 +85,9 @@ void check_generated(const std::string& path, const std::string& generated) {
 }
 
 TEST(ModelReference, MarkdownListsEveryKey) {
-  const std::string md = schema_markdown();
+  const std::string md = analyses::schema_markdown();
   int keys = 0;
-  for_each_field(model_schema(), [&](const Section& s, const Field& f) {
+  for_each_field(analyses::model_schema(), [&](const Section& s, const Field& f) {
     ++keys;
     EXPECT_NE(md.find(fmt::format("| `{}` |", f.name)), std::string::npos)
         << s.title << " " << f.name;
@@ -101,19 +102,21 @@ TEST(ModelReference, MarkdownListsEveryKey) {
     for (const auto& v : s.variants)
       EXPECT_NE(md.find(fmt::format("# {} = \"{}\"", s.discriminator, v.name)), std::string::npos);
   };
-  sections(model_schema());
+  sections(analyses::model_schema());
   // A few entries in full: type, unit, default, range and help of one key.
   EXPECT_NE(md.find("| `length` | number | m | **required** | > 0 | Length of the section. |"),
             std::string::npos);
   EXPECT_NE(md.find("| `speed_count` | integer |  | `51` | in [2, 100000] |"), std::string::npos);
 }
 
-TEST(ModelReference, DocsFileIsUpToDate) { check_generated(kReference, schema_markdown()); }
+TEST(ModelReference, DocsFileIsUpToDate) {
+  check_generated(kReference, analyses::schema_markdown());
+}
 
 TEST(ModelReference, FuzzDictionaryIsUpToDate) { check_generated(kDictionary, fuzz_dictionary()); }
 
 TEST(ModelReference, OnlyKeysNamedForAUnitUseIt) {
-  for_each_field(model_schema(), [](const Section& s, const Field& f) {
+  for_each_field(analyses::model_schema(), [](const Section& s, const Field& f) {
     const std::string unit = f.unit.symbol;
     auto ends_with = [&](const char* suffix) {
       const std::string sfx(suffix);

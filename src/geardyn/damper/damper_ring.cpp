@@ -237,7 +237,8 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
   if (!p.sector) throw InputError({}, "damper_ring.sector", "the cyclic sector", "none");
   const cyclic::CyclicSector& sector = *p.sector;
   const int N = sector.n_sectors();
-  const forced::OrderRelation relation = forced::relate_order(N, p.nodal_diameter, p.engine_order);
+  const response::OrderRelation relation =
+      response::relate_order(N, p.nodal_diameter, p.engine_order);
   if (p.pairs.empty())
     throw InputError({}, "damper_ring.contact", "at least one contact pair", "none");
   if (p.contact.tangential_directions != 1 && p.contact.tangential_directions != 2)
@@ -411,7 +412,7 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
       "{} modes per nodal diameter plus the residual flexibility of the others; the mean held at "
       "the preloaded equilibrium.",
       p.pairs.size(), m.coordinates_per_pair, p.engine_order, p.nodal_diameter,
-      forced::to_string(relation.wave), H,
+      response::to_string(relation.wave), H,
       [&] {
         std::string s;
         for (int n = 1; n <= H; ++n)

@@ -40,9 +40,9 @@
 #include "geardyn/core/progress.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
-#include "geardyn/forced/cyclic_forced_response.hpp"
 #include "geardyn/hbm/condensed.hpp"
 #include "geardyn/hbm/friction_contact.hpp"
+#include "geardyn/response/cyclic_forced_response.hpp"
 
 namespace geardyn::damper {
 
@@ -100,9 +100,9 @@ struct DamperRingProblem {
   /// The loads of engine order n k on harmonic n = 1, 2, ... at the excitation nodes of sector 0:
   /// loads[n - 1] (F_k, F_2k, ...). Fewer entries than harmonics: the higher harmonics are
   /// unloaded (they still carry the response the contacts generate).
-  std::vector<std::vector<forced::ToothLoad>> loads;
-  std::vector<forced::CyclicSensor> sensors;
-  forced::ModalDamping damping;
+  std::vector<std::vector<response::ToothLoad>> loads;
+  std::vector<response::CyclicSensor> sensors;
+  response::ModalDamping damping;
   int n_modes = 20;      ///< per nodal diameter
   int harmonics = 1;     ///< H
   int time_samples = 0;  ///< per period (0: hbm::default_time_samples(H))

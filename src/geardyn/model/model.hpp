@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
-#include <type_traits>
-#include <variant>
 #include <vector>
 
 #include "geardyn/core/error.hpp"
@@ -328,318 +328,77 @@ struct GearPair {
 // ---------------------------------------------------------------------------------------------
 // Analyses
 
-enum class EigenMethod { Auto, Dense, Sparse };
-enum class Spacing { Linear, Log };
-enum class ResponseQuantity { Receptance, Mobility, Accelerance };
-enum class Integrator { Newmark, GeneralizedAlpha };
-
-struct ModalSettings {
-  double speed = 0.0;  ///< reference speed [rad/s]
-  int n_modes = 10;
-  bool complex_modes = true;  ///< also the damped gyroscopic (complex) modes
-  EigenMethod method = EigenMethod::Auto;
-  double shift = 0.0;  ///< shift for shift-invert [rad/s]; modes nearest to it
+/// The settings of one analysis. Each analysis type declares its own struct, derived from this
+/// through SettingsOf, next to its driver (src/geardyn/analyses/<type>.hpp); the model file's
+/// keys of that type fill it. The model only holds them.
+struct AnalysisSettings {
+  virtual ~AnalysisSettings() = default;
+  virtual std::unique_ptr<AnalysisSettings> clone() const = 0;
 };
 
-struct CampbellSettings {
-  std::vector<double> speeds;  ///< reference speeds [rad/s]
-  int n_modes = 8;
-  std::vector<double> engine_orders = {1.0};  ///< orders of the reference shaft
-  bool shaft_orders = true;                   ///< add order 1 of every shaft (x its speed ratio)
-  bool mesh_orders = true;                    ///< add teeth x shaft order of every mesh with teeth
-  double mac_threshold = 0.7;                 ///< below this a tracking step is flagged ambiguous
-  EigenMethod method = EigenMethod::Auto;
+/// `struct MySettings : SettingsOf<MySettings> {...}` gives MySettings its clone(); a settings
+/// struct that extends another gives that one as Base.
+template <class Derived, class Base = AnalysisSettings>
+struct SettingsOf : Base {
+  std::unique_ptr<AnalysisSettings> clone() const override {
+    return std::make_unique<Derived>(static_cast<const Derived&>(*this));
+  }
 };
 
-struct HarmonicSettings {
-  double speed = 0.0;
-  double f_min = kNaN, f_max = kNaN;  ///< [rad/s]
-  int n_points = 200;
-  Spacing spacing = Spacing::Linear;
-  bool adaptive = true;    ///< refine around peaks
-  std::string input_node;  ///< unit-force input (FRF) ...
-  Component input_dof = Component::Ux;
-  std::vector<std::string> forces;   ///< ... or these named harmonic forces (forced response)
-  std::vector<std::string> sensors;  ///< empty: all sensors
-  ResponseQuantity quantity = ResponseQuantity::Receptance;
+/// Owns an analysis's settings with value semantics (a copied Analysis copies its settings).
+class AnalysisSettingsValue {
+ public:
+  AnalysisSettingsValue() = default;
+  AnalysisSettingsValue(std::unique_ptr<AnalysisSettings> s) : p_(std::move(s)) {}  // NOLINT
+  AnalysisSettingsValue(const AnalysisSettingsValue& o) : p_(o.p_ ? o.p_->clone() : nullptr) {}
+  AnalysisSettingsValue(AnalysisSettingsValue&&) noexcept = default;
+  AnalysisSettingsValue& operator=(const AnalysisSettingsValue& o) {
+    if (this != &o) p_ = o.p_ ? o.p_->clone() : nullptr;
+    return *this;
+  }
+  AnalysisSettingsValue& operator=(AnalysisSettingsValue&&) noexcept = default;
+  AnalysisSettings* get() const { return p_.get(); }
+
+ private:
+  std::unique_ptr<AnalysisSettings> p_;
 };
-
-struct UnbalanceSettings {
-  std::vector<double> speeds;           ///< [rad/s]
-  std::vector<std::string> unbalances;  ///< empty: all
-  std::vector<std::string> sensors;     ///< empty: all
-};
-
-struct TransientSettings {
-  double speed = 0.0;       ///< constant speed, or start of a run-up [rad/s]
-  double speed_end = kNaN;  ///< run-up end speed (NaN: constant speed)
-  double duration = kNaN;   ///< [s]
-  double time_step = kNaN;  ///< [s]
-  Integrator integrator = Integrator::GeneralizedAlpha;
-  double rho_infinity = 0.9;            ///< spectral radius at infinity (generalised-alpha)
-  double steady_fraction = 0.5;         ///< last fraction of the record used for spectra and orbits
-  std::vector<std::string> unbalances;  ///< empty: all
-  std::vector<std::string> sensors;     ///< empty: all
-  int output_every = 1;                 ///< store every n-th step
-};
-
-/// Scalar results a sweep tabulates per point.
-struct SweepOutput {
-  enum class Quantity { NaturalFrequency, CriticalSpeed, PeakAmplitude, PeakLocation, AmplitudeAt };
-  Quantity quantity = Quantity::NaturalFrequency;
-  int mode = 1;        ///< NaturalFrequency / CriticalSpeed: 1-based index
-  std::string sensor;  ///< PeakAmplitude / PeakLocation / AmplitudeAt
-  double at = kNaN;    ///< AmplitudeAt: speed or frequency [rad/s]
-  std::string label;   ///< column name stem
-};
-
-struct SweepSettings {
-  std::string parameter;  ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
-  std::vector<std::string> linked_parameters;  ///< further key paths set to the same value
-  std::vector<double> values;                  ///< in the units of the key
-  std::string analysis;                        ///< name of the analysis run per point
-  std::vector<SweepOutput> outputs;
-  bool log_x = false;  ///< plot with a log axis
-  int threads = 0;     ///< 0: all cores
-};
-
-/// Modes of a solid component (the mesh as given, or the whole wheel of a cyclic one).
-struct SolidModalSettings {
-  std::string solid;
-  int n_modes = 10;
-  double f_max = kNaN;      ///< band mode: every mode up to this [rad/s] (n_modes ignored)
-  bool full_wheel = false;  ///< cyclic solid: replicate the sector to 360 deg first
-  int shapes = 10;          ///< mode shapes written to VTU / Gmsh files (0: none)
-};
-
-enum class ReductionMethod { None, Guyan, CraigBampton };
-
-/// Modes per nodal diameter of a cyclic solid, optionally after Craig-Bampton reduction of the
-/// sector and interface-mode reduction, and the rotating-frame Campbell diagram.
-struct CyclicModalSettings {
-  std::string solid;
-  std::vector<int> nodal_diameters;  ///< empty: 0 .. sectors / 2
-  int n_modes = 6;                   ///< per nodal diameter
-  ReductionMethod reduction = ReductionMethod::None;
-  int cb_modes = 40;                     ///< fixed-interface modes kept
-  std::vector<std::string> master_sets;  ///< node sets kept physical besides the interfaces
-  int interface_modes = 0;               ///< Tran interface modes per ND (0: interfaces kept)
-  bool compare_full = false;             ///< also solve the replicated 360 deg mesh
-  int shapes = 2;                        ///< expanded full-wheel shapes written per ND
-  std::vector<double> speeds;            ///< Campbell speeds [rad/s] (empty: no Campbell)
-  int max_engine_order = 0;              ///< 0: 2 x sectors
-};
-
-/// Craig-Bampton (or Guyan) reduction of a solid: reduced vs full frequencies, a convergence
-/// table, and the reduced component file.
-struct ReductionSettings {
-  std::string solid;
-  ReductionMethod method = ReductionMethod::CraigBampton;
-  std::vector<std::string> master_sets;
-  int n_modes = 20;              ///< fixed-interface modes kept
-  double f_max = kNaN;           ///< ... or all up to this [rad/s]
-  int compare_modes = 10;        ///< full-model modes compared
-  std::vector<int> convergence;  ///< mode counts of the convergence table (empty: automatic)
-  bool save = true;              ///< write <analysis>.h5
-};
-
-enum class MeshForceModel { Dynamic, InfiniteInertia };
-enum class SweepDirectionKind { Up, Down, Both };
-
-/// Geometry, tooth forces, ISO 6336 stiffness and the mesh stiffness / STE over one mesh cycle.
-struct GearPairSettings {
-  std::string pair;  ///< empty: every [[gear_pairs]] entry
-};
-
-/// The dynamic mesh force over a speed range of gear 1 (DESIGN 4.5).
-struct MeshForceSettings {
-  std::string pair;            ///< empty: the model's only gear pair
-  std::vector<double> speeds;  ///< speeds of gear 1 [rad/s], increasing
-  SweepDirectionKind direction = SweepDirectionKind::Both;
-  MeshForceModel model = MeshForceModel::Dynamic;
-  bool contact_loss = true;           ///< false: linear mesh law for every x
-  std::vector<double> detail_speeds;  ///< time histories at these speeds of gear 1 [rad/s]
-};
-
-/// Engine-order harmonics of the tooth force of one gear at one speed (DESIGN 4.4).
-struct MeshHarmonicsSettings {
-  std::string pair;
-  double speed = 0.0;  ///< speed of gear 1 [rad/s]
-  int gear = 1;        ///< 1 or 2: the gear whose teeth are loaded
-  MeshForceModel model = MeshForceModel::Dynamic;
-  bool contact_loss = true;
-  double window_shift = 0.0;         ///< tooth-load window shift [pitches of that gear]
-  double contact_ratio = kNaN;       ///< window contact ratio (NaN: the total contact ratio)
-  std::vector<int> nodal_diameters;  ///< empty: 0 .. N / 2
-  int orders_per_diameter = 2;       ///< orders k = +-h (mod N) per nodal diameter
-  int max_order = 0;                 ///< order spectrum up to this (0: 2 N)
-};
-
-/// A measured response curve: resonance peaks, Q by the half-power method, optional reference.
-struct CorrelationSettings {
-  std::string measured_file;  ///< as written (relative to the model file)
-  double min_prominence_db = 6.0;
-  int max_peaks = 8;
-  double reference_peak = kNaN;       ///< reference peak position [rad/s] (speed or frequency)
-  bool reference_is_speed = true;     ///< reference_peak is a speed (rpm key) or frequency (hz key)
-  double reference_amplitude = kNaN;  ///< in the measured file's SI amplitude unit
-  double reference_q = kNaN;
-};
-
-/// Forced response of a cyclic solid to the engine-order harmonics of its tooth force, over the
-/// speed of that solid, by modal summation per (nodal diameter, engine order) (DESIGN 4.3-4.4;
-/// forced/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
-/// as mesh_harmonics does) or are given as force_amplitude.
-struct CyclicForcedResponseSettings {
-  std::string solid;
-  std::string pair;  ///< [[gear_pairs]] entry (empty: force_amplitude)
-  int gear = 1;      ///< 1 or 2: the member of the pair the solid is
-  MeshForceModel model = MeshForceModel::Dynamic;
-  bool contact_loss = true;
-  double window_shift = 0.0;            ///< [pitches]
-  double contact_ratio = kNaN;          ///< window contact ratio (NaN: total contact ratio)
-  double harmonics_speed = kNaN;        ///< gear-1 speed of the dynamic mesh force [rad/s]
-  std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per engine order
-  std::optional<Vec3> force_direction;  ///< of an explicit force (empty: tangential)
-  bool apex_below = true;               ///< the pitch-cone apex lies on the -z side
-  std::vector<int> nodal_diameters;     ///< empty: 0 .. sectors / 2
-  std::vector<int> engine_orders;       ///< empty: orders_per_diameter orders per diameter
-  int orders_per_diameter = 2;
-  std::string excitation_set = "excitation";
-  std::vector<std::string> sensor_sets;
-  std::vector<int> sensor_nodes;  ///< node ids of the mesh
-  std::vector<Component> sensor_components = {Component::Ux, Component::Uy, Component::Uz};
-  double damping_ratio = kNaN;  ///< zeta of every mode ...
-  double q_factor = kNaN;       ///< ... or Q = 1 / (2 zeta)
-  std::vector<double> speeds;   ///< speeds of the solid [rad/s]
-  int n_modes = 10;             ///< modes per nodal diameter
-  ReductionMethod reduction = ReductionMethod::None;
-  int cb_modes = 40;
-  std::vector<std::string> master_sets;
-  bool superpose = true;
-  std::string measured_file;      ///< measured response over speed (empty: none)
-  std::string measured_sensor;    ///< sensor compared (empty: the first)
-  int measured_engine_order = 0;  ///< curve compared: this order (0: the superposed sum)
-  bool scale_to_measured = false;
-  double min_prominence_db = 6.0;
-};
-
-/// Friction-damped forced response of a cyclic gear with a damper ring in a groove, by harmonic
-/// balance condensed to the ring's contacts (damper/damper_ring.hpp, DESIGN 4.6-4.7). It is a
-/// cyclic forced response (the excitation, sensor, damping and speed keys are the same, for one
-/// engine order) plus the ring: its contacts, the harmonics balanced and an optional
-/// performance sweep.
-enum class DamperSweep { None, RingMass, FrictionCoefficient, ContactStiffness };
-struct DamperRingResponseSettings : CyclicForcedResponseSettings {
-  int engine_order = 0;  ///< k; the nodal diameter is h = +-k mod N
-  std::string gear_contact_set = "groove_contact";
-  std::string ring_contact_set = "ring_contact";
-  std::string ring_element_set = "ring";
-  int contact_directions = 1;          ///< 1: 2D contact (normal, one slip direction); 2: 3D
-  double ring_inclination = 0.0;       ///< psi [rad] of the 2D slip direction
-  double normal_stiffness = kNaN;      ///< k_n per contact pair [N/m] ...
-  double contact_stiffness = kNaN;     ///< ... or per contact area [N/m^3]
-  double tangential_stiffness = kNaN;  ///< k_t per pair [N/m] (NaN: Mindlin ratio of k_n)
-  double friction_coefficient = kNaN;  ///< mu
-  int harmonics = 1;                   ///< H balanced
-  int time_samples = 0;                ///< per period (0: from H)
-  std::vector<int> hysteresis_pairs;   ///< contact pairs whose loops are reported (empty: 3)
-  double max_step = 0.02;              ///< continuation step / (speed range, amplitude)
-  DamperSweep sweep = DamperSweep::None;
-  std::vector<double> sweep_values;  ///< ring-mass or stiffness factors, or mu
-};
-
-/// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
-/// over speed (forced/rotor_mesh_response.hpp, modal method).
-struct GearForcedResponseSettings {
-  std::string gear_mesh;                ///< [[gear_meshes]] name (empty: the only one)
-  std::string pair;                     ///< [[gear_pairs]] entry (empty: force_amplitude)
-  std::vector<double> force_amplitude;  ///< [N]: one for every order, or one per order
-  int max_mesh_order = 3;               ///< orders 1 .. this
-  std::vector<std::string> sensors;     ///< empty: all
-  std::vector<double> speeds;           ///< reference speeds [rad/s]
-  int n_modes = 10;
-  bool residual_vectors = true;
-  std::string measured_file;    ///< measured response over speed (empty: none)
-  std::string measured_sensor;  ///< sensor compared (empty: the first)
-  int measured_mesh_order = 0;  ///< curve compared: this mesh order (0: the sum of the orders)
-  bool scale_to_measured = false;
-  double min_prominence_db = 6.0;
-};
-
-enum class AnalysisType {
-  Modal,
-  Campbell,
-  Harmonic,
-  Unbalance,
-  Transient,
-  Sweep,
-  SolidModal,
-  CyclicModal,
-  Reduction,
-  GearPair,
-  MeshForce,
-  MeshHarmonics,
-  Correlation,
-  CyclicForcedResponse,
-  GearForcedResponse,
-  DamperRingResponse
-};
-
-/// The model-file name (`type = "..."`) of each AnalysisType, in enum order.
-inline constexpr std::array<const char*, 16> kAnalysisTypeNames = {"modal",
-                                                                   "campbell",
-                                                                   "harmonic",
-                                                                   "unbalance",
-                                                                   "transient",
-                                                                   "sweep",
-                                                                   "solid_modal",
-                                                                   "cyclic_modal",
-                                                                   "reduction",
-                                                                   "gear_pair",
-                                                                   "mesh_force",
-                                                                   "mesh_harmonics",
-                                                                   "correlation",
-                                                                   "cyclic_forced_response",
-                                                                   "gear_forced_response",
-                                                                   "damper_ring_response"};
-static_assert(kAnalysisTypeNames.size() ==
-                  static_cast<std::size_t>(AnalysisType::DamperRingResponse) + 1,
-              "one name per AnalysisType");
 
 struct Analysis {
   std::string name;
-  AnalysisType type = AnalysisType::Modal;
+  std::string type;     ///< the analysis type's name in the registry ("modal", "campbell", ...)
   bool enabled = true;  ///< false: only run through a sweep
   /// Model changes for this analysis only ("key.path=value", like --set), e.g. a variant
   /// without the gear mesh: ["gear_meshes[0].stiffness=0"].
   std::vector<std::string> overrides;
-  std::variant<ModalSettings, CampbellSettings, HarmonicSettings, UnbalanceSettings,
-               TransientSettings, SweepSettings, SolidModalSettings, CyclicModalSettings,
-               ReductionSettings, GearPairSettings, MeshForceSettings, MeshHarmonicsSettings,
-               CorrelationSettings, CyclicForcedResponseSettings, GearForcedResponseSettings,
-               DamperRingResponseSettings>
-      settings;
+  AnalysisSettingsValue settings;
   SourceLocation where;
-};
 
-/// The analysis' settings as S when they are an S or derived from it (a damper-ring response is a
-/// cyclic forced response), else null.
-template <class S>
-const S* settings_as(const Analysis& a) {
-  return std::visit(
-      [](const auto& s) -> const S* {
-        if constexpr (std::is_base_of_v<S, std::decay_t<decltype(s)>>)
-          return &s;
-        else
-          return nullptr;
-      },
-      a.settings);
-}
-template <class S>
-S* settings_as(Analysis& a) {
-  return const_cast<S*>(settings_as<S>(static_cast<const Analysis&>(a)));
-}
+  /// The settings as S when they are an S or derived from it (a damper-ring response is a
+  /// cyclic forced response), else null.
+  template <class S>
+  const S* settings_as() const {
+    return dynamic_cast<const S*>(settings.get());
+  }
+  template <class S>
+  S* settings_as() {
+    return dynamic_cast<S*>(settings.get());
+  }
+  /// The settings as S; std::logic_error when they are not (a caller's bug, not bad input).
+  template <class S>
+  const S& settings_of() const {
+    const S* s = settings_as<S>();
+    if (s == nullptr)
+      throw std::logic_error("analysis '" + name + "' has settings of another type");
+    return *s;
+  }
+  template <class S>
+  S& settings_of() {
+    S* s = settings_as<S>();
+    if (s == nullptr)
+      throw std::logic_error("analysis '" + name + "' has settings of another type");
+    return *s;
+  }
+};
 
 struct Model {
   int version = 1;

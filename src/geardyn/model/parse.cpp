@@ -14,6 +14,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -26,8 +27,14 @@ namespace geardyn::model {
 
 ModelDocument::ModelDocument() : root_(std::make_shared<toml::table>()), file_name_("<model>") {}
 
-ModelDocument::ModelDocument(std::shared_ptr<const toml::table> root, std::string file_name)
-    : root_(std::move(root)), file_name_(std::move(file_name)) {}
+const Section& ModelDocument::schema() const {
+  if (schema_ == nullptr) throw std::logic_error("ModelDocument: no declaration table");
+  return *schema_;
+}
+
+ModelDocument::ModelDocument(std::shared_ptr<const toml::table> root, std::string file_name,
+                             const Section& schema)
+    : root_(std::move(root)), file_name_(std::move(file_name)), schema_(&schema) {}
 
 const ModelDocument::Override* ModelDocument::find_override(std::string_view parent,
                                                             std::string_view key) const {
@@ -120,6 +127,8 @@ std::string describe_found(const toml::node& n) {
   return "nothing";
 }
 
+}  // namespace
+
 std::string quoted_list(const std::vector<std::string>& items) {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i)
@@ -134,6 +143,8 @@ std::string a_name(const char* what) {
   return fmt::format("{} {} name", vowel ? "an" : "a", what);
 }
 
+namespace {
+
 std::string did_you_mean(std::string_view word, const std::vector<std::string>& candidates) {
   const std::string best = closest_match(word, candidates);
   return best.empty() ? std::string{} : fmt::format("did you mean '{}'?", best);
@@ -144,9 +155,15 @@ std::string did_you_mean(std::string_view word, const std::vector<std::string>& 
 
 class Defaults {
  public:
-  static const Defaults& get() {
-    static const Defaults d;
-    return d;
+  /// The defaults of the declaration table `root`, parsed on first use (one set per table; the
+  /// tables live as long as the program).
+  static const Defaults& get(const Section& root) {
+    static std::mutex mutex;
+    static std::map<const Section*, std::unique_ptr<const Defaults>> cache;
+    const std::lock_guard<std::mutex> lock(mutex);
+    auto& d = cache[&root];
+    if (!d) d.reset(new Defaults(root));
+    return *d;
   }
   const toml::node* find(const Field& f) const {
     auto it = nodes_.find(&f);
@@ -154,7 +171,7 @@ class Defaults {
   }
 
  private:
-  Defaults() { collect(model_schema()); }
+  explicit Defaults(const Section& root) { collect(root); }
   void collect(const Section& s) {
     for (const auto& f : s.fields) {
       if (f.default_value.empty()) continue;
@@ -249,7 +266,7 @@ std::string variant_of(const ModelDocument& doc, const Section& s, const toml::t
     n = table->get(s.discriminator);
   if (!n) {
     const Field* d = s.find_field(s.discriminator, "");
-    if (const toml::node* def = Defaults::get().find(*d)) n = def;
+    if (const toml::node* def = Defaults::get(doc.schema()).find(*d)) n = def;
   }
   if (n && n->is_string() && s.find_variant(n->as_string()->get())) return n->as_string()->get();
   return {};
@@ -270,7 +287,7 @@ ResolvedKey resolve_key(const ModelDocument& doc, std::string_view path,
     throw InputError(where, std::string(path),
                      "a key path like shafts[0].elements[2].length or bearings[1].kxx",
                      fmt::format("'{}'", path));
-  const Section* section = &model_schema();
+  const Section* section = &doc.schema();
   const toml::table* table = &doc.table();
   std::string parent;
   for (std::size_t i = 0; i + 1 < segments->size(); ++i) {
@@ -673,7 +690,7 @@ void Reader::read_table(const Section& s, const toml::table* table, const std::s
     auto it = std::find_if(all.begin(), all.end(), [&](const Entry& e) { return e.key == d.name; });
     if (it != all.end()) {
       ctx.values[d.name] = convert(d, *it->node, dpath, it->value_where);
-    } else if (const toml::node* def = Defaults::get().find(d)) {
+    } else if (const toml::node* def = Defaults::get(doc_.schema()).find(d)) {
       ctx.values[d.name] = convert(d, *def, dpath, where);
       ctx.values[d.name].given = false;
     } else {
@@ -768,7 +785,7 @@ void Reader::read_table(const Section& s, const toml::table* table, const std::s
       v.path = join_path(path, f.name);
       v.text = path;
       ctx.values[f.name] = std::move(v);
-    } else if (const toml::node* def = Defaults::get().find(f)) {
+    } else if (const toml::node* def = Defaults::get(doc_.schema()).find(f)) {
       FieldValue v = convert(f, *def, join_path(path, f.name), where);
       v.given = false;
       ctx.values[f.name] = std::move(v);
@@ -878,34 +895,43 @@ struct NodeInfo {
   Vec3 position{};
 };
 
-class Resolver {
+class Resolver final : public ModelCheck {
  public:
   Resolver(Model& model, const Reader& reader) : m_(model), r_(reader) {}
 
   void run();
 
- private:
+  // ModelCheck
+  const Model& model() const override { return m_; }
+  const ModelDocument& document() const override { return r_.doc(); }
   [[noreturn]] void fail(const std::string& path, std::string expected, std::string found,
-                         std::string hint = {}) const {
+                         std::string hint = {}) const override {
     throw InputError(r_.locate(path), path, std::move(expected), std::move(found), std::move(hint));
   }
+  bool given(const std::string& path) const override;
+  SourceLocation locate(const std::string& path) const override { return r_.locate(path); }
+  void check_named(const std::string& path, const std::vector<std::string>& names,
+                   const std::set<std::string>& known, const char* what,
+                   const char* section) const override;
+  void check_name(const std::string& path, const std::string& name,
+                  const std::set<std::string>& known, const char* what,
+                  const char* section) const override;
+  void check_node(const std::string& path, const std::string& name) const override {
+    (void)node_info(path, name);
+  }
+
+ private:
   template <class T>
   void check_unique(const std::vector<T>& items, const char* section) const;
   void build_nodes();
-  NodeInfo check_node(const std::string& path, const std::string& name) const;
+  NodeInfo node_info(const std::string& path, const std::string& name) const;
   void check_material(const std::string& path, const std::string& name) const;
-  void check_named(const std::string& path, const std::vector<std::string>& names,
-                   const std::set<std::string>& known, const char* what, const char* section) const;
-  void check_name(const std::string& path, const std::string& name,
-                  const std::set<std::string>& known, const char* what, const char* section) const;
-  bool given(const std::string& path) const;
   void resolve_speeds();
   void resolve_disks();
   void check_connections();
   void check_damping();
   void check_analyses();
   void check_analysis_overrides(const std::string& base, const Analysis& analysis) const;
-  void check_gear_analysis(const std::string& base, const Analysis& analysis) const;
 
   Model& m_;
   const Reader& r_;
@@ -944,7 +970,7 @@ void Resolver::build_nodes() {
                      "no nodes, no solids and no gear pairs");
 }
 
-NodeInfo Resolver::check_node(const std::string& path, const std::string& name) const {
+NodeInfo Resolver::node_info(const std::string& path, const std::string& name) const {
   NodeInfo station;
   const auto dot = name.rfind('.');
   if (dot != std::string::npos) {
@@ -1121,8 +1147,8 @@ void Resolver::check_connections() {
   }
   for (std::size_t i = 0; i < m_.gear_meshes.size(); ++i) {
     const GearMesh& g = m_.gear_meshes[i];
-    const Vec3 p1 = check_node(fmt::format("gear_meshes[{}].gear1", i), g.gear1).position;
-    const Vec3 p2 = check_node(fmt::format("gear_meshes[{}].gear2", i), g.gear2).position;
+    const Vec3 p1 = node_info(fmt::format("gear_meshes[{}].gear1", i), g.gear1).position;
+    const Vec3 p2 = node_info(fmt::format("gear_meshes[{}].gear2", i), g.gear2).position;
     if (g.gear2 == g.gear1)
       fail(fmt::format("gear_meshes[{}].gear2", i), "a node other than gear1",
            fmt::format("\"{}\" again", g.gear2));
@@ -1137,7 +1163,7 @@ void Resolver::check_connections() {
   for (std::size_t i = 0; i < m_.unbalances.size(); ++i) {
     const Unbalance& u = m_.unbalances[i];
     const std::string path = fmt::format("unbalances[{}].node", i);
-    const NodeInfo info = check_node(path, u.node);
+    const NodeInfo info = node_info(path, u.node);
     const double ratio = info.shaft >= 0
                              ? m_.shafts[static_cast<std::size_t>(info.shaft)].speed_ratio
                              : std::find_if(m_.nodes.begin(), m_.nodes.end(), [&](const Node& n) {
@@ -1190,9 +1216,6 @@ void Resolver::check_damping() {
   }
 }
 
-constexpr const char* kQuantityNames[] = {"natural_frequency", "critical_speed", "peak_amplitude",
-                                          "peak_location", "amplitude_at"};
-
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
 // analyses are not checked again (that would recurse).
@@ -1220,286 +1243,16 @@ void Resolver::check_analysis_overrides(const std::string& base, const Analysis&
   --depth;
 }
 
-// Gear-pair analyses: the pair exists (or is the only one), the dynamic model has the inertias
-// it needs, and the nodal diameters fit the gear. The geometry itself (interference, contact
-// ratio) is checked by gearan::check_gear_pairs, which needs the gear library.
-void Resolver::check_gear_analysis(const std::string& base, const Analysis& a) const {
-  const std::string* pair = nullptr;
-  bool dynamic = false;
-  if (const auto* g = std::get_if<GearPairSettings>(&a.settings)) pair = &g->pair;
-  if (const auto* f = std::get_if<MeshForceSettings>(&a.settings)) {
-    pair = &f->pair;
-    dynamic = f->model == MeshForceModel::Dynamic;
-  }
-  const auto* h = std::get_if<MeshHarmonicsSettings>(&a.settings);
-  if (h != nullptr) {
-    pair = &h->pair;
-    dynamic = h->model == MeshForceModel::Dynamic;
-  }
-  // The forced responses use a pair only when they name one (else force_amplitude).
-  if (const auto* c = settings_as<CyclicForcedResponseSettings>(a)) {
-    if (c->pair.empty()) return;
-    pair = &c->pair;
-    dynamic = c->model == MeshForceModel::Dynamic;
-  }
-  if (const auto* g = std::get_if<GearForcedResponseSettings>(&a.settings)) {
-    if (g->pair.empty()) return;
-    pair = &g->pair;
-  }
-  if (pair == nullptr) return;
-  const std::string type = fmt::format("\"{}\"", kAnalysisTypeNames[static_cast<int>(a.type)]);
-  if (m_.gear_pairs.empty())
-    fail(base + ".type", "an analysis whose gear pair exists in the model",
-         type + ", but the model has no [[gear_pairs]]");
-  std::set<std::string> pairs;
-  for (const auto& p : m_.gear_pairs) pairs.insert(p.name);
-  const GearPair* gp = nullptr;
-  std::size_t index = 0;
-  if (!pair->empty()) {
-    check_name(base + ".pair", *pair, pairs, "gear pair", "gear_pairs");
-    gp = m_.find_gear_pair(*pair);
-    index = static_cast<std::size_t>(gp - m_.gear_pairs.data());
-  } else if (m_.gear_pairs.size() == 1) {
-    gp = &m_.gear_pairs.front();
-  } else if (!std::holds_alternative<GearPairSettings>(a.settings)) {
-    fail(base + ".pair",
-         fmt::format("the name of the gear pair analysed (the model has {})",
-                     quoted_list(std::vector<std::string>(pairs.begin(), pairs.end()))),
-         "nothing");
-  }
-  if (gp != nullptr && dynamic) {
-    for (const char* key : {"inertia1", "inertia2"}) {
-      const double inertia = key[7] == '1' ? gp->inertia1 : gp->inertia2;
-      if (std::isnan(inertia))
-        fail(fmt::format("gear_pairs[{}].{}", index, key),
-             fmt::format("the polar inertia of gear {} [kg m^2] (needed by analysis '{}' with "
-                         "model = \"dynamic\")",
-                         key[7], a.name),
-             "nothing", "give it, or use model = \"infinite_inertia\"");
-    }
-  }
-  if (gp != nullptr && h != nullptr) {
-    const int teeth = h->gear == 1 ? gp->teeth1 : gp->teeth2;
-    for (std::size_t k = 0; k < h->nodal_diameters.size(); ++k)
-      if (h->nodal_diameters[k] > teeth / 2)
-        fail(fmt::format("{}.nodal_diameters[{}]", base, k),
-             fmt::format("a nodal diameter in 0 .. N / 2 = {} (gear {} has {} teeth)", teeth / 2,
-                         h->gear, teeth),
-             std::to_string(h->nodal_diameters[k]));
-  }
-}
-
+// Every analysis: its `set` variant builds, then its type's own checks (Variant::check: the
+// references of its keys into the rest of the model).
 void Resolver::check_analyses() {
-  auto names_of = [](const auto& items) {
-    std::set<std::string> out;
-    for (const auto& x : items) out.insert(x.name);
-    return out;
-  };
-  const auto sensors = names_of(m_.sensors);
-  const auto forces = names_of(m_.forces);
-  const auto unbalances = names_of(m_.unbalances);
-  const auto analyses = names_of(m_.analyses);
-  const auto solids = names_of(m_.solids);
+  const Section* section = r_.doc().schema().find_section("analyses", "");
   for (std::size_t i = 0; i < m_.analyses.size(); ++i) {
     const Analysis& a = m_.analyses[i];
     const std::string base = fmt::format("analyses[{}]", i);
     check_analysis_overrides(base, a);
-    const bool rotor_analysis =
-        a.type == AnalysisType::Modal || a.type == AnalysisType::Campbell ||
-        a.type == AnalysisType::Harmonic || a.type == AnalysisType::Unbalance ||
-        a.type == AnalysisType::Transient || a.type == AnalysisType::GearForcedResponse;
-    if (rotor_analysis && m_.shafts.empty() && m_.nodes.empty())
-      fail(base + ".type",
-           "an analysis of the solids (solid_modal, cyclic_modal, reduction) or gear pairs "
-           "(gear_pair, mesh_force, mesh_harmonics), since the model has no [[shafts]] or "
-           "[[nodes]]",
-           fmt::format("\"{}\"", kAnalysisTypeNames[static_cast<int>(a.type)]));
-    const std::string* solid = nullptr;
-    if (const auto* sm = std::get_if<SolidModalSettings>(&a.settings)) solid = &sm->solid;
-    if (const auto* cm = std::get_if<CyclicModalSettings>(&a.settings)) solid = &cm->solid;
-    if (const auto* rs = std::get_if<ReductionSettings>(&a.settings)) solid = &rs->solid;
-    if (solid != nullptr) {
-      check_name(base + ".solid", *solid, solids, "solid", "solids");
-      const Solid& body = *m_.find_solid(*solid);
-      if (std::holds_alternative<CyclicModalSettings>(a.settings) && body.sectors < 2)
-        fail(base + ".solid", "a solid with sectors >= 2 (one sector of a cyclic body)",
-             fmt::format("\"{}\" with sectors = {}", *solid, body.sectors));
-      if (const auto* cm = std::get_if<CyclicModalSettings>(&a.settings))
-        for (std::size_t k = 0; k < cm->nodal_diameters.size(); ++k)
-          if (cm->nodal_diameters[k] > body.sectors / 2)
-            fail(fmt::format("{}.nodal_diameters[{}]", base, k),
-                 fmt::format("a nodal diameter in 0 .. sectors / 2 = {}", body.sectors / 2),
-                 std::to_string(cm->nodal_diameters[k]));
-    }
-    check_gear_analysis(base, a);
-    // cyclic_forced_response: a cyclic solid, nodal diameters and engine orders that fit its
-    // sectors (k = +-h mod N), one tooth per sector when a gear pair gives the tooth force.
-    if (const auto* c = settings_as<CyclicForcedResponseSettings>(a)) {
-      check_name(base + ".solid", c->solid, solids, "solid", "solids");
-      const Solid& body = *m_.find_solid(c->solid);
-      const int n = body.sectors;
-      if (n < 2)
-        fail(base + ".solid", "a solid with sectors >= 2 (one sector of a cyclic body)",
-             fmt::format("\"{}\" with sectors = {}", c->solid, n));
-      for (std::size_t k = 0; k < c->nodal_diameters.size(); ++k)
-        if (c->nodal_diameters[k] > n / 2)
-          fail(fmt::format("{}.nodal_diameters[{}]", base, k),
-               fmt::format("a nodal diameter in 0 .. sectors / 2 = {}", n / 2),
-               std::to_string(c->nodal_diameters[k]));
-      for (std::size_t j = 0; j < c->engine_orders.size(); ++j) {
-        const int r = c->engine_orders[j] % n;
-        const int h = std::min(r, n - r);
-        if (!c->nodal_diameters.empty() &&
-            std::find(c->nodal_diameters.begin(), c->nodal_diameters.end(), h) ==
-                c->nodal_diameters.end())
-          fail(fmt::format("{}.engine_orders[{}]", base, j),
-               fmt::format("an order k = +-h (mod sectors = {}) of a listed nodal diameter h", n),
-               fmt::format("{} (nodal diameter {})", c->engine_orders[j], h),
-               "add that nodal diameter to nodal_diameters, or drop the order");
-      }
-      if (!c->pair.empty()) {
-        const GearPair& gp = *m_.find_gear_pair(c->pair);
-        const int teeth = c->gear == 1 ? gp.teeth1 : gp.teeth2;
-        if (teeth != n)
-          fail(base + ".solid",
-               fmt::format("a cyclic solid with one tooth per sector, sectors = {} (the teeth of "
-                           "gear {} of pair '{}'): the tooth force of tooth j acts on sector j",
-                           teeth, c->gear, c->pair),
-               fmt::format("\"{}\" with sectors = {}", c->solid, n),
-               "mesh one tooth per sector, or give force_amplitude for a load repeated once "
-               "per sector");
-        if (body.source == SolidSource::GearSector && body.gear_sector.teeth != teeth)
-          fail(base + ".solid",
-               fmt::format("a gear sector with the {} teeth of gear {} of pair '{}'", teeth,
-                           c->gear, c->pair),
-               fmt::format("teeth = {}", body.gear_sector.teeth));
-      }
-    }
-    // damper_ring_response: a generated gear sector has its groove and ring.
-    if (const auto* d = std::get_if<DamperRingResponseSettings>(&a.settings)) {
-      const Solid& body = *m_.find_solid(d->solid);
-      if (body.source == SolidSource::GearSector && !body.gear_sector.groove)
-        fail(base + ".solid", "a gear sector with groove = true (the damper ring and its groove)",
-             fmt::format("\"{}\" without a groove", d->solid));
-      if (body.source == SolidSource::Reduced || body.source == SolidSource::Matrices)
-        fail(base + ".solid",
-             "a mesh solid (generated gear_sector with groove, or a mesh file with the contact "
-             "and ring sets): the contact pairs are found in its mesh",
-             fmt::format("\"{}\" of type \"{}\"", d->solid,
-                         body.source == SolidSource::Reduced ? "reduced" : "matrices"));
-    }
-    // gear_forced_response: a gear mesh with teeth, the pair (if any) with the same teeth.
-    if (const auto* g = std::get_if<GearForcedResponseSettings>(&a.settings)) {
-      if (m_.gear_meshes.empty())
-        fail(base + ".type", "an analysis whose gear mesh exists in the model",
-             "\"gear_forced_response\", but the model has no [[gear_meshes]]");
-      const GearMesh* mesh = &m_.gear_meshes.front();
-      if (!g->gear_mesh.empty()) {
-        check_name(base + ".gear_mesh", g->gear_mesh, names_of(m_.gear_meshes), "gear mesh",
-                   "gear_meshes");
-        for (const auto& gm : m_.gear_meshes)
-          if (gm.name == g->gear_mesh) mesh = &gm;
-      } else if (m_.gear_meshes.size() > 1) {
-        fail(base + ".gear_mesh", "the name of the gear mesh excited (the model has several)",
-             "nothing");
-      }
-      if (mesh->teeth1 <= 0)
-        fail(base + ".gear_mesh",
-             fmt::format("a gear mesh with teeth1 (mesh '{}' has none, so its mesh frequency is "
-                         "unknown)",
-                         mesh->name),
-             "teeth1 = 0");
-      if (!g->pair.empty()) {
-        const GearPair& gp = *m_.find_gear_pair(g->pair);
-        if (gp.teeth1 != mesh->teeth1 || (mesh->teeth2 > 0 && gp.teeth2 != mesh->teeth2))
-          fail(base + ".pair",
-               fmt::format("a gear pair with the teeth of gear mesh '{}' ({} / {})", mesh->name,
-                           mesh->teeth1, mesh->teeth2),
-               fmt::format("'{}' with {} / {} teeth", gp.name, gp.teeth1, gp.teeth2));
-      }
-      check_named(base + ".sensors", g->sensors, sensors, "sensor", "sensors");
-      if (m_.sensors.empty())
-        fail(base + ".type", "an analysis whose response points exist in the model",
-             "\"gear_forced_response\", but the model has no [[sensors]]");
-    }
-    if (const auto* h = std::get_if<HarmonicSettings>(&a.settings)) {
-      if (!h->input_node.empty()) check_node(base + ".input_node", h->input_node);
-      check_named(base + ".forces", h->forces, forces, "force", "forces");
-      check_named(base + ".sensors", h->sensors, sensors, "sensor", "sensors");
-    } else if (const auto* u = std::get_if<UnbalanceSettings>(&a.settings)) {
-      check_named(base + ".unbalances", u->unbalances, unbalances, "unbalance", "unbalances");
-      check_named(base + ".sensors", u->sensors, sensors, "sensor", "sensors");
-      if (m_.unbalances.empty())
-        fail(base + ".type", "an analysis type whose excitation exists in the model",
-             "\"unbalance\", but the model has no [[unbalances]]");
-    } else if (const auto* t = std::get_if<TransientSettings>(&a.settings)) {
-      check_named(base + ".unbalances", t->unbalances, unbalances, "unbalance", "unbalances");
-      check_named(base + ".sensors", t->sensors, sensors, "sensor", "sensors");
-    } else if (const auto* s = std::get_if<SweepSettings>(&a.settings)) {
-      check_name(base + ".analysis", s->analysis, analyses, "analysis", "analyses");
-      const Analysis* target = m_.find_analysis(s->analysis);
-      if (target == &a)
-        fail(base + ".analysis", "the name of another analysis", "this sweep's own name");
-      if (target->type == AnalysisType::Sweep)
-        fail(base + ".analysis", "an analysis that is not a sweep",
-             fmt::format("\"{}\", a sweep", s->analysis));
-      if (s->parameter.rfind(base + ".", 0) == 0)
-        fail(base + ".parameter", "a key outside this sweep",
-             fmt::format("\"{}\", a key of the sweep itself", s->parameter));
-      check_number_key(r_.doc(), s->parameter, r_.locate(base + ".parameter"));
-      for (const auto& linked : s->linked_parameters)
-        check_number_key(r_.doc(), linked, r_.locate(base + ".linked_parameters"));
-      // Integer keys take integral values only.
-      {
-        const auto resolved = resolve_key(r_.doc(), s->parameter, r_.locate(base + ".parameter"));
-        if (resolved.field->type == FieldType::Integer)
-          for (std::size_t k = 0; k < s->values.size(); ++k)
-            if (s->values[k] != std::floor(s->values[k]))
-              fail(base + (given(base + ".values") ? ".values" : ".start"),
-                   fmt::format("integers, since {} is an integer key", s->parameter),
-                   number_text(s->values[k]));
-      }
-      std::set<std::string> labels;
-      for (std::size_t k = 0; k < s->outputs.size(); ++k) {
-        const SweepOutput& o = s->outputs[k];
-        const std::string opath = fmt::format("{}.outputs[{}]", base, k);
-        if (!o.sensor.empty())
-          check_name(opath + ".sensor", o.sensor, sensors, "sensor", "sensors");
-        using Q = SweepOutput::Quantity;
-        const AnalysisType tt = target->type;
-        bool fits = true;
-        std::string needs;
-        switch (o.quantity) {
-          case Q::NaturalFrequency:
-            fits = tt == AnalysisType::Modal || tt == AnalysisType::Campbell;
-            needs = "a modal or campbell";
-            break;
-          case Q::CriticalSpeed:
-            fits = tt == AnalysisType::Campbell;
-            needs = "a campbell";
-            break;
-          case Q::PeakAmplitude:
-          case Q::PeakLocation:
-            fits = tt == AnalysisType::Harmonic || tt == AnalysisType::Unbalance;
-            needs = "a harmonic or unbalance";
-            break;
-          case Q::AmplitudeAt: {
-            const bool has_rpm = given(opath + ".at_rpm");
-            fits = has_rpm ? tt == AnalysisType::Unbalance : tt == AnalysisType::Harmonic;
-            needs = has_rpm ? "an unbalance (at_rpm)" : "a harmonic (at_hz)";
-            break;
-          }
-        }
-        if (!fits)
-          fail(opath + ".quantity", fmt::format("an output of {} analysis", needs),
-               fmt::format("\"{}\" for analysis '{}' of type \"{}\"",
-                           kQuantityNames[static_cast<int>(o.quantity)], s->analysis,
-                           kAnalysisTypeNames[static_cast<int>(tt)]));
-        if (!labels.insert(o.label).second)
-          fail(opath + ".label", "a label not used by another output of this sweep",
-               fmt::format("\"{}\" again", o.label), "give the outputs different `label`s");
-      }
-    }
+    const Variant* v = section != nullptr ? section->find_variant(a.type) : nullptr;
+    if (v != nullptr && v->check) v->check(&a, base, *this);
   }
 }
 
@@ -1640,6 +1393,11 @@ void check_text(std::string_view text, const std::string& file_name) {
       case State::Normal:
         if (c == '#') {
           state = State::Comment;
+        } else if (c == '\\') {
+          // Never valid outside a string; toml++ 3.3 classifies the character after it with the
+          // table that has undefined behaviour for some non-ASCII code points (found by fuzzing).
+          fail("valid TOML: a backslash only inside a \"...\" string",
+               "a backslash outside any string");
         } else if ((c == '"' || c == '\'') &&
                    std::string_view("=[,{.\n").find(before) == std::string_view::npos) {
           // TOML starts a string only there; toml++ 3.3 would scan a quote after a bare value
@@ -1721,11 +1479,12 @@ void check_text(std::string_view text, const std::string& file_name) {
 // ---------------------------------------------------------------------------------------------
 // Public API
 
-ModelDocument parse_document(const std::string& text, const std::string& file_name) {
+ModelDocument parse_document(const std::string& text, const std::string& file_name,
+                             const Section& schema) {
   check_text(text, file_name);
   try {
     auto table = std::make_shared<toml::table>(toml::parse(text, file_name));
-    return ModelDocument(std::move(table), file_name);
+    return ModelDocument(std::move(table), file_name, schema);
   } catch (const toml::parse_error& e) {
     const auto& r = e.source();
     throw InputError({file_name, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)},
@@ -1733,12 +1492,12 @@ ModelDocument parse_document(const std::string& text, const std::string& file_na
   }
 }
 
-ModelDocument load_document(const std::string& path) {
+ModelDocument load_document(const std::string& path, const Section& schema) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_document(text.str(), path);
+  return parse_document(text.str(), path, schema);
 }
 
 void apply_override(ModelDocument& document, const std::string& assignment) {
@@ -1790,6 +1549,11 @@ void check_number_key(const ModelDocument& document, const std::string& key_path
                      fmt::format("'{}', which is {}", key.key, describe_type(*key.field)));
 }
 
+const Field& field_of(const ModelDocument& document, const std::string& key_path,
+                      const SourceLocation& where) {
+  return *resolve_key(document, key_path, where).field;
+}
+
 void set_number(ModelDocument& document, const std::string& key_path, double value) {
   const std::string origin = fmt::format("{}{} = {}", kSweepPrefix, key_path, number_text(value));
   const SourceLocation where{origin, 0, 0};
@@ -1812,15 +1576,17 @@ Model build_model(const ModelDocument& document) {
   Model model;
   model.source_file = document.file_name();
   Reader reader(document);
-  reader.read_table(model_schema(), &document.table(), "", {document.file_name(), 1, 1}, &model);
+  reader.read_table(document.schema(), &document.table(), "", {document.file_name(), 1, 1}, &model);
   Resolver(model, reader).run();
   return model;
 }
 
-Model parse_model(const std::string& text, const std::string& file_name) {
-  return build_model(parse_document(text, file_name));
+Model parse_model(const std::string& text, const std::string& file_name, const Section& schema) {
+  return build_model(parse_document(text, file_name, schema));
 }
 
-Model load_model(const std::string& path) { return build_model(load_document(path)); }
+Model load_model(const std::string& path, const Section& schema) {
+  return build_model(load_document(path, schema));
+}
 
 }  // namespace geardyn::model

@@ -1,8 +1,11 @@
 #pragma once
 // The one declaration of every key of a model file (deal.II-style parameter declaration).
 //
-// Each key is declared once, in schema.cpp, with its type, unit, default or "required", allowed
-// range, help text and a setter into the plain-data Model (model.hpp). That table drives
+// Each key is declared once with its type, unit, default or "required", allowed range, help
+// text and a setter into the plain-data Model (model.hpp): the model's sections in
+// schema_rotor.cpp, schema_solids.cpp, schema_gears.cpp and schema_model.cpp, and each analysis
+// type's keys in its AnalysisDeclaration (given by the analysis registry,
+// src/geardyn/analyses/registry.hpp). That table drives
 //   - parsing and validation (parse.cpp walks the TOML document with it),
 //   - `--set key.path=value` overrides and sweep parameters (key paths are checked against it),
 //   - the markdown reference (schema_markdown(), docs/model-reference.md).
@@ -12,6 +15,7 @@
 // `*_rpm` (to rad/s), `*_hz` (to rad/s), `*_deg` (to rad).
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -19,6 +23,7 @@
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/model/model.hpp"
 
 namespace geardyn::model {
 
@@ -138,10 +143,17 @@ struct Choice {
 };
 
 /// A value of the section's discriminator key (e.g. analyses' `type`) selecting extra keys.
+class ModelCheck;
+
+/// Checks of one object against the rest of the model after the whole file is read (references
+/// to other sections, sizes that depend on them): `path` is the object's key path.
+using Checker = std::function<void(const void* object, const std::string& path, const ModelCheck&)>;
+
 struct Variant {
   std::string name;
   std::string help;
   Finisher finish;  ///< cross-key checks and derived values for this variant
+  Checker check;    ///< checks against the rest of the model (may be empty)
 };
 
 enum class SectionKind { Root, Table, ArrayOfTables };
@@ -171,12 +183,31 @@ struct Section {
   const Variant* find_variant(std::string_view name) const;
 };
 
-/// The root of the declaration table (keys `version`, `title` and the sections).
-const Section& model_schema();
+/// One analysis type as the model file sees it: its `type` name, help, settings object, keys,
+/// cross-key rules and checks. The analysis registry makes one per type.
+struct AnalysisDeclaration {
+  std::string name;  ///< `type = "..."`
+  std::string help;
+  std::function<std::unique_ptr<AnalysisSettings>()> make_settings;
+  std::vector<Field> fields;      ///< its keys (setters into Analysis, see keys::F::to_settings)
+  std::vector<Choice> choices;    ///< alternatives among its keys
+  std::vector<Section> sections;  ///< its sub-tables
+  std::function<void(Analysis&, const TableContext&)> finish;  ///< cross-key rules, derived values
+  std::function<void(const Analysis&, const std::string& path, const ModelCheck&)> check;
+  bool needs_rotor = false;  ///< needs [[shafts]] or [[nodes]]
+};
+
+/// The root of the declaration table (keys `version`, `title` and the sections) with these
+/// analysis types, self-checked: a declaration error (a key declared twice, a setter into the
+/// wrong object, ...) is a std::logic_error.
+Section make_model_schema(const std::vector<AnalysisDeclaration>& analyses);
+
+/// Throws std::logic_error when the declaration table contradicts itself.
+void check_schema(const Section& root);
 
 /// The model-file reference as markdown: every section and key with type, unit, default,
 /// range and help (this is docs/model-reference.md).
-std::string schema_markdown();
+std::string schema_markdown(const Section& root);
 
 /// Text used in messages and docs.
 std::string describe_type(const Field& field);   ///< "a number > 0 [m]"-style expectation

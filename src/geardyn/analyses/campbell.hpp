@@ -1,0 +1,102 @@
+#pragma once
+// Campbell diagram (DESIGN 4.1): complex modes of the damped gyroscopic system over a list of
+// reference speeds, tracked from speed to speed by the shapes (MAC with an optimal one-to-one
+// assignment, so crossing modes keep their identity), engine-order lines and critical speeds
+// where a tracked mode meets a line, f_mode(Omega) = order Omega / 2pi.
+#include <complex>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/modal.hpp"
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/fe/linear_system.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+struct CampbellSettings : model::SettingsOf<CampbellSettings> {
+  std::vector<double> speeds;  ///< reference speeds [rad/s]
+  int n_modes = 8;
+  std::vector<double> engine_orders = {1.0};  ///< orders of the reference shaft
+  bool shaft_orders = true;                   ///< add order 1 of every shaft (x its speed ratio)
+  bool mesh_orders = true;                    ///< add teeth x shaft order of every mesh with teeth
+  double mac_threshold = 0.7;                 ///< below this a tracking step is flagged ambiguous
+  EigenMethod method = EigenMethod::Auto;
+};
+
+/// One tracked mode at one speed (shapes are not kept: n_speeds x n_modes x n would be large).
+struct TrackPoint {
+  double speed = eig::kNaN;  ///< reference speed [rad/s]
+  std::complex<double> eigenvalue{eig::kNaN, eig::kNaN};
+  double frequency_hz = eig::kNaN;  ///< |lambda| / 2pi (NaN: no mode assigned)
+  double damped_frequency_hz = eig::kNaN;
+  double damping_ratio = eig::kNaN;
+  Whirl whirl = Whirl::None;
+  ModeKind kind = ModeKind::Coupled;
+  double residual = eig::kNaN;
+  /// MAC with the track's shape at the previous speed (1 at the first speed). When the track's
+  /// previous eigenvalue was repeated (e.g. the two whirl directions of an isotropic rotor at
+  /// rest), the MAC with the subspace of all modes computed there with that eigenvalue.
+  double mac = eig::kNaN;
+  bool ambiguous = false;  ///< mac < mac_threshold, or no mode assigned
+};
+
+/// f = order x Omega / 2pi; `order` per revolution of the reference shaft.
+struct EngineOrderLine {
+  std::string label;
+  double order = 0;
+};
+
+struct CriticalSpeed {
+  int mode = 0;  ///< 1-based track
+  double order = 0;
+  std::string line;          ///< label of the engine-order line
+  double speed = eig::kNaN;  ///< reference speed [rad/s]
+  double frequency_hz = eig::kNaN;
+  double damping_ratio = eig::kNaN;
+  Whirl whirl = Whirl::None;
+  bool ambiguous = false;  ///< the track was ambiguous at either neighbouring speed
+};
+
+struct CampbellResult {
+  Status status = Status::Failed;
+  std::string message;
+  std::vector<double> speeds;                   ///< [rad/s], ascending
+  std::vector<std::vector<TrackPoint>> tracks;  ///< tracks[t][i]: track t at speeds[i]
+  std::vector<EngineOrderLine> lines;
+  std::vector<CriticalSpeed> critical_speeds;  ///< ordered by speed
+  int ambiguous_points = 0;
+  int candidates_per_speed = 0;  ///< elastic modes computed per speed (tracks + spares)
+  int rigid_body_roots = 0;      ///< roots at 0 Hz (rigid-body motion) left out of the tracking
+  double max_residual = 0;
+  std::string method;  ///< solver method(s) used
+  int total_operations = 0;
+  double run_time_s = 0;
+};
+
+/// Engine-order lines: the settings' orders of the reference shaft; order |speed_ratio| of every
+/// shaft if shaft_orders; teeth x |speed ratio| of every gear mesh with teeth if mesh_orders
+/// (gear1's teeth and node; gear2's if gear1 has none). Orders equal to an earlier one within
+/// 1e-9 are merged into its label.
+std::vector<EngineOrderLine> engine_order_lines(const model::Model& model,
+                                                const fe::LinearSystem& system,
+                                                const CampbellSettings& settings);
+
+/// Optimal assignment maximising the total score (Hungarian method, Kuhn 1955 / Munkres 1957):
+/// rows (tracks) to distinct columns (candidates); rows <= columns. Returns the column of each
+/// row. Ties go to the lower column index, so the result is deterministic.
+std::vector<int> best_assignment(const Eigen::MatrixXd& score);
+
+/// Runs the sweep. Throws InputError for invalid settings (no speeds, speeds not strictly
+/// increasing or negative, n_modes < 1, threshold outside [0, 1], non-positive orders).
+CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& system,
+                            const CampbellSettings& settings, Progress& progress);
+
+/// Tables "campbell", "critical_speeds", "engine_orders"; plots "campbell" (frequency vs speed
+/// with dashed engine-order lines and critical-speed markers) and "campbell_damping".
+AnalysisOutput campbell_output(const model::Model& model, const fe::LinearSystem& system,
+                               const CampbellResult& result, const std::string& analysis_name);
+
+}  // namespace geardyn::analyses

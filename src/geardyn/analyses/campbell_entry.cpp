@@ -1,0 +1,86 @@
+// The `type = "campbell"` analysis in the registry: its model-file keys and their rules, its
+// checks, how it runs and what it offers to sweeps.
+#include "geardyn/analyses/campbell.hpp"
+#include "geardyn/analyses/common_checks.hpp"
+#include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+using model::FieldType;
+using model::FieldValue;
+using model::Ref;
+using model::TableContext;
+
+void finish(Analysis& a, const TableContext& t) {
+  a.settings_of<CampbellSettings>().speeds = speed_range(t);
+}
+
+std::vector<model::Field> keys() {
+  return {
+      speed_list_key().to_settings(&CampbellSettings::speeds),
+      speed_start_rpm_key().read_by_finish<model::Analysis>(),
+      speed_stop_rpm_key().read_by_finish<model::Analysis>(),
+      speed_count_key().read_by_finish<model::Analysis>(),
+      n_modes_key().to_settings(&CampbellSettings::n_modes),
+      method_key().to_settings_enum(&CampbellSettings::method,
+                                    {EigenMethod::Auto, EigenMethod::Dense, EigenMethod::Sparse}),
+      numbers("engine_orders", kNoUnit,
+              "Excitation orders of the reference speed drawn as lines; critical speeds "
+              "are where modes cross them.")
+          .def("[1.0]")
+          .gt(0)
+          .to_settings(&CampbellSettings::engine_orders),
+      boolean("shaft_orders", "Add order 1 of every shaft (its speed ratio).")
+          .def("true")
+          .to_settings(&CampbellSettings::shaft_orders),
+      boolean("mesh_orders", "Add the mesh order (teeth x shaft order) of every mesh with teeth.")
+          .def("true")
+          .to_settings(&CampbellSettings::mesh_orders),
+      number("mac_threshold", kNoUnit,
+             "Mode tracking between speeds: MAC below this flags an ambiguous step.")
+          .def("0.7")
+          .ge(0)
+          .le(1)
+          .to_settings(&CampbellSettings::mac_threshold),
+  };
+}
+
+}  // namespace
+
+AnalysisType campbell_analysis() {
+  AnalysisType type;
+  type.name = "campbell";
+  type.declare = [] {
+    auto d =
+        declaration<CampbellSettings>("campbell",
+                                      "Eigenvalues versus speed with forward / backward whirl, "
+                                      "order lines and critical speeds.");
+    d.fields = keys();
+    d.choices = {speed_range_choice(true)};
+    d.finish = finish;
+    d.needs_rotor = true;
+    return d;
+  };
+  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
+    const auto& s = a.settings_of<CampbellSettings>();
+    CampbellResult r = run_campbell(m, c.system(), s, c.progress());
+    AnalysisOutput out = campbell_output(m, c.system(), r, a.name);
+    return outcome(std::move(out), std::move(r));
+  };
+  type.scalars = {
+      {"natural_frequency",
+       "Hz",
+       "Undamped natural frequency of mode `mode` at the first speed.",
+       {"mode"}},
+      {"critical_speed", "rpm", "Critical speed of mode `mode` on engine order 1.", {"mode"}}};
+  type.scalar = scalar_from_tables;
+  return type;
+}
+
+}  // namespace geardyn::analyses

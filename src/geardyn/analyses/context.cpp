@@ -1,0 +1,53 @@
+#include "geardyn/analyses/context.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace geardyn::analyses {
+
+Context::Context(const model::Model& model, const model::Analysis& analysis)
+    : name_(analysis.name), key_path_("analysis"), where_(analysis.where) {
+  for (std::size_t i = 0; i < model.analyses.size(); ++i)
+    if (&model.analyses[i] == &analysis || model.analyses[i].name == analysis.name) {
+      key_path_ = fmt::format("analyses[{}]", i);
+      break;
+    }
+  if (where_.file.empty()) where_ = SourceLocation{model.source_file, 0, 0};
+}
+
+Context::Context(std::string name, std::string key_path, SourceLocation where)
+    : name_(std::move(name)), key_path_(std::move(key_path)), where_(std::move(where)) {}
+
+std::string Context::key(std::string_view key) const {
+  return fmt::format("{}.{}", key_path_, key);
+}
+
+InputError Context::error(std::string_view key, std::string expected, std::string found,
+                          std::string hint) const {
+  return InputError(where_, this->key(key), std::move(expected), std::move(found), std::move(hint));
+}
+
+const fe::LinearSystem& Context::system() const {
+  if (system_ == nullptr)
+    throw std::logic_error(fmt::format("analysis '{}' needs the rotor's linear system", name_));
+  return *system_;
+}
+
+const assembly::SolidComponent& Context::solid(const model::Model& model,
+                                               const std::string& solid_name) const {
+  if (solids_ != nullptr) {
+    auto it = solids_->find(solid_name);
+    if (it != solids_->end()) return it->second;
+  }
+  const std::lock_guard<std::mutex> lock(built_->mutex);
+  auto& slot = built_->solids[solid_name];
+  if (!slot) {
+    const model::Solid* s = model.find_solid(solid_name);
+    if (s == nullptr) throw std::logic_error("unresolved solid " + solid_name);
+    slot = std::make_unique<assembly::SolidComponent>(assembly::build_solid(model, *s, progress()));
+  }
+  return *slot;
+}
+
+}  // namespace geardyn::analyses

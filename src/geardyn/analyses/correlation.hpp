@@ -1,0 +1,32 @@
+#pragma once
+// correlation: where the resonance peaks of a measured response lie, how sharp they are (Q),
+// and how they compare with a reference (computed) peak.
+//
+// Resonance peaks of a measured response, Q by the half-power method with interpolated
+// crossings, and the comparison with a reference peak (DESIGN 4.4-4.5; issue [mesh-excitation]):
+// (model, settings) -> AnalysisOutput with tables, plots and notes. Bad input throws InputError
+// (call check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
+// numerical failure throws NumericalError naming the analysis.
+#include <string>
+
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+/// A measured response curve: resonance peaks, Q by the half-power method, optional reference.
+struct CorrelationSettings : model::SettingsOf<CorrelationSettings> {
+  std::string measured_file;  ///< as written (relative to the model file)
+  double min_prominence_db = 6.0;
+  int max_peaks = 8;
+  double reference_peak = model::kNaN;  ///< reference peak position [rad/s] (speed or frequency)
+  bool reference_is_speed = true;  ///< reference_peak is a speed (rpm key) or frequency (hz key)
+  double reference_amplitude = model::kNaN;  ///< in the measured file's SI amplitude unit
+  double reference_q = model::kNaN;
+};
+
+AnalysisOutput run_correlation(const model::Model& model, const CorrelationSettings& settings,
+                               const std::string& name, Progress& progress = null_progress());
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,151 @@
+// The `type = "gear_forced_response"` analysis in the registry: its model-file keys and their
+// rules, its checks, how it runs and what it offers to sweeps.
+#include "geardyn/analyses/common_checks.hpp"
+#include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/gear_forced_response.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+using model::FieldType;
+using model::FieldValue;
+using model::Ref;
+using model::TableContext;
+
+void finish(Analysis& a, const TableContext& t) {
+  auto& s = a.settings_of<GearForcedResponseSettings>();
+  s.speeds = speed_range(t);
+  for (const char* key : {"measured_sensor", "measured_mesh_order", "scale_to_measured"})
+    if (t.has(key) && !t.has("measured_file"))
+      t.fail(key, "a measured_file to compare with", "no measured_file");
+  if (s.speeds.front() <= 0.0)
+    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
+  if (t.has("force_amplitude") && t.at("force_amplitude").is_array) {
+    const std::size_t n = t.at("force_amplitude").count;
+    if (!t.has("max_mesh_order"))
+      s.max_mesh_order = static_cast<int>(n);
+    else if (n != static_cast<std::size_t>(s.max_mesh_order))
+      t.fail("force_amplitude",
+             fmt::format("{} amplitudes, one per mesh order 1 .. max_mesh_order", s.max_mesh_order),
+             fmt::format("{} amplitudes", n));
+  }
+  if (s.measured_mesh_order > s.max_mesh_order)
+    t.fail("measured_mesh_order",
+           fmt::format("a mesh order 1 .. max_mesh_order = {} (or 0: the sum)", s.max_mesh_order),
+           std::to_string(s.measured_mesh_order));
+}
+
+// A gear mesh with teeth, the pair (if any) with the same teeth, sensors.
+void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
+  const auto& g = a.settings_of<GearForcedResponseSettings>();
+  const model::Model& m = check.model();
+  if (!g.pair.empty()) {
+    GearPairUse use;
+    use.pair = &g.pair;
+    check_gear_pair_use(a, path, check, use);
+  }
+  if (m.gear_meshes.empty())
+    check.fail(path + ".type", "an analysis whose gear mesh exists in the model",
+               "\"gear_forced_response\", but the model has no [[gear_meshes]]");
+  const model::GearMesh* mesh = &m.gear_meshes.front();
+  if (!g.gear_mesh.empty()) {
+    check.check_name(path + ".gear_mesh", g.gear_mesh, model::names_of(m.gear_meshes), "gear mesh",
+                     "gear_meshes");
+    for (const auto& gm : m.gear_meshes)
+      if (gm.name == g.gear_mesh) mesh = &gm;
+  } else if (m.gear_meshes.size() > 1) {
+    check.fail(path + ".gear_mesh", "the name of the gear mesh excited (the model has several)",
+               "nothing");
+  }
+  if (mesh->teeth1 <= 0)
+    check.fail(path + ".gear_mesh",
+               fmt::format("a gear mesh with teeth1 (mesh '{}' has none, so its mesh frequency "
+                           "is unknown)",
+                           mesh->name),
+               "teeth1 = 0");
+  if (!g.pair.empty()) {
+    const model::GearPair& gp = *m.find_gear_pair(g.pair);
+    if (gp.teeth1 != mesh->teeth1 || (mesh->teeth2 > 0 && gp.teeth2 != mesh->teeth2))
+      check.fail(path + ".pair",
+                 fmt::format("a gear pair with the teeth of gear mesh '{}' ({} / {})", mesh->name,
+                             mesh->teeth1, mesh->teeth2),
+                 fmt::format("'{}' with {} / {} teeth", gp.name, gp.teeth1, gp.teeth2));
+  }
+  check.check_named(path + ".sensors", g.sensors, model::names_of(m.sensors), "sensor", "sensors");
+  if (m.sensors.empty())
+    check.fail(path + ".type", "an analysis whose response points exist in the model",
+               "\"gear_forced_response\", but the model has no [[sensors]]");
+}
+
+std::vector<model::Field> keys() {
+  return {
+      speed_list_key().read_by_finish<model::Analysis>(),
+      speed_start_rpm_key().read_by_finish<model::Analysis>(),
+      speed_stop_rpm_key().read_by_finish<model::Analysis>(),
+      speed_count_key().read_by_finish<model::Analysis>(),
+      n_modes_key().to_settings(&GearForcedResponseSettings::n_modes),
+      sensors_key().to_settings(&GearForcedResponseSettings::sensors),
+      min_prominence_db_key().to_settings(&GearForcedResponseSettings::min_prominence_db),
+      forced_pair_key().to_settings(&GearForcedResponseSettings::pair),
+      force_amplitude_key().to_settings_fn<GearForcedResponseSettings>(
+          [](auto& s, const FieldValue& v) { s.force_amplitude = amplitudes_of(v); }),
+      measured_file_key().to_settings(&GearForcedResponseSettings::measured_file),
+      measured_sensor_key().to_settings(&GearForcedResponseSettings::measured_sensor),
+      scale_to_measured_key().to_settings(&GearForcedResponseSettings::scale_to_measured),
+      integer("measured_mesh_order",
+              "Mesh order of the computed curve compared with the measurement (0: the "
+              "sum of the amplitudes of all mesh orders).")
+          .def("0")
+          .ge(0)
+          .le(100000)
+          .to_settings(&GearForcedResponseSettings::measured_mesh_order),
+      text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
+          .note("the model's only gear mesh")
+          .to_settings(&GearForcedResponseSettings::gear_mesh),
+      integer("max_mesh_order", "Mesh orders 1 .. this are excited.")
+          .def("3")
+          .ge(1)
+          .le(100)
+          .to_settings(&GearForcedResponseSettings::max_mesh_order),
+      boolean("residual_vectors",
+              "Add the static response to the mesh load to the modal basis (static "
+              "correction of the modes left out).")
+          .def("true")
+          .to_settings(&GearForcedResponseSettings::residual_vectors),
+  };
+}
+
+}  // namespace
+
+AnalysisType gear_forced_response_analysis() {
+  AnalysisType type;
+  type.name = "gear_forced_response";
+  type.declare = [] {
+    auto d = declaration<GearForcedResponseSettings>(
+        "gear_forced_response",
+        "Forced response of the rotor to the mesh-order "
+        "harmonics of one gear mesh over speed (modal basis), "
+        "with the resonance peaks and their Q.");
+    d.fields = keys();
+    d.choices = {speed_range_choice(true), {{{"pair"}, {"force_amplitude"}}, true, {}}};
+    d.finish = finish;
+    d.check = check;
+    d.needs_rotor = true;
+    return d;
+  };
+  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
+    return Outcome{
+        run_gear_forced_response(m, c.system(), a.settings_of<GearForcedResponseSettings>(), a.name,
+                                 c.progress()),
+        nullptr};
+  };
+  return type;
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,964 @@
+#include "geardyn/analyses/harmonic.hpp"
+
+#include <fmt/format.h>
+#include <umfpack.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+#include "geardyn/analyses/settings_location.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/signal/half_power.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using Complex = std::complex<double>;
+constexpr double kPi = std::numbers::pi;
+constexpr double kHzPerRadS = 1.0 / (2.0 * kPi);
+constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+
+// UMFPACK scales each row by the sum of its absolute values before factorising, so its pivot
+// ratio min|U_ii| / max|U_ii| compares pivots of a matrix with unit-size rows. A matrix that is
+// singular in exact arithmetic (a rigid-body mode at w = 0) leaves a pivot made of round-off,
+// a few eps (~1e-16 .. 1e-15) relative to the largest; a genuinely ill-conditioned but regular
+// rotor model (stiff bearings on soft shafts, 1e-3 .. 1e-10) stays far above. 1e-13 separates
+// the two with two decades of margin on either side.
+constexpr double kSingularPivotRatio = 1e-13;
+
+// Complex LU by UMFPACK (called directly: the symbolic analysis is kept across frequencies and
+// the pivot ratio is read from its Info array). Complex values are passed packed (re, im), which
+// std::complex<double> arrays are by the standard's layout guarantee.
+class UmfpackLu {
+ public:
+  UmfpackLu() { umfpack_zi_defaults(control_); }
+  ~UmfpackLu() { release(); }
+  UmfpackLu(const UmfpackLu&) = delete;
+  UmfpackLu& operator=(const UmfpackLu&) = delete;
+
+  /// UMFPACK status of the symbolic analysis (UMFPACK_OK on success).
+  int analyze(const fe::ComplexSparseMatrix& A) {
+    release();
+    const int n = static_cast<int>(A.rows());
+    return umfpack_zi_symbolic(n, n, A.outerIndexPtr(), A.innerIndexPtr(), values(A), nullptr,
+                               &symbolic_, control_, info_);
+  }
+  /// UMFPACK status of the numeric factorisation (UMFPACK_WARNING_singular_matrix when a pivot
+  /// is exactly zero).
+  int factorize(const fe::ComplexSparseMatrix& A) {
+    if (numeric_ != nullptr) umfpack_zi_free_numeric(&numeric_);
+    const int status = umfpack_zi_numeric(A.outerIndexPtr(), A.innerIndexPtr(), values(A), nullptr,
+                                          symbolic_, &numeric_, control_, info_);
+    pivot_ratio_ = info_[UMFPACK_RCOND];
+    return status;
+  }
+  /// Solves A x = b column by column (with UMFPACK's iterative refinement against A).
+  bool solve(const fe::ComplexSparseMatrix& A, const Eigen::MatrixXcd& b,
+             Eigen::MatrixXcd& x) const {
+    x.resize(b.rows(), b.cols());
+    for (Eigen::Index j = 0; j < b.cols(); ++j) {
+      const int status = umfpack_zi_solve(
+          UMFPACK_A, A.outerIndexPtr(), A.innerIndexPtr(), values(A), nullptr,
+          reinterpret_cast<double*>(x.col(j).data()), nullptr,
+          reinterpret_cast<const double*>(b.col(j).data()), nullptr, numeric_, control_, info_);
+      if (status != UMFPACK_OK) return false;
+    }
+    return true;
+  }
+  double pivot_ratio() const { return pivot_ratio_; }
+
+ private:
+  static const double* values(const fe::ComplexSparseMatrix& A) {
+    return reinterpret_cast<const double*>(A.valuePtr());
+  }
+  void release() {
+    if (numeric_ != nullptr) umfpack_zi_free_numeric(&numeric_);
+    if (symbolic_ != nullptr) umfpack_zi_free_symbolic(&symbolic_);
+  }
+  double control_[UMFPACK_CONTROL];
+  mutable double info_[UMFPACK_INFO];
+  void* symbolic_ = nullptr;
+  void* numeric_ = nullptr;
+  double pivot_ratio_ = 0.0;
+};
+
+// Values of a real sparse matrix and the positions they take in the value array of D.
+struct Term {
+  std::vector<Eigen::Index> slot;
+  std::vector<double> value;
+};
+
+bool is_empty(const fe::SparseMatrix& X) { return X.rows() == 0 && X.cols() == 0; }
+
+void check_square(const fe::SparseMatrix& X, int n, const char* name) {
+  if (!is_empty(X) && (X.rows() != n || X.cols() != n))
+    throw std::logic_error(
+        fmt::format("LinearSystem::{} is {}x{}, expected {}x{}", name, X.rows(), X.cols(), n, n));
+}
+
+void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<Complex>>& triplets) {
+  if (is_empty(X)) return;
+  for (Eigen::Index k = 0; k < X.outerSize(); ++k)
+    for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it)
+      triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
+}
+
+// Maps X into the pattern of D; false if X has an entry outside it.
+bool map_term(const fe::SparseMatrix& X, const fe::ComplexSparseMatrix& D, Term& term) {
+  term.slot.clear();
+  term.value.clear();
+  if (is_empty(X)) return true;
+  const int* outer = D.outerIndexPtr();
+  const int* inner = D.innerIndexPtr();
+  for (Eigen::Index k = 0; k < X.outerSize(); ++k) {
+    const int* begin = inner + outer[k];
+    const int* end = inner + outer[k + 1];
+    for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) {
+      const int* pos = std::lower_bound(begin, end, static_cast<int>(it.row()));
+      if (pos == end || *pos != it.row()) return false;
+      term.slot.push_back(pos - inner);
+      term.value.push_back(it.value());
+    }
+  }
+  return true;
+}
+
+void scatter(const Term& term, Complex factor, Complex* values) {
+  for (std::size_t k = 0; k < term.slot.size(); ++k) values[term.slot[k]] += factor * term.value[k];
+}
+
+// Absolute row sums of a real sparse matrix (zero vector for an empty one).
+Eigen::VectorXd abs_row_sums(const fe::SparseMatrix& X, int n) {
+  Eigen::VectorXd sums = Eigen::VectorXd::Zero(n);
+  if (is_empty(X)) return sums;
+  for (Eigen::Index k = 0; k < X.outerSize(); ++k)
+    for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) sums[it.row()] += std::abs(it.value());
+  return sums;
+}
+
+}  // namespace
+
+// Modal damping i w B diag(c) B^T (B = M Phi, Phi^T M Phi = I) is kept out of the sparse factor.
+// Plain Woodbury on the sparse part A = K - w^2 M + i w (C + W G) + i K_loss fails when A is
+// singular or nearly so, which happens exactly at the undamped natural frequencies of a model
+// damped only modally. So the factor is taken of the regularised A_s = A + i w s0 M, s0 > 0
+// (every mode damped, A_s regular for w > 0), and
+//   P = A_s + i w B diag(c - s0) B^T = D + i w s0 (M - B B^T)
+// is inverted exactly by Woodbury:
+//   P^{-1} F = Z - Y (I + S B^T Y)^{-1} S B^T Z,  Z = A_s^{-1} F, Y = A_s^{-1} B,
+//   S = i w diag(c - s0)   (no inverse of S is needed, so c_r = s0 or c_r = 0 are harmless).
+// P differs from D only on the M-orthogonal complement of the damping modes (M - B B^T), so
+// iterative refinement x += P^{-1} (F - D x) removes the difference; its contraction on a
+// complement mode j is w s0 / |w_j^2 - w^2 + i w s0| < 1 (one step when the basis spans all
+// modes). Residuals use the exact D (sparse product plus the low-rank term).
+struct DynamicStiffness::Impl {
+  fe::ComplexSparseMatrix D;  ///< A, or A_s when the modal path is active
+  Term mass, stiffness, damping, gyroscopic, loss;
+  Eigen::VectorXd row_mass, row_stiffness, row_damping, row_gyroscopic, row_loss;
+  UmfpackLu lu;
+  bool analysed = false;
+  fe::ComplexSparseMatrix M;  ///< complex copy of M for the residual
+  Eigen::MatrixXcd B;
+  Eigen::VectorXd c;
+  double s0 = 0.0;
+  Eigen::VectorXcd s_full;  ///< i w c
+  Eigen::VectorXcd s;       ///< i w (c - s0)
+  Complex shift{0.0};       ///< i w s0
+  Eigen::MatrixXcd Y;
+  Eigen::PartialPivLU<Eigen::MatrixXcd> capacitance;
+  bool modal_path = false;
+  double norm_inf = 0.0;  ///< bound of the infinity norm of the exact D (backward errors)
+
+  void build_pattern(const fe::LinearSystem& system, const fe::SparseMatrix& K,
+                     const fe::SparseMatrix& C, int n) {
+    std::vector<Eigen::Triplet<Complex>> triplets;
+    for (const auto* X : {&system.M, &K, &C, &system.G, &system.K_loss}) add_pattern(*X, triplets);
+    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, Complex(0.0));
+    D.resize(n, n);
+    D.setFromTriplets(triplets.begin(), triplets.end());
+    D.makeCompressed();
+    const bool ok = map_term(system.M, D, mass) && map_term(K, D, stiffness) &&
+                    map_term(C, D, damping) && map_term(system.G, D, gyroscopic) &&
+                    map_term(system.K_loss, D, loss);
+    if (!ok) throw std::logic_error("DynamicStiffness: pattern union misses an entry");
+    analysed = false;
+  }
+
+  // P^{-1} F (A_s^{-1} F without the modal path).
+  bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
+    if (!lu.solve(D, F, X)) return false;
+    if (modal_path) X -= Y * capacitance.solve(s.asDiagonal() * (B.transpose() * X));
+    return true;
+  }
+
+  // D x with the exact operator.
+  Eigen::MatrixXcd apply(const Eigen::MatrixXcd& x) const {
+    Eigen::MatrixXcd y = D * x;
+    if (s_full.size() > 0) {
+      if (shift != Complex(0.0)) y -= shift * (M * x);
+      y += B * (s_full.asDiagonal() * (B.transpose() * x));
+    }
+    return y;
+  }
+};
+
+DynamicStiffness::DynamicStiffness(const fe::LinearSystem& system, double speed,
+                                   std::string analysis)
+    : system_(system), analysis_(std::move(analysis)), impl_(std::make_unique<Impl>()) {
+  n_ = static_cast<int>(system.M.rows());
+  if (n_ == 0)
+    throw NumericalError(analysis_, "the model has no free degrees of freedom (all constrained)");
+  check_square(system.M, n_, "M");
+  check_square(system.K, n_, "K");
+  check_square(system.C, n_, "C");
+  check_square(system.G, n_, "G");
+  check_square(system.K_loss, n_, "K_loss");
+  Impl& m = *impl_;
+  m.row_mass = abs_row_sums(system.M, n_);
+  m.row_gyroscopic = abs_row_sums(system.G, n_);
+  m.row_loss = abs_row_sums(system.K_loss, n_);
+  if (system.has_modal_damping()) {
+    if (system.modal_basis.rows() != n_ ||
+        system.modal_basis.cols() != system.modal_coefficients.size())
+      throw std::logic_error("LinearSystem: modal_basis and modal_coefficients do not match");
+    m.B = system.modal_basis.cast<Complex>();
+    m.c = system.modal_coefficients;
+    m.M = system.M.cast<Complex>();
+    // The smallest positive modal coefficient: enough to make A_s regular, and small, so the
+    // refinement contracts fast on modes outside the basis.
+    for (Eigen::Index r = 0; r < m.c.size(); ++r)
+      if (m.c[r] > 0.0 && (m.s0 == 0.0 || m.c[r] < m.s0)) m.s0 = m.c[r];
+  }
+  set_speed(speed);
+}
+
+DynamicStiffness::~DynamicStiffness() = default;
+
+void DynamicStiffness::set_speed(double speed) {
+  if (!std::isfinite(speed)) throw std::invalid_argument("DynamicStiffness: speed is not finite");
+  speed_ = speed;
+  omega_ = std::numeric_limits<double>::quiet_NaN();
+  const fe::SparseMatrix K = system_.K_at(speed);
+  const fe::SparseMatrix C = system_.C_at(speed);
+  check_square(K, n_, "K_at");
+  check_square(C, n_, "C_at");
+  Impl& m = *impl_;
+  m.row_stiffness = abs_row_sums(K, n_);
+  m.row_damping = abs_row_sums(C, n_);
+  // Speed-dependent bearings change values, not the pattern: keep the symbolic analysis then.
+  if (m.D.rows() != n_ || !map_term(K, m.D, m.stiffness) || !map_term(C, m.D, m.damping))
+    m.build_pattern(system_, K, C, n_);
+}
+
+void DynamicStiffness::factorize(double omega) {
+  if (!(omega >= 0.0) || !std::isfinite(omega))
+    throw std::invalid_argument(fmt::format("DynamicStiffness: frequency {} rad/s", omega));
+  Impl& m = *impl_;
+  const bool modal = system_.has_modal_damping();
+  m.modal_path = modal && omega > 0.0 && m.s0 > 0.0;
+  const Complex iw(0.0, omega);
+  m.shift = m.modal_path ? iw * m.s0 : Complex(0.0);
+  Complex* values = m.D.valuePtr();
+  std::fill(values, values + m.D.nonZeros(), Complex(0.0));
+  scatter(m.mass, Complex(-omega * omega) + m.shift, values);
+  scatter(m.stiffness, Complex(1.0), values);
+  scatter(m.damping, iw, values);
+  scatter(m.gyroscopic, iw * speed_, values);
+  scatter(m.loss, Complex(0.0, 1.0), values);
+  omega_ = omega;
+
+  auto singular = [&](const std::string& measure) {
+    std::string head = fmt::format(
+        "D(w) = K - w^2 M + i w (C + W G) + i K_loss{} is singular at f = {:.6g} Hz "
+        "(w = {:.6g} rad/s, reference speed W = {:.6g} rpm; {})",
+        modal ? " + i w C_modal" : "", omega * kHzPerRadS, omega, speed_ * kRpmPerRadS, measure);
+    std::string cause;
+    if (omega == 0.0)
+      cause =
+          "model has rigid-body motion: add bearings or constraints (a rotor free in "
+          "torsion or axially needs a spring or constraint there), or start the frequency "
+          "range above 0";
+    else
+      cause =
+          "this frequency is at (or, relative to the stiffness, very near) a natural "
+          "frequency of an undamped model, or near 0 Hz with rigid-body motion: add damping "
+          "(bearing, Rayleigh, structural or modal), bearings or constraints, or shift the "
+          "frequencies";
+    return NumericalError(analysis_, head + ": " + cause);
+  };
+
+  // A row whose terms cancel to round-off is undetermined, whatever the pivots say (UMFPACK
+  // scales rows, so a matrix made entirely of round-off can show a pivot ratio of 1).
+  {
+    const double w2 = omega * omega, wg = omega * std::abs(speed_);
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(n_);
+    for (Eigen::Index k = 0; k < m.D.outerSize(); ++k)
+      for (fe::ComplexSparseMatrix::InnerIterator it(m.D, k); it; ++it)
+        row[it.row()] += std::abs(it.value());
+    m.norm_inf = row.maxCoeff();
+    for (int i = 0; i < n_; ++i) {
+      const double scale = m.row_stiffness[i] + w2 * m.row_mass[i] + omega * m.row_damping[i] +
+                           wg * m.row_gyroscopic[i] + m.row_loss[i] +
+                           std::abs(m.shift) * m.row_mass[i];
+      if (scale > 0.0 && row[i] < kSingularPivotRatio * scale)
+        throw singular(fmt::format("row {} cancels to {:.2g} of its terms", i, row[i] / scale));
+    }
+  }
+
+  if (!m.analysed) {
+    const int status = m.lu.analyze(m.D);
+    if (status != UMFPACK_OK)
+      throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of D(w) "
+                                                  "(status {})",
+                                                  status));
+    m.analysed = true;
+  }
+  const int status = m.lu.factorize(m.D);
+  rcond_ = status == UMFPACK_OK ? m.lu.pivot_ratio() : 0.0;
+  if (status != UMFPACK_OK && status != UMFPACK_WARNING_singular_matrix)
+    throw NumericalError(analysis_, fmt::format("UMFPACK numeric factorisation failed (status "
+                                                "{}) at f = {:.6g} Hz; out of memory?",
+                                                status, omega * kHzPerRadS));
+  if (status != UMFPACK_OK || !(rcond_ >= kSingularPivotRatio))
+    throw singular(fmt::format("LU pivot ratio {:.2g}", rcond_));
+
+  if (modal) {
+    m.s_full = iw * m.c.cast<Complex>();
+    // |D| <= |A_s| + |i w s0| |M| + |B| |S| |B|^T, row by row.
+    const Eigen::MatrixXd B_abs = system_.modal_basis.cwiseAbs();
+    const Eigen::VectorXd modal_rows =
+        B_abs *
+        (omega * m.c.cwiseAbs()).cwiseProduct(B_abs.transpose() * Eigen::VectorXd::Ones(n_));
+    m.norm_inf += std::abs(m.shift) * m.row_mass.maxCoeff() + modal_rows.maxCoeff();
+  }
+  if (m.modal_path) {
+    m.s = iw * (m.c.array() - m.s0).matrix().cast<Complex>();
+    if (!m.lu.solve(m.D, m.B, m.Y)) throw singular("UMFPACK solve failed");
+    const Eigen::Index r = m.B.cols();
+    const Eigen::MatrixXcd cap =
+        Eigen::MatrixXcd::Identity(r, r) + m.s.asDiagonal() * (m.B.transpose() * m.Y);
+    m.capacitance.compute(cap);
+    // The capacitance matrix is singular exactly when P is (A_s is regular).
+    if (!(m.capacitance.rcond() >= kSingularPivotRatio))
+      throw singular(fmt::format("Woodbury capacitance rcond {:.2g}", m.capacitance.rcond()));
+  }
+}
+
+Eigen::MatrixXcd DynamicStiffness::solve(const Eigen::MatrixXcd& F) const {
+  if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::solve before factorize");
+  if (F.rows() != n_) throw std::invalid_argument("DynamicStiffness::solve: wrong load size");
+  const Impl& m = *impl_;
+  const double f_hz = omega_ * kHzPerRadS;
+  Eigen::MatrixXcd X;
+  if (!m.apply_inverse(F, X))
+    throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
+  if (m.modal_path) {
+    // Iterative refinement until the normwise backward error
+    //   eta = |F - D X|_inf / (|D|_inf |X|_inf + |F|_inf)
+    // is at round-off level, which makes X as accurate as a direct solve of D could, or until
+    // it stops falling (round-off reached; accepted while eta <= 1e-10). One residual and no
+    // correction when the damping modes span the whole space (P = D).
+    constexpr int kMaxRefinements = 100;
+    constexpr double kConverged = 1e-14, kAcceptable = 1e-10;
+    double eta = std::numeric_limits<double>::infinity();
+    double previous = eta;
+    Eigen::MatrixXcd dX;
+    for (int k = 0; k <= kMaxRefinements; ++k) {
+      const Eigen::MatrixXcd R = F - m.apply(X);
+      const double scale = m.norm_inf * X.cwiseAbs().maxCoeff() + F.cwiseAbs().maxCoeff();
+      eta = scale > 0.0 ? R.cwiseAbs().maxCoeff() / scale : 0.0;
+      if (eta > previous) {  // the last correction was round-off: undo it
+        X -= dX;
+        eta = previous;
+        break;
+      }
+      if (!(eta > kConverged) || eta > 0.5 * previous || k == kMaxRefinements) break;
+      previous = eta;
+      if (!m.apply_inverse(R, dX))
+        throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
+      X += dX;
+    }
+    if (!(eta <= kAcceptable))
+      throw NumericalError(
+          analysis_,
+          fmt::format("modal damping: the correction for modes outside the {} damping modes did "
+                      "not converge at f = {:.6g} Hz (backward error {:.2g}); an undamped mode "
+                      "outside the modal damping basis is near this frequency: use more modal "
+                      "damping modes or add Rayleigh or structural damping",
+                      m.B.cols(), f_hz, eta));
+  }
+  if (!X.allFinite())
+    throw NumericalError(analysis_, fmt::format("the response at f = {:.6g} Hz is not finite "
+                                                "(overflow near an undamped resonance?)",
+                                                f_hz));
+  return X;
+}
+
+Eigen::MatrixXcd DynamicStiffness::apply(const Eigen::MatrixXcd& x) const {
+  if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::apply before factorize");
+  return impl_->apply(x);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+Eigen::MatrixXcd FrfResult::response() const {
+  const int power = static_cast<int>(quantity);  // Receptance 0, Mobility 1, Accelerance 2
+  Eigen::MatrixXcd out = displacement;
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    Complex factor(1.0);
+    for (int p = 0; p < power; ++p) factor *= Complex(0.0, frequencies[i]);
+    out.row(i) *= factor;
+  }
+  return out;
+}
+
+std::string FrfResult::amplitude_unit(int s) const {
+  std::string unit = sensors.at(static_cast<std::size_t>(s)).rotational ? "rad" : "m";
+  if (quantity == ResponseQuantity::Mobility) unit += "/s";
+  if (quantity == ResponseQuantity::Accelerance) unit += "/s^2";
+  if (!forced) unit += input_rotational ? "/(N m)" : "/N";
+  return unit;
+}
+
+namespace {
+
+static_assert(static_cast<int>(ResponseQuantity::Receptance) == 0 &&
+              static_cast<int>(ResponseQuantity::Mobility) == 1 &&
+              static_cast<int>(ResponseQuantity::Accelerance) == 2);
+
+bool is_rotation(model::Component c) {
+  return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
+}
+
+// "m/s^2/(N m)" -> "m_per_s2_per_Nm": the unit as a column-name suffix.
+std::string unit_slug(const std::string& unit) {
+  std::string out;
+  for (char ch : unit) {
+    if (ch == '/')
+      out += "_per_";
+    else if (ch != '(' && ch != ')' && ch != ' ' && ch != '^')
+      out += ch;
+  }
+  return out;
+}
+
+void validate_grid(const HarmonicSettings& s, const SourceLocation& where, const std::string& key) {
+  auto fail = [&](const std::string& field, const std::string& expected, double found) {
+    throw InputError(where, key + "." + field, expected, fmt::format("{}", found));
+  };
+  if (!std::isfinite(s.f_min) || s.f_min < 0.0)
+    fail("frequency_start_hz", "a finite value >= 0", s.f_min * kHzPerRadS);
+  if (!std::isfinite(s.f_max) || s.f_max <= s.f_min)
+    fail("frequency_stop_hz",
+         fmt::format("a finite value > frequency_start_hz = {}", s.f_min * kHzPerRadS),
+         s.f_max * kHzPerRadS);
+  if (s.n_points < 2) fail("frequency_count", "an integer >= 2", s.n_points);
+  if (s.spacing == Spacing::Log && s.f_min <= 0.0)
+    fail("frequency_start_hz", "a value > 0 for spacing = \"log\"", s.f_min * kHzPerRadS);
+  if (!std::isfinite(s.speed)) fail("speed_rpm", "a finite value", s.speed * kRpmPerRadS);
+}
+
+std::vector<double> initial_grid(const HarmonicSettings& s) {
+  std::vector<double> f(static_cast<std::size_t>(s.n_points));
+  const double last = s.n_points - 1;
+  for (int k = 0; k < s.n_points; ++k) {
+    const double t = k / last;
+    f[static_cast<std::size_t>(k)] =
+        s.spacing == Spacing::Log
+            ? std::exp(std::log(s.f_min) + t * (std::log(s.f_max) - std::log(s.f_min)))
+            : s.f_min + t * (s.f_max - s.f_min);
+  }
+  f.front() = s.f_min;
+  f.back() = s.f_max;
+  return f;
+}
+
+double to_db(double a) { return 20.0 * std::log10(std::max(a, 1e-300)); }
+
+// Examines every peak of every sensor; appends the frequencies that would resolve the
+// unresolved ones to `wanted` (when not null).
+std::vector<FrfPeak> analyse_peaks(const std::vector<double>& f,
+                                   const std::vector<std::vector<double>>& amplitude,
+                                   const AdaptiveGridOptions& o, std::vector<double>* wanted) {
+  std::vector<FrfPeak> peaks;
+  const std::size_t n = f.size();
+  auto want = [&](double x) {
+    if (wanted != nullptr) wanted->push_back(x);
+  };
+  auto midpoint = [&](std::size_t k) { want(0.5 * (f[k] + f[k + 1])); };
+  std::vector<double> db(n);
+  for (std::size_t s = 0; s < amplitude.size(); ++s) {
+    const auto& a = amplitude[s];
+    for (std::size_t i = 0; i < n; ++i) db[i] = to_db(a[i]);
+    for (const auto& p : signal::find_peaks(db, o.min_prominence_db)) {
+      const auto hp = signal::half_power(f, a, p.index);
+      FrfPeak peak;
+      peak.sensor = static_cast<int>(s);
+      peak.frequency = hp.frequency;
+      peak.amplitude = hp.amplitude;
+      peak.f1 = hp.f1;
+      peak.f2 = hp.f2;
+      peak.q_factor = hp.q_factor;
+      peak.points_in_band = hp.points_in_band;
+      const std::size_t i = p.index;
+      // The true maximum of a peak lies between the neighbours of the sampled maximum, so
+      // their distance bounds the location error; the parabolic vertex is then much closer.
+      auto bracket = [&](double bw) { return std::max(f[i] - f[i - 1], f[i + 1] - f[i]) / bw; };
+      // Samples at the vertex and tol/2 band widths either side of it: if the vertex is right,
+      // the next pass sees the peak bracketed to tol; if not, the new samples move the maximum
+      // and the parabola through them is much closer.
+      auto locate = [&](double bw) {
+        want(hp.frequency);
+        want(hp.frequency - 0.5 * o.peak_tolerance * bw);
+        want(hp.frequency + 0.5 * o.peak_tolerance * bw);
+      };
+      if (hp.has_bandwidth()) {
+        const double bw = hp.bandwidth;
+        peak.location_error = bracket(bw);
+        bool ok = true;
+        if (hp.points_in_band < o.min_points_in_band) {
+          for (std::size_t k = hp.lower_bracket; k <= hp.upper_bracket; ++k) midpoint(k);
+          ok = false;
+        } else {
+          if (peak.location_error > o.peak_tolerance) {
+            locate(bw);
+            ok = false;
+          }
+          for (std::size_t k : {hp.lower_bracket, hp.upper_bracket})
+            if (f[k + 1] - f[k] > o.crossing_tolerance * bw) {
+              midpoint(k);
+              ok = false;
+            }
+        }
+        peak.resolved = ok;
+      } else if (i > 0 && i + 1 < n) {
+        // The band is cut by the end of the range or runs into a higher peak: resolve the top
+        // with the half-band that is there; no Q is reported.
+        const double half = hp.has_lower()   ? hp.frequency - hp.f1
+                            : hp.has_upper() ? hp.f2 - hp.frequency
+                                             : std::numeric_limits<double>::quiet_NaN();
+        if (std::isfinite(half) && half > 0.0) {
+          const double bw = 2.0 * half;
+          peak.location_error = bracket(bw);
+          if (f[i] - f[i - 1] > bw / o.min_points_in_band) midpoint(i - 1);
+          if (f[i + 1] - f[i] > bw / o.min_points_in_band) midpoint(i);
+          if (peak.location_error > o.peak_tolerance) locate(bw);
+        }
+      }
+      peaks.push_back(peak);
+    }
+  }
+  return peaks;
+}
+
+// Intervals whose end amplitudes differ by more than the jump ratio, bisected down to a floor
+// set by the initial spacing there.
+void jump_points(const std::vector<double>& f, const std::vector<std::vector<double>>& amplitude,
+                 const std::vector<double>& initial, const AdaptiveGridOptions& o,
+                 std::vector<double>& wanted) {
+  const double floor_factor = std::ldexp(1.0, -o.max_jump_levels);
+  for (std::size_t k = 0; k + 1 < f.size(); ++k) {
+    const double mid = 0.5 * (f[k] + f[k + 1]);
+    auto it = std::upper_bound(initial.begin(), initial.end(), mid);
+    const std::size_t j = std::clamp<std::size_t>(static_cast<std::size_t>(it - initial.begin()), 1,
+                                                  initial.size() - 1);
+    const double floor = (initial[j] - initial[j - 1]) * floor_factor;
+    if (f[k + 1] - f[k] <= floor * 1.000001) continue;
+    for (const auto& a : amplitude) {
+      const double lo = std::min(a[k], a[k + 1]), hi = std::max(a[k], a[k + 1]);
+      if (hi > o.jump_ratio * lo) {
+        wanted.push_back(mid);
+        break;
+      }
+    }
+  }
+}
+
+// NotConverged (with what stopped the grid and the first unresolved resonance) when a peak
+// with a half-power band is left unresolved; a limit reached with every peak resolved is only
+// recorded in the grid summary.
+void set_grid_status(FrfResult& result) {
+  const GridSummary& grid = result.grid;
+  int unresolved = 0;
+  const FrfPeak* first = nullptr;
+  for (const auto& p : result.peaks)
+    if (std::isfinite(p.q_factor) && !p.resolved) {
+      ++unresolved;
+      if (first == nullptr) first = &p;
+    }
+  if (!grid.adaptive || grid.converged || first == nullptr) {
+    result.status = Status::Ok;
+    result.message.clear();
+    return;
+  }
+  result.status = Status::NotConverged;
+  result.message = fmt::format(
+      "adaptive frequency grid stopped at {} with {} points; {} resonance peak(s) not resolved, "
+      "first: sensor {} at {:.6g} Hz: a resonance with (almost) no damping has no finite band "
+      "(add damping, e.g. more modal damping modes, Rayleigh or structural), or raise the limit "
+      "or narrow the frequency range",
+      grid.limit_hit, grid.final_points, unresolved,
+      result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
+}
+
+}  // namespace
+
+FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
+                             const std::vector<int>& outputs, const HarmonicSettings& settings,
+                             Progress& progress, const AdaptiveGridOptions& options,
+                             const std::string& analysis_name) {
+  validate_grid(settings, SourceLocation{}, analysis_name);
+  const int n = static_cast<int>(system.M.rows());
+  if (load.size() != n)
+    throw std::invalid_argument(
+        fmt::format("frequency_response: load has {} entries, system {}", load.size(), n));
+  if (outputs.empty()) throw std::invalid_argument("frequency_response: no outputs");
+  for (int eq : outputs)
+    if (eq < 0 || eq >= n)
+      throw std::invalid_argument(fmt::format("frequency_response: output equation {}", eq));
+  if (options.min_points_in_band < 3 || !(options.peak_tolerance > 0.0) ||
+      !(options.crossing_tolerance > 0.0) || !(options.jump_ratio > 1.0) ||
+      options.max_points < settings.n_points || options.max_passes < 0)
+    throw std::invalid_argument("frequency_response: invalid AdaptiveGridOptions");
+
+  FrfResult result;
+  result.quantity = settings.quantity;
+  result.speed = settings.speed;
+  for (int eq : outputs) result.sensors.push_back({fmt::format("eq{}", eq), eq, false});
+  const std::size_t m = outputs.size();
+  const int power = static_cast<int>(settings.quantity);
+
+  DynamicStiffness D(system, settings.speed, analysis_name);
+  const Eigen::MatrixXcd F = load;
+  std::map<double, Eigen::VectorXcd> samples;
+  auto evaluate = [&](double w) {
+    D.factorize(w);
+    const Eigen::MatrixXcd x = D.solve(F);
+    Eigen::VectorXcd out(static_cast<Eigen::Index>(m));
+    for (std::size_t s = 0; s < m; ++s) out[static_cast<Eigen::Index>(s)] = x(outputs[s], 0);
+    samples[w] = std::move(out);
+  };
+
+  const std::vector<double> initial = initial_grid(settings);
+  progress.start(fmt::format("{}: {} frequencies", analysis_name, initial.size()), initial.size());
+  for (std::size_t k = 0; k < initial.size(); ++k) {
+    evaluate(initial[k]);
+    progress.update(k + 1);
+  }
+  progress.finish();
+
+  std::vector<double> f;
+  std::vector<std::vector<double>> amplitude(m);
+  auto to_arrays = [&]() {
+    f.clear();
+    for (auto& a : amplitude) a.clear();
+    for (const auto& [w, x] : samples) {
+      f.push_back(w);
+      const double scale = std::pow(w, power);
+      for (std::size_t s = 0; s < m; ++s)
+        amplitude[s].push_back(std::abs(x[static_cast<Eigen::Index>(s)]) * scale);
+    }
+  };
+  to_arrays();
+
+  GridSummary& grid = result.grid;
+  grid.initial_points = static_cast<int>(initial.size());
+  grid.required_points_in_band = options.min_points_in_band;
+  grid.required_location_error = options.peak_tolerance;
+  grid.adaptive = settings.adaptive;
+  if (settings.adaptive) {
+    progress.start(fmt::format("{}: refining the frequency grid", analysis_name), 0);
+    const double same = 1e-12 * settings.f_max;
+    for (int pass = 0;; ++pass) {
+      std::vector<double> wanted;
+      analyse_peaks(f, amplitude, options, &wanted);
+      jump_points(f, amplitude, initial, options, wanted);
+      std::sort(wanted.begin(), wanted.end());
+      std::vector<double> fresh;
+      for (double w : wanted) {
+        if (!(w > settings.f_min && w < settings.f_max)) continue;
+        if (!fresh.empty() && w - fresh.back() <= same) continue;
+        auto it = samples.lower_bound(w);
+        if (it != samples.end() && it->first - w <= same) continue;
+        if (it != samples.begin() && w - std::prev(it)->first <= same) continue;
+        fresh.push_back(w);
+      }
+      if (fresh.empty()) break;
+      if (pass >= options.max_passes) {
+        grid.converged = false;
+        grid.limit_hit = fmt::format("max_passes = {}", options.max_passes);
+        break;
+      }
+      if (samples.size() + fresh.size() > static_cast<std::size_t>(options.max_points)) {
+        grid.converged = false;
+        grid.limit_hit = fmt::format("max_points = {}", options.max_points);
+        break;
+      }
+      for (double w : fresh) evaluate(w);
+      grid.passes = pass + 1;
+      to_arrays();
+      progress.update(samples.size());
+    }
+    progress.finish();
+  }
+
+  result.peaks = analyse_peaks(f, amplitude, options, nullptr);
+  std::stable_sort(result.peaks.begin(), result.peaks.end(),
+                   [](const FrfPeak& a, const FrfPeak& b) { return a.sensor < b.sensor; });
+  grid.final_points = static_cast<int>(f.size());
+  bool any_band = false;
+  for (const auto& p : result.peaks) {
+    if (!std::isfinite(p.q_factor)) continue;
+    grid.min_points_in_band =
+        any_band ? std::min(grid.min_points_in_band, p.points_in_band) : p.points_in_band;
+    grid.max_location_error = std::max(grid.max_location_error, p.location_error);
+    any_band = true;
+    // A peak left unresolved without a limit hit: its band is narrower than the grid can
+    // separate (samples closer than 1e-12 f_max are merged).
+    if (settings.adaptive && grid.converged && !p.resolved) {
+      grid.converged = false;
+      grid.limit_hit = "the frequency resolution (1e-12 x frequency_stop)";
+    }
+  }
+
+  result.frequencies =
+      Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
+  result.displacement.resize(static_cast<Eigen::Index>(f.size()), static_cast<Eigen::Index>(m));
+  Eigen::Index row = 0;
+  for (const auto& [w, x] : samples) result.displacement.row(row++) = x.transpose();
+
+  set_grid_status(result);
+  return result;
+}
+
+FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system,
+                       const HarmonicSettings& settings, Progress& progress,
+                       const AdaptiveGridOptions& options) {
+  std::string name, key;
+  const SourceLocation where = analysis_location(model, &settings, "harmonic", name, key);
+  validate_grid(settings, where, key);
+  const fe::DofMap& dofs = system.dofs;
+
+  auto equation = [&](const std::string& node, model::Component c, const std::string& field,
+                      const SourceLocation& at) {
+    const int index = dofs.find_node(node);
+    if (index < 0) throw InputError(at, field, "the name of a node", "'" + node + "'");
+    const int eq = dofs.dof(index, c);
+    if (eq < 0)
+      throw InputError(at, field, "an unconstrained DOF",
+                       fmt::format("{}.{} (constrained)", node,
+                                   model::kComponentNames[static_cast<std::size_t>(c)]),
+                       "a constrained DOF neither moves nor takes load");
+    return std::pair<int, int>{index, eq};
+  };
+
+  const bool has_input = !settings.input_node.empty();
+  const bool has_forces = !settings.forces.empty();
+  if (has_input == has_forces)
+    throw InputError(where, key, "either input_node (FRF) or forces (forced response)",
+                     has_input ? "both" : "neither");
+
+  Eigen::VectorXcd load = Eigen::VectorXcd::Zero(system.M.rows());
+  FrfResult header;
+  if (has_input) {
+    const auto [node, eq] =
+        equation(settings.input_node, settings.input_dof, key + ".input_node", where);
+    (void)eq;
+    load = system.unit_load(node, settings.input_dof).cast<Complex>();
+    header.input = settings.input_node + "." +
+                   model::kComponentNames[static_cast<std::size_t>(settings.input_dof)];
+    header.input_rotational = is_rotation(settings.input_dof);
+  } else {
+    for (const auto& force_name : settings.forces) {
+      auto it = std::find_if(model.forces.begin(), model.forces.end(),
+                             [&](const model::HarmonicForce& h) { return h.name == force_name; });
+      if (it == model.forces.end())
+        throw InputError(where, key + ".forces", "the name of a harmonic force",
+                         "'" + force_name + "'");
+      const auto [node, eq] = equation(
+          it->node, it->dof, fmt::format("forces[{}].node", it - model.forces.begin()), it->where);
+      (void)eq;
+      load +=
+          std::polar(it->amplitude, it->phase) * system.unit_load(node, it->dof).cast<Complex>();
+      header.input += (header.input.empty() ? "" : ", ") + force_name;
+    }
+    header.forced = true;
+  }
+
+  const std::vector<const model::Sensor*> sensors =
+      select_sensors(model, settings.sensors, where, key);
+  if (sensors.empty())
+    throw InputError(where, key + ".sensors", "at least one sensor", "none",
+                     "add [[sensors]] to the model");
+  std::vector<int> outputs;
+  for (const auto* s : sensors)
+    outputs.push_back(equation(s->node, s->dof,
+                               fmt::format("sensors[{}].node", s - model.sensors.data()), s->where)
+                          .second);
+
+  FrfResult result = frequency_response(system, load, outputs, settings, progress, options, name);
+  result.forced = header.forced;
+  result.input = header.input;
+  result.input_rotational = header.input_rotational;
+  for (std::size_t k = 0; k < sensors.size(); ++k) {
+    result.sensors[k].name = sensors[k]->name;
+    result.sensors[k].rotational = is_rotation(sensors[k]->dof);
+  }
+  set_grid_status(result);  // again, now with the sensor names
+  return result;
+}
+
+AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem& system,
+                               const FrfResult& result, const std::string& analysis_name) {
+  (void)model;
+  AnalysisOutput out;
+  out.name = analysis_name;
+  out.type = "harmonic";
+  out.status = result.status;
+  out.message = result.message;
+
+  const std::size_t m = result.sensors.size();
+  const Eigen::MatrixXcd response = result.response();
+  std::vector<double> f_hz(static_cast<std::size_t>(result.frequencies.size()));
+  for (std::size_t i = 0; i < f_hz.size(); ++i)
+    f_hz[i] = result.frequencies[static_cast<Eigen::Index>(i)] * kHzPerRadS;
+
+  const char* quantity_name = result.quantity == ResponseQuantity::Receptance ? "receptance"
+                              : result.quantity == ResponseQuantity::Mobility ? "mobility"
+                                                                              : "accelerance";
+  const std::string what =
+      result.forced ? fmt::format("forced response ({}) to {}",
+                                  result.quantity == ResponseQuantity::Receptance ? "displacement"
+                                  : result.quantity == ResponseQuantity::Mobility ? "velocity"
+                                                                                  : "acceleration",
+                                  result.input)
+                    : fmt::format("{} for a unit {} at {}", quantity_name,
+                                  result.input_rotational ? "moment" : "force", result.input);
+  Table frf;
+  frf.name = "frf";
+  frf.title = fmt::format("Frequency response: {} at {:.6g} rpm", what, result.speed * kRpmPerRadS);
+  frf.add("frequency_hz", "Hz", f_hz);
+
+  Plot amp_plot;
+  amp_plot.name = "amplitude";
+  amp_plot.title = fmt::format("Amplitude: {}", what);
+  amp_plot.x_label = "frequency [Hz]";
+  amp_plot.y_log = true;
+  Plot phase_plot;
+  phase_plot.name = "phase";
+  phase_plot.title = fmt::format("Phase: {}", what);
+  phase_plot.x_label = "frequency [Hz]";
+  phase_plot.y_label = "phase [deg]";
+
+  std::vector<std::string> units;
+  for (std::size_t s = 0; s < m; ++s) {
+    const std::string unit = result.amplitude_unit(static_cast<int>(s));
+    if (std::find(units.begin(), units.end(), unit) == units.end()) units.push_back(unit);
+    std::vector<double> amp(f_hz.size()), phase(f_hz.size());
+    for (std::size_t i = 0; i < f_hz.size(); ++i) {
+      const Complex z = response(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s));
+      amp[i] = std::abs(z);
+      phase[i] = std::arg(z) * 180.0 / kPi;
+    }
+    const std::string& sensor = result.sensors[s].name;
+    frf.add(sensor + "_amplitude_" + unit_slug(unit), unit, amp);
+    frf.add(sensor + "_phase_deg", "deg", phase);
+    Trace a;
+    a.name = sensor;
+    a.x = f_hz;
+    a.y = amp;
+    amp_plot.traces.push_back(std::move(a));
+    Trace p;
+    p.name = sensor;
+    p.x = f_hz;
+    p.y = std::move(phase);
+    phase_plot.traces.push_back(std::move(p));
+  }
+  std::string unit_list;
+  for (const auto& u : units) unit_list += (unit_list.empty() ? "" : ", ") + u;
+  amp_plot.y_label = fmt::format("amplitude [{}]", unit_list);
+
+  Table peaks;
+  peaks.name = "peaks";
+  peaks.title = "Resonance peaks (half-power bandwidth, Q = f_r / (f2 - f1))";
+  std::vector<std::string> p_sensor, p_unit, p_resolved;
+  std::vector<double> p_f, p_a, p_q, p_zeta, p_f1, p_f2, p_n;
+  Trace markers;
+  markers.name = "peaks";
+  markers.mode = Trace::Mode::Markers;
+  for (const auto& p : result.peaks) {
+    const auto s = static_cast<std::size_t>(p.sensor);
+    p_sensor.push_back(result.sensors[s].name);
+    p_unit.push_back(result.amplitude_unit(p.sensor));
+    p_f.push_back(p.frequency * kHzPerRadS);
+    p_a.push_back(p.amplitude);
+    p_q.push_back(p.q_factor);
+    p_zeta.push_back(p.damping_ratio());
+    p_f1.push_back(p.f1 * kHzPerRadS);
+    p_f2.push_back(p.f2 * kHzPerRadS);
+    p_n.push_back(p.points_in_band);
+    p_resolved.emplace_back(p.resolved ? "yes" : "no");
+    markers.x.push_back(p.frequency * kHzPerRadS);
+    markers.y.push_back(p.amplitude);
+    markers.hover.push_back(fmt::format("{}: {:.6g} Hz, Q = {:.4g}", result.sensors[s].name,
+                                        p.frequency * kHzPerRadS, p.q_factor));
+  }
+  peaks.add_text("sensor", p_sensor);
+  peaks.add("frequency_hz", "Hz", p_f);
+  peaks.add("amplitude", "", p_a);
+  peaks.add_text("unit", p_unit);
+  peaks.add("q_factor", "", p_q);
+  peaks.add("damping_ratio_est", "", p_zeta);
+  peaks.add("f1_hz", "Hz", p_f1);
+  peaks.add("f2_hz", "Hz", p_f2);
+  peaks.add("points_in_band", "", p_n);
+  peaks.add_text("resolved", p_resolved);
+  if (!markers.x.empty()) amp_plot.traces.push_back(std::move(markers));
+
+  out.tables.push_back(std::move(frf));
+  out.tables.push_back(std::move(peaks));
+  out.plots.push_back(std::move(amp_plot));
+  out.plots.push_back(std::move(phase_plot));
+
+  const GridSummary& g = result.grid;
+  out.notes.push_back(fmt::format(
+      "Direct solution of D(w) = K - w^2 M + i w (C + W G) + i K_loss{} at W = {:.6g} rpm with a "
+      "sparse complex LU (UMFPACK) per frequency; phase is arg of the response (x = Re(X "
+      "e^(iwt))).",
+      system.has_modal_damping()
+          ? fmt::format(" + i w C_modal ({} modes, applied by the Woodbury identity)",
+                        system.modal_coefficients.size())
+          : "",
+      result.speed * kRpmPerRadS));
+  if (g.adaptive) {
+    std::string peaks_note =
+        g.min_points_in_band > 0
+            ? fmt::format(
+                  "every resonance with a half-power band in range has >= {} samples in it "
+                  "(fewest {}) and its maximum is bracketed by samples at most {:.2g} % of its "
+                  "bandwidth from the sampled peak (refined by a parabola through them)",
+                  g.required_points_in_band, g.min_points_in_band, 100.0 * g.max_location_error)
+            : std::string("no resonance with a complete half-power band in range");
+    out.notes.push_back(
+        fmt::format("Adaptive frequency grid: {} initial points refined in {} "
+                    "passes to {} points{}; {}.",
+                    g.initial_points, g.passes, g.final_points,
+                    g.converged ? "" : " (stopped at " + g.limit_hit + ")", peaks_note));
+  } else {
+    out.notes.push_back(fmt::format(
+        "Fixed frequency grid of {} points (adaptive = false): a resonance narrower than the "
+        "grid spacing may be missed or clipped; Q values need >= 5 samples per half-power band "
+        "(fewest here: {}).",
+        g.final_points, g.min_points_in_band));
+  }
+  out.notes.push_back(
+      "Q = f_r / (f2 - f1) from the -3 dB crossings interpolated linearly between samples; "
+      "damping_ratio_est = 1/(2Q) holds for an isolated, lightly damped mode. Peaks whose band "
+      "runs out of the range or into a higher peak have no Q (NaN).");
+  return out;
+}
+
+}  // namespace geardyn::analyses

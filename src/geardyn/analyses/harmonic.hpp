@@ -1,0 +1,187 @@
+#pragma once
+// Linear frequency response (DESIGN 4.1) by direct solution of the dynamic stiffness
+//   D(w) = K(W) - w^2 M + i w (C(W) + W G) + i K_loss + i w B diag(c) B^T
+// at reference speed W, for a unit force (FRF: receptance H, mobility i w H, accelerance
+// -w^2 H) or for the model's named harmonic forces (forced response). The last term is the
+// low-rank modal damping of fe::LinearSystem; it is applied with the Sherman-Morrison-Woodbury
+// identity on the sparse factor of the rest, never as a dense n x n matrix.
+// The frequency grid is refined around every resonance until its half-power band holds enough
+// samples and its peak is located to a fraction of that band (see AdaptiveGridOptions).
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <complex>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/fe/linear_system.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+enum class Spacing { Linear, Log };
+enum class ResponseQuantity { Receptance, Mobility, Accelerance };
+
+struct HarmonicSettings : model::SettingsOf<HarmonicSettings> {
+  double speed = 0.0;
+  double f_min = model::kNaN, f_max = model::kNaN;  ///< [rad/s]
+  int n_points = 200;
+  Spacing spacing = Spacing::Linear;
+  bool adaptive = true;    ///< refine around peaks
+  std::string input_node;  ///< unit-force input (FRF) ...
+  model::Component input_dof = model::Component::Ux;
+  std::vector<std::string> forces;   ///< ... or these named harmonic forces (forced response)
+  std::vector<std::string> sensors;  ///< empty: all sensors
+  ResponseQuantity quantity = ResponseQuantity::Receptance;
+};
+
+/// Factorises D(w) for one reference speed and solves D(w) X = F for any number of right-hand
+/// sides. The sparsity pattern (union of M, K(W), C(W), G, K_loss) is analysed once; each
+/// frequency costs one numerical LU (UMFPACK). With modal damping the sparse factor is of
+/// A + i w s0 M (s0: smallest modal coefficient, so the factor stays regular at undamped natural
+/// frequencies), the low-rank remainder i w B diag(c - s0) B^T is applied by the Woodbury
+/// identity (r extra solves and an r x r dense LU, r = number of damping modes), and iterative
+/// refinement against the exact D removes the i w s0 (M - B B^T) difference (see the .cpp).
+/// Singularity is judged by UMFPACK's pivot ratio and by rows that cancel to round-off.
+/// Keeps a reference to `system`.
+class DynamicStiffness {
+ public:
+  /// `analysis` names the analysis in error messages.
+  DynamicStiffness(const fe::LinearSystem& system, double speed, std::string analysis);
+  ~DynamicStiffness();
+  DynamicStiffness(const DynamicStiffness&) = delete;
+  DynamicStiffness& operator=(const DynamicStiffness&) = delete;
+
+  /// Changes the reference speed W (K(W), C(W), W G); the symbolic analysis is reused when the
+  /// pattern does not change.
+  void set_speed(double speed);
+  double speed() const { return speed_; }
+
+  /// Factorises D(omega), omega [rad/s] >= 0. Throws NumericalError naming the frequency and
+  /// the likely cause when D (or, with modal damping, its sparse part) is singular.
+  void factorize(double omega);
+  /// X = D(omega)^{-1} F for the omega of the last factorize (F: n x m).
+  Eigen::MatrixXcd solve(const Eigen::MatrixXcd& F) const;
+  /// D(omega) x for the last factorised omega (for residual checks).
+  Eigen::MatrixXcd apply(const Eigen::MatrixXcd& x) const;
+
+  /// Reciprocal pivot ratio min|U_ii| / max|U_ii| reported by UMFPACK for the last factor.
+  double reciprocal_pivot_ratio() const { return rcond_; }
+  int size() const { return n_; }
+
+ private:
+  struct Impl;
+  const fe::LinearSystem& system_;
+  std::string analysis_;
+  int n_ = 0;
+  double speed_ = 0.0;
+  double omega_ = std::numeric_limits<double>::quiet_NaN();
+  double rcond_ = std::numeric_limits<double>::quiet_NaN();
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Controls of the adaptive frequency grid. A resonance counts as resolved when
+///  (a) its half-power band [f1, f2] holds at least `min_points_in_band` samples,
+///  (b) both neighbours of the sampled maximum lie within `peak_tolerance` x (f2 - f1) of it,
+///      so the true peak is bracketed that tightly (the reported peak is the parabolic vertex
+///      through the three samples, more accurate still), and
+///  (c) each -3 dB crossing is bracketed by samples closer than `crossing_tolerance` x (f2 - f1).
+/// Peaks are local maxima of the amplitude (of the requested quantity) of any sensor with a
+/// prominence of at least `min_prominence_db`. Independently, an interval whose end amplitudes
+/// differ by more than `jump_ratio` is bisected, down to 1/2^max_jump_levels of the initial
+/// spacing there, so that a resonance hidden between two samples shows up as a maximum.
+struct AdaptiveGridOptions {
+  int min_points_in_band = 5;
+  double peak_tolerance = 1e-3;
+  double crossing_tolerance = 2e-2;
+  double min_prominence_db = 1e-3;
+  double jump_ratio = 2.0;
+  int max_jump_levels = 6;
+  int max_passes = 60;
+  int max_points = 20000;  ///< total samples; reaching it with a peak unresolved: NotConverged
+};
+
+/// A response output: a model sensor (or, at matrix level, an equation "eq<k>").
+struct ResponseSensor {
+  std::string name;
+  int equation = -1;        ///< in the DofMap numbering
+  bool rotational = false;  ///< measures a rotation (rad) rather than a displacement (m)
+};
+
+/// One resonance peak of one sensor's amplitude curve.
+struct FrfPeak {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  int sensor = 0;
+  double frequency = kNaN;      ///< refined peak frequency [rad/s]
+  double amplitude = kNaN;      ///< refined peak amplitude, in the sensor's amplitude unit
+  double f1 = kNaN, f2 = kNaN;  ///< half-power crossings [rad/s] (NaN: not in range)
+  double q_factor = kNaN;       ///< f_r / (f2 - f1)
+  int points_in_band = 0;
+  /// Larger distance from the sampled maximum to a neighbour, / (f2 - f1): the true peak lies
+  /// within this many bandwidths of the sampled maximum.
+  double location_error = kNaN;
+  bool resolved = false;  ///< all three criteria of AdaptiveGridOptions hold
+  double damping_ratio() const { return 0.5 / q_factor; }
+};
+
+/// What the grid refinement achieved.
+struct GridSummary {
+  int required_points_in_band = 5;  ///< AdaptiveGridOptions used
+  double required_location_error = 1e-3;
+  int initial_points = 0;
+  int final_points = 0;
+  int passes = 0;
+  bool adaptive = false;
+  bool converged = true;          ///< every peak resolved within the limits
+  int min_points_in_band = 0;     ///< smallest over peaks with a bandwidth (0: none)
+  double max_location_error = 0;  ///< largest over peaks with a bandwidth
+  std::string limit_hit;          ///< which limit stopped the refinement, empty if none
+};
+
+struct FrfResult {
+  Status status = Status::Ok;
+  std::string message;  ///< why status is not Ok, and what usually helps
+  bool forced = false;  ///< true: response to the model's harmonic forces; false: unit force
+  ResponseQuantity quantity = ResponseQuantity::Receptance;
+  double speed = 0.0;             ///< reference speed [rad/s]
+  std::string input;              ///< "node.dof" of the unit force, or the force names
+  bool input_rotational = false;  ///< unit moment (N m) rather than force (N)
+  std::vector<ResponseSensor> sensors;
+  Eigen::VectorXd frequencies;  ///< [rad/s], increasing
+  /// Displacement response per unit input (or to the forces), frequencies x sensors.
+  Eigen::MatrixXcd displacement;
+  std::vector<FrfPeak> peaks;  ///< by sensor, then frequency
+  GridSummary grid;
+
+  /// The requested quantity: displacement x (i w)^p with p = 0, 1, 2.
+  Eigen::MatrixXcd response() const;
+  /// Unit of the requested quantity's amplitude for sensor `s`, e.g. "m/N", "rad/s/(N m)", "m/s".
+  std::string amplitude_unit(int s) const;
+};
+
+/// Matrix-level response: `load` (length n) applied, responses at the equations `outputs`,
+/// grid, speed and quantity from `settings` (input/forces/sensors fields are not used). Throws
+/// InputError for a bad grid, NumericalError (naming `analysis_name`) for a singular D(w).
+/// Sensor names are "eq<k>".
+FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
+                             const std::vector<int>& outputs, const HarmonicSettings& settings,
+                             Progress& progress, const AdaptiveGridOptions& options = {},
+                             const std::string& analysis_name = "harmonic");
+
+/// The harmonic analysis of DESIGN 4.1: resolves input node / forces and sensors by name
+/// (InputError when unknown or constrained) and runs frequency_response.
+FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system,
+                       const HarmonicSettings& settings, Progress& progress,
+                       const AdaptiveGridOptions& options = {});
+
+/// Tables "frf" (frequency_hz, per sensor <sensor>_amplitude_<unit>, <sensor>_phase_deg) and
+/// "peaks" (sensor, frequency_hz, amplitude, unit, q_factor, damping_ratio_est, f1_hz, f2_hz,
+/// points_in_band), amplitude (log) and phase plots, notes on the grid refinement.
+AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem& system,
+                               const FrfResult& result, const std::string& analysis_name);
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,89 @@
+// The `type = "mesh_force"` analysis in the registry: its model-file keys and their rules, its
+// checks, how it runs and what it offers to sweeps.
+#include "geardyn/analyses/common_checks.hpp"
+#include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/mesh_force.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+using model::FieldType;
+using model::FieldValue;
+using model::Ref;
+using model::TableContext;
+
+void finish(Analysis& a, const TableContext& t) {
+  auto& s = a.settings_of<MeshForceSettings>();
+  s.speeds = speed_range(t);
+  if (s.speeds.front() <= 0.0)
+    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
+  if (s.detail_speeds.size() > 8)
+    t.fail("detail_rpm", "at most 8 speeds for time histories",
+           fmt::format("{} speeds", s.detail_speeds.size()));
+}
+
+void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
+  const auto& f = a.settings_of<MeshForceSettings>();
+  GearPairUse use;
+  use.pair = &f.pair;
+  use.dynamic = f.model == MeshForceModel::Dynamic;
+  check_gear_pair_use(a, path, check, use);
+}
+
+std::vector<model::Field> keys() {
+  return {
+      speed_list_key().to_settings(&MeshForceSettings::speeds),
+      speed_start_rpm_key().read_by_finish<model::Analysis>(),
+      speed_stop_rpm_key().read_by_finish<model::Analysis>(),
+      speed_count_key().read_by_finish<model::Analysis>(),
+      gear_pair_name_key().to_settings(&MeshForceSettings::pair),
+      choice("direction", {"up", "down", "both"},
+             "Sweep direction; each speed starts from the previous steady state, so "
+             "\"both\" shows the jump and hysteresis of contact loss.")
+          .def("\"both\"")
+          .to_settings_enum(
+              &MeshForceSettings::direction,
+              {SweepDirectionKind::Up, SweepDirectionKind::Down, SweepDirectionKind::Both}),
+      mesh_model_key().to_settings_enum(&MeshForceSettings::model,
+                                        {MeshForceModel::Dynamic, MeshForceModel::InfiniteInertia}),
+      contact_loss_key().to_settings(&MeshForceSettings::contact_loss),
+      numbers("detail_rpm", kRpm,
+              "Speeds of gear 1 at which time histories over one period are written "
+              "(at most 8; computed on their own from the static state).")
+          .gt(0)
+          .def("[]")
+          .to_settings(&MeshForceSettings::detail_speeds),
+  };
+}
+
+}  // namespace
+
+AnalysisType mesh_force_analysis() {
+  AnalysisType type;
+  type.name = "mesh_force";
+  type.declare = [] {
+    auto d =
+        declaration<MeshForceSettings>("mesh_force",
+                                       "Dynamic mesh force over a speed range of gear 1: "
+                                       "dynamic factor, DTE and contact loss versus speed, the "
+                                       "mesh resonance, time histories.");
+    d.fields = keys();
+    d.choices = {speed_range_choice(true)};
+    d.finish = finish;
+    d.check = check;
+    return d;
+  };
+  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
+    return Outcome{run_mesh_force(m, a.settings_of<MeshForceSettings>(), a.name, c.progress()),
+                   nullptr};
+  };
+  return type;
+}
+
+}  // namespace geardyn::analyses

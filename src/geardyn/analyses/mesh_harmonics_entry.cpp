@@ -1,0 +1,77 @@
+// The `type = "mesh_harmonics"` analysis in the registry: its model-file keys and their rules, its
+// checks, how it runs and what it offers to sweeps.
+#include "geardyn/analyses/common_checks.hpp"
+#include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/mesh_harmonics.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+using model::FieldType;
+using model::FieldValue;
+using model::Ref;
+using model::TableContext;
+
+void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
+  const auto& h = a.settings_of<MeshHarmonicsSettings>();
+  GearPairUse use;
+  use.pair = &h.pair;
+  use.dynamic = h.model == MeshForceModel::Dynamic;
+  use.gear = h.gear;
+  use.nodal_diameters = &h.nodal_diameters;
+  check_gear_pair_use(a, path, check, use);
+}
+
+std::vector<model::Field> keys() {
+  return {
+      gear_pair_name_key().to_settings(&MeshHarmonicsSettings::pair),
+      mesh_model_key().to_settings_enum(&MeshHarmonicsSettings::model,
+                                        {MeshForceModel::Dynamic, MeshForceModel::InfiniteInertia}),
+      contact_loss_key().to_settings(&MeshHarmonicsSettings::contact_loss),
+      number("speed_rpm", kRpm, "Speed of gear 1.")
+          .required()
+          .gt(0)
+          .to_settings(&MeshHarmonicsSettings::speed),
+      gear_key().to_settings(&MeshHarmonicsSettings::gear),
+      window_shift_key().to_settings(&MeshHarmonicsSettings::window_shift),
+      contact_ratio_key().to_settings(&MeshHarmonicsSettings::contact_ratio),
+      nodal_diameters_key().to_settings_fn<MeshHarmonicsSettings>(
+          [](auto& s, const FieldValue& v) { s.nodal_diameters = integers_of(v); }),
+      orders_per_diameter_key().to_settings(&MeshHarmonicsSettings::orders_per_diameter),
+      integer("max_order", "Highest order of the order-spectrum table (0: 2 N).")
+          .def("0")
+          .ge(0)
+          .le(100000)
+          .to_settings(&MeshHarmonicsSettings::max_order),
+  };
+}
+
+}  // namespace
+
+AnalysisType mesh_harmonics_analysis() {
+  AnalysisType type;
+  type.name = "mesh_harmonics";
+  type.declare = [] {
+    auto d =
+        declaration<MeshHarmonicsSettings>("mesh_harmonics",
+                                           "Engine-order harmonics of the tooth force of one gear "
+                                           "at one speed: tooth-load window, order spectrum, "
+                                           "harmonics per nodal diameter in 3D components.");
+    d.fields = keys();
+    d.check = check;
+    return d;
+  };
+  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
+    return Outcome{
+        run_mesh_harmonics(m, a.settings_of<MeshHarmonicsSettings>(), a.name, c.progress()),
+        nullptr};
+  };
+  return type;
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,424 @@
+#include "geardyn/analyses/modal.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "geardyn/assembly/system_pencil.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/eig/quadratic_eigen.hpp"
+#include "geardyn/eig/symmetric_eigen.hpp"
+
+namespace geardyn::analyses {
+
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+constexpr double kRpmPerRadS = 60.0 / kTwoPi;
+constexpr int kPlottedModes = 6;
+
+}  // namespace
+
+eig::Method to_eig_method(EigenMethod method) {
+  switch (method) {
+    case EigenMethod::Auto:
+      return eig::Method::Auto;
+    case EigenMethod::Dense:
+      return eig::Method::Dense;
+    case EigenMethod::Sparse:
+      return eig::Method::Sparse;
+  }
+  return eig::Method::Auto;
+}
+
+double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
+  const double na = a.squaredNorm(), nb = b.squaredNorm();
+  if (na == 0.0 || nb == 0.0) return 0.0;
+  return std::norm(a.dot(b)) / (na * nb);
+}
+
+double rigid_body_limit(const fe::LinearSystem& system, double speed) {
+  const Eigen::VectorXd kd = system.K_at(speed).diagonal(), md = system.M.diagonal();
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < kd.size(); ++i)
+    if (md[i] > 0.0) largest = std::max(largest, std::abs(kd[i]) / md[i]);
+  return 1e-10 * largest;
+}
+
+ModeKind mode_kind(const fe::ModeFamilies& f) {
+  if (f.lateral > kKindFraction) return ModeKind::Lateral;
+  if (f.torsional > kKindFraction) return ModeKind::Torsional;
+  if (f.axial > kKindFraction) return ModeKind::Axial;
+  if (f.body > kKindFraction) return ModeKind::Solid;
+  return ModeKind::Coupled;
+}
+
+Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& shape,
+                      std::complex<double> lambda, double speed) {
+  if (lambda.imag() == 0.0) return Whirl::None;  // a real root does not oscillate
+  if (fe::mode_families(system, shape).lateral < 0.01) return Whirl::None;
+  const fe::DofMap& dofs = system.dofs;
+  auto value = [&](int node, model::Component c) -> std::complex<double> {
+    const int e = dofs.dof(node, c);
+    return e >= 0 ? shape[e] : std::complex<double>(0.0, 0.0);
+  };
+  // The orbit of the node that moves most laterally. When no node translates (a disk that
+  // only tilts), the orbit of the spin axis' tip, (theta_y, -theta_x) per unit length, of the
+  // node that tilts most; its sense is Im(theta_x conj(theta_y)).
+  int best = -1;
+  double best_amplitude = 0.0;
+  bool tilt = false;
+  for (int pass = 0; pass < 2 && best < 0; ++pass) {
+    const auto cx = pass == 0 ? model::Component::Ux : model::Component::Rx;
+    const auto cy = pass == 0 ? model::Component::Uy : model::Component::Ry;
+    for (int node = 0; node < dofs.num_nodes(); ++node) {
+      const double a = std::norm(value(node, cx)) + std::norm(value(node, cy));
+      if (a > best_amplitude) {
+        best_amplitude = a;
+        best = node;
+      }
+    }
+    tilt = pass == 1;
+  }
+  if (best < 0) return Whirl::None;
+  const std::complex<double> X = value(best, tilt ? model::Component::Rx : model::Component::Ux);
+  const std::complex<double> Y = value(best, tilt ? model::Component::Ry : model::Component::Uy);
+  // Orbit for the member of the pair with Im lambda > 0; for Im lambda < 0 the sense flips.
+  const double sense = std::imag(X * std::conj(Y)) * (lambda.imag() > 0.0 ? 1.0 : -1.0);
+  const double circularity = 2.0 * std::abs(sense) / (std::norm(X) + std::norm(Y));
+  if (circularity < 1e-4) return Whirl::None;
+  const double ratio = dofs.node(best).speed_ratio;
+  const double spin = (ratio < 0.0 ? -1.0 : 1.0) * (speed < 0.0 ? -1.0 : 1.0);
+  return sense * spin > 0.0 ? Whirl::Forward : Whirl::Backward;
+}
+
+Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
+                   const Eigen::VectorXcd& shape, double residual, double speed,
+                   double rigid_limit) {
+  Mode m;
+  m.eigenvalue = lambda;
+  m.shape = shape;
+  const double largest = shape.size() > 0 ? shape.cwiseAbs().maxCoeff() : 0.0;
+  if (largest > 0.0) {
+    Eigen::Index imax = 0;
+    shape.cwiseAbs().maxCoeff(&imax);
+    m.shape /= shape[imax];
+  }
+  m.residual = residual;
+  m.rigid_body = std::norm(lambda) <= rigid_limit;
+  if (m.rigid_body) {
+    m.frequency_hz = 0.0;
+    m.damped_frequency_hz = 0.0;
+    m.damping_ratio = 0.0;
+  } else {
+    m.frequency_hz = std::abs(lambda) / kTwoPi;
+    m.damped_frequency_hz = std::abs(lambda.imag()) / kTwoPi;
+    m.damping_ratio = eig::damping_ratio(lambda);
+  }
+  m.families = fe::mode_families(system, m.shape);
+  m.kind = mode_kind(m.families);
+  m.whirl = m.rigid_body ? Whirl::None : whirl_direction(system, m.shape, lambda, speed);
+  return m;
+}
+
+double ModalResult::max_residual() const {
+  double r = 0.0;
+  for (const auto& m : undamped) r = std::max(r, m.residual);
+  for (const auto& m : complex) r = std::max(r, m.residual);
+  return r;
+}
+
+ModalResult run_modal(const fe::LinearSystem& system, const ModalSettings& settings,
+                      Progress& progress) {
+  if (settings.n_modes < 1)
+    throw InputError({}, "modal.n_modes", "at least 1", fmt::format("{}", settings.n_modes));
+  if (!std::isfinite(settings.speed))
+    throw InputError({}, "modal.speed", "a finite speed", fmt::format("{}", settings.speed));
+  if (!(std::isfinite(settings.shift) && settings.shift >= 0.0))
+    throw InputError({}, "modal.shift", "a finite frequency >= 0",
+                     fmt::format("{}", settings.shift));
+  if (system.size() == 0)
+    throw InputError({}, "model", "at least one unconstrained DOF", "a system without DOFs");
+
+  const auto start = std::chrono::steady_clock::now();
+  ModalResult result;
+  result.speed = settings.speed;
+  result.complex_requested = settings.complex_modes;
+  progress.start("modal", settings.complex_modes ? 2 : 1);
+  const double rigid = rigid_body_limit(system, settings.speed);
+
+  // Undamped, non-gyroscopic modes with the stiffness at the analysis speed.
+  eig::SymmetricEigenOptions so;
+  so.n_modes = settings.n_modes;
+  so.method = to_eig_method(settings.method);
+  if (settings.shift > 0.0) so.shift = settings.shift * settings.shift;
+  const eig::SymmetricEigenResult real =
+      eig::solve_symmetric(system.K_at(settings.speed), system.M, so);
+  result.undamped_report = real.brief_report();
+  result.stiffness_asymmetry = real.asymmetry;
+  for (Eigen::Index j = 0; j < real.eigenvalues.size(); ++j) {
+    const double omega = std::sqrt(std::max(real.eigenvalues[j], 0.0));
+    result.undamped.push_back(describe_mode(system, {0.0, omega},
+                                            real.eigenvectors.col(j).cast<std::complex<double>>(),
+                                            real.residuals[j], settings.speed, rigid));
+  }
+  Status status = real.status;
+  std::string message = real.status == Status::Ok ? "" : "undamped modes: " + real.message;
+  progress.update(1);
+
+  if (settings.complex_modes) {
+    eig::QuadraticEigenOptions qo;
+    qo.n_modes = settings.n_modes;
+    qo.method = to_eig_method(settings.method);
+    if (settings.shift > 0.0) qo.target = {0.0, settings.shift};
+    const eig::QuadraticEigenResult cx =
+        eig::solve_quadratic(assembly::pencil_at(system, settings.speed), qo);
+    result.complex_report = cx.brief_report();
+    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
+      result.complex.push_back(describe_mode(system, cx.eigenvalues[j], cx.eigenvectors.col(j),
+                                             cx.residuals[j], settings.speed, rigid));
+    if (cx.status != Status::Ok) {
+      status = worse(status, cx.status);
+      message += (message.empty() ? "" : "; ") + std::string("complex modes: ") + cx.message;
+    }
+    progress.update(2);
+  }
+  progress.finish();
+  result.status = status;
+  result.message = message;
+  result.run_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
+
+namespace {
+
+// Relative amplitude of each sensor in each mode: |phi at the sensor| divided by the largest
+// amplitude of the same kind (translation or rotation, whose units differ) anywhere in the
+// mode. It answers "which modes carry this DOF" (e.g. the swing of a driven gear, as in Wang
+// et al. 2020, Table 3). A constrained sensor DOF reads 0.
+void add_sensor_columns(Table& t, const model::Model& model, const fe::LinearSystem& system,
+                        const std::vector<Mode>& modes) {
+  const auto& dofs = system.dofs;
+  for (const auto& sensor : model.sensors) {
+    const int node = dofs.find_node(sensor.node);
+    if (node < 0) continue;
+    const int eq = dofs.dof(node, sensor.dof);
+    const bool rotation = static_cast<int>(sensor.dof) >= 3;
+    std::vector<double> relative;
+    for (const Mode& m : modes) {
+      double largest = 0.0;
+      for (int k = 0; k < m.shape.size(); ++k)
+        if (!dofs.is_generalized(k) && (static_cast<int>(dofs.dof_component(k)) >= 3) == rotation)
+          largest = std::max(largest, std::abs(m.shape[k]));
+      relative.push_back(eq < 0 || largest == 0.0 ? 0.0 : std::abs(m.shape[eq]) / largest);
+    }
+    t.add(sensor.name + "_relative", "", relative);
+  }
+}
+
+Table modes_table(const ModalResult& r) {
+  Table t;
+  t.name = "modes";
+  const bool cx = r.complex_requested;
+  t.title = cx ? fmt::format("Complex modes at {:.6g} rpm", r.speed * kRpmPerRadS)
+               : fmt::format("Undamped modes at {:.6g} rpm", r.speed * kRpmPerRadS);
+  std::vector<double> mode, f, fd, zeta, re, im, res;
+  std::vector<std::string> whirl, kind;
+  const auto& modes = r.primary();
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const Mode& m = modes[i];
+    mode.push_back(static_cast<double>(i + 1));
+    f.push_back(m.frequency_hz);
+    fd.push_back(m.damped_frequency_hz);
+    zeta.push_back(m.damping_ratio);
+    re.push_back(m.eigenvalue.real());
+    im.push_back(m.eigenvalue.imag());
+    whirl.emplace_back(to_string(m.whirl));
+    kind.emplace_back(to_string(m.kind));
+    res.push_back(m.residual);
+  }
+  t.add("mode", "", mode);
+  t.add("frequency_hz", "Hz", f);
+  t.add("damped_frequency_hz", "Hz", fd);
+  t.add("damping_ratio", "", zeta);
+  t.add("real", "rad/s", re);
+  t.add("imag", "rad/s", im);
+  t.add_text("whirl", whirl);
+  t.add_text("kind", kind);
+  t.add("residual", "", res);
+  return t;
+}
+
+Table undamped_table(const ModalResult& r) {
+  Table t;
+  t.name = "undamped_modes";
+  t.title = fmt::format("Undamped modes (no damping, no gyroscopic terms) at {:.6g} rpm",
+                        r.speed * kRpmPerRadS);
+  std::vector<double> mode, f, res;
+  std::vector<std::string> kind;
+  for (std::size_t i = 0; i < r.undamped.size(); ++i) {
+    mode.push_back(static_cast<double>(i + 1));
+    f.push_back(r.undamped[i].frequency_hz);
+    kind.emplace_back(to_string(r.undamped[i].kind));
+    res.push_back(r.undamped[i].residual);
+  }
+  t.add("mode", "", mode);
+  t.add("frequency_hz", "Hz", f);
+  t.add_text("kind", kind);
+  t.add("residual", "", res);
+  return t;
+}
+
+Table shapes_table(const model::Model& model, const fe::LinearSystem& system,
+                   const std::vector<Mode>& modes) {
+  Table t;
+  t.name = "mode_shapes";
+  t.title =
+      "Mode shapes: amplitude of each node DOF; translations normalised to the largest "
+      "translation of the mode, rotations to the largest rotation";
+  std::vector<double> mode, position;
+  std::vector<std::string> node, shaft;
+  std::array<std::vector<double>, 6> amplitude;
+  const fe::DofMap& dofs = system.dofs;
+  for (std::size_t i = 0; i < modes.size(); ++i) {
+    const Eigen::VectorXcd& s = modes[i].shape;
+    // Translations and rotations have different units: each group is normalised to its own
+    // largest amplitude in the mode.
+    double scale_t = 0.0, scale_r = 0.0;
+    for (Eigen::Index e = 0; e < s.size(); ++e) {
+      // Generalised coordinates (modal coordinates of coupled solids) are not node DOFs.
+      if (dofs.is_generalized(static_cast<int>(e))) continue;
+      const bool rotation = static_cast<int>(dofs.dof_component(static_cast<int>(e))) >= 3;
+      if (rotation)
+        scale_r = std::max(scale_r, std::abs(s[e]));
+      else
+        scale_t = std::max(scale_t, std::abs(s[e]));
+    }
+    for (int k = 0; k < dofs.num_nodes(); ++k) {
+      const fe::NodeInfo& info = dofs.node(k);
+      mode.push_back(static_cast<double>(i + 1));
+      node.push_back(info.name);
+      shaft.push_back(info.shaft >= 0 && static_cast<std::size_t>(info.shaft) < model.shafts.size()
+                          ? model.shafts[static_cast<std::size_t>(info.shaft)].name
+                          : std::string());
+      position.push_back(info.axial_position);
+      const auto eq = dofs.node_dofs(k);
+      for (std::size_t c = 0; c < 6; ++c) {
+        const double scale = c >= 3 ? scale_r : scale_t;
+        amplitude[c].push_back(eq[c] >= 0 && scale > 0.0 ? std::abs(s[eq[c]]) / scale : 0.0);
+      }
+    }
+  }
+  t.add("mode", "", mode);
+  t.add_text("node", node);
+  t.add_text("shaft", shaft);
+  t.add("axial_position_m", "m", position);
+  for (std::size_t c = 0; c < 6; ++c) {
+    const bool rotation = c >= 3;
+    t.add(model::kComponentNames[c], rotation ? "normalised rotation" : "normalised translation",
+          amplitude[c]);
+  }
+  return t;
+}
+
+std::vector<Plot> shape_plots(const model::Model& model, const fe::LinearSystem& system,
+                              const std::vector<Mode>& modes) {
+  std::vector<Plot> plots;
+  const fe::DofMap& dofs = system.dofs;
+  for (std::size_t sh = 0; sh < model.shafts.size(); ++sh) {
+    std::vector<int> nodes;
+    for (int k = 0; k < dofs.num_nodes(); ++k)
+      if (dofs.node(k).shaft == static_cast<int>(sh)) nodes.push_back(k);
+    if (nodes.empty()) continue;
+    std::sort(nodes.begin(), nodes.end(), [&](int a, int b) {
+      return dofs.node(a).axial_position < dofs.node(b).axial_position;
+    });
+    Plot p;
+    p.name = "mode_shapes_" + model.shafts[sh].name;
+    p.title = fmt::format("Lateral mode shapes along shaft '{}'", model.shafts[sh].name);
+    p.x_label = "axial position [m]";
+    p.y_label = "lateral amplitude sqrt(|ux|^2 + |uy|^2) [-]";
+    const std::size_t shown = std::min<std::size_t>(modes.size(), kPlottedModes);
+    for (std::size_t i = 0; i < shown; ++i) {
+      const Mode& m = modes[i];
+      auto lateral = [&](int k) {
+        const int ex = dofs.dof(k, model::Component::Ux), ey = dofs.dof(k, model::Component::Uy);
+        return std::sqrt((ex >= 0 ? std::norm(m.shape[ex]) : 0.0) +
+                         (ey >= 0 ? std::norm(m.shape[ey]) : 0.0));
+      };
+      // Normalised to the largest lateral amplitude anywhere in the model, so shafts that move
+      // less in a mode are drawn smaller.
+      double scale = 0.0;
+      for (int k = 0; k < dofs.num_nodes(); ++k) scale = std::max(scale, lateral(k));
+      Trace tr;
+      tr.name = fmt::format("mode {}: {:.4g} Hz, {}, {}", i + 1, m.frequency_hz, to_string(m.kind),
+                            to_string(m.whirl));
+      tr.mode = Trace::Mode::LinesMarkers;
+      for (int k : nodes) {
+        tr.x.push_back(dofs.node(k).axial_position);
+        tr.y.push_back(scale > 0.0 ? lateral(k) / scale : 0.0);
+      }
+      p.traces.push_back(std::move(tr));
+    }
+    plots.push_back(std::move(p));
+  }
+  return plots;
+}
+
+}  // namespace
+
+AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& system,
+                            const ModalResult& result, const std::string& analysis_name) {
+  AnalysisOutput out;
+  out.name = analysis_name;
+  out.type = "modal";
+  out.status = result.status;
+  out.message = result.message;
+  out.run_time_s = result.run_time_s;
+  out.tables.push_back(modes_table(result));
+  add_sensor_columns(out.tables.back(), model, system, result.primary());
+  out.tables.push_back(undamped_table(result));
+  out.tables.push_back(shapes_table(model, system, result.primary()));
+  out.plots = shape_plots(model, system, result.primary());
+
+  out.notes.push_back(fmt::format("Undamped modes: {}.", result.undamped_report));
+  if (!model.sensors.empty())
+    out.notes.push_back(
+        "Columns <sensor>_relative: the sensor's amplitude in the mode divided by the largest "
+        "amplitude of the same kind (translation or rotation) in that mode.");
+  if (result.complex_requested)
+    out.notes.push_back(fmt::format("Complex modes at {:.6g} rpm: {}.", result.speed * kRpmPerRadS,
+                                    result.complex_report));
+  out.notes.push_back(fmt::format(
+      "Largest backward error of any mode {:.2e} (column 'residual': ||P(lambda) x|| relative to "
+      "the matrix norms, Tisseur 2000); a mode's relative frequency error is at most about its "
+      "condition number times this.",
+      result.max_residual()));
+  if (result.stiffness_asymmetry > 1e-12)
+    out.notes.push_back(fmt::format(
+        "K is not symmetric (cross-coupled bearings, ||K - K^T|| / ||K|| = {:.2e}): the undamped "
+        "modes use its symmetric part; the complex modes use K as it is.",
+        result.stiffness_asymmetry));
+  if (system.has_modal_damping())
+    out.notes.push_back(fmt::format(
+        "Modal damping acts through {} undamped modes at zero speed; modes above them get none.",
+        system.modal_coefficients.size()));
+  if (result.speed == 0.0 && result.complex_requested)
+    out.notes.push_back(
+        "At zero speed the two lateral modes of each pair of an axisymmetric rotor have the same "
+        "frequency; any combination of them is a mode, so their whirl labels are arbitrary.");
+  out.notes.push_back(
+      "Whirl: orbit sense at the node with the largest lateral amplitude relative to its spin; "
+      "'none' for real roots, non-lateral modes and straight-line orbits. Kind: energy fraction "
+      "above 0.8 in one DOF family, else coupled. Rigid-body modes are reported at 0 Hz.");
+  return out;
+}
+
+}  // namespace geardyn::analyses

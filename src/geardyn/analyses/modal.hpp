@@ -1,0 +1,143 @@
+#pragma once
+// Modal analysis of a rotor-bearing system at one reference speed (DESIGN 4.1):
+//   undamped real modes   K_at(Omega) phi = omega^2 M phi   (no damping, no gyroscopic terms)
+//   complex modes         (lambda^2 M + lambda (C_at(Omega) + Omega G + C_modal) + K_at(Omega)) x =
+//   0
+// Complex modes are reported like ADAMS eigen tables: undamped natural frequency |lambda|/2pi,
+// damped frequency |Im lambda|/2pi, damping ratio -Re(lambda)/|lambda|, real and imaginary
+// parts; each conjugate pair once, overdamped (real) roots included. Each mode gets a whirl
+// direction (forward / backward / none) and a kind (lateral / torsional / axial / coupled).
+#include <Eigen/Dense>
+#include <complex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/eig/eigen_options.hpp"
+#include "geardyn/fe/linear_system.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+enum class EigenMethod { Auto, Dense, Sparse };
+
+struct ModalSettings : model::SettingsOf<ModalSettings> {
+  double speed = 0.0;  ///< reference speed [rad/s]
+  int n_modes = 10;
+  bool complex_modes = true;  ///< also the damped gyroscopic (complex) modes
+  EigenMethod method = EigenMethod::Auto;
+  double shift = 0.0;  ///< shift for shift-invert [rad/s]; modes nearest to it
+};
+
+/// Whirl of a lateral mode relative to the spin of the node that moves most laterally.
+enum class Whirl { Forward, Backward, None };
+/// Dominant DOF family by the mass-weighted energy fractions of fe::mode_families: a family
+/// with more than kKindFraction of the energy names the mode, otherwise it is coupled. Solid:
+/// the elastic deformation of coupled solids (their modal coordinates) dominates.
+enum class ModeKind { Lateral, Torsional, Axial, Coupled, Solid };
+inline constexpr double kKindFraction = 0.8;
+
+constexpr std::string_view to_string(Whirl w) {
+  switch (w) {
+    case Whirl::Forward:
+      return "forward";
+    case Whirl::Backward:
+      return "backward";
+    case Whirl::None:
+      return "none";
+  }
+  return "none";
+}
+constexpr std::string_view to_string(ModeKind k) {
+  switch (k) {
+    case ModeKind::Lateral:
+      return "lateral";
+    case ModeKind::Torsional:
+      return "torsional";
+    case ModeKind::Axial:
+      return "axial";
+    case ModeKind::Coupled:
+      return "coupled";
+    case ModeKind::Solid:
+      return "solid";
+  }
+  return "coupled";
+}
+
+/// One mode, real or complex. An undamped mode has eigenvalue i omega and damping ratio 0.
+struct Mode {
+  std::complex<double> eigenvalue{eig::kNaN, eig::kNaN};  ///< lambda [rad/s]
+  double frequency_hz = eig::kNaN;         ///< |lambda| / 2pi (undamped natural frequency)
+  double damped_frequency_hz = eig::kNaN;  ///< |Im lambda| / 2pi
+  double damping_ratio = eig::kNaN;        ///< -Re lambda / |lambda|
+  bool rigid_body = false;                 ///< |lambda|^2 below the rigid-body limit: f = 0
+  Whirl whirl = Whirl::None;
+  ModeKind kind = ModeKind::Coupled;
+  fe::ModeFamilies families;
+  double residual = eig::kNaN;  ///< backward error of the eigen-solve
+  Eigen::VectorXcd shape;       ///< equation space, largest |entry| = 1
+};
+
+struct ModalResult {
+  Status status = Status::Failed;
+  std::string message;         ///< empty when ok; otherwise what failed and what helps
+  double speed = eig::kNaN;    ///< reference speed [rad/s]
+  std::vector<Mode> undamped;  ///< ascending frequency
+  std::vector<Mode> complex;   ///< ascending |lambda|; empty unless complex modes were asked
+  bool complex_requested = true;
+  std::string undamped_report;  ///< solver's brief_report()
+  std::string complex_report;
+  double stiffness_asymmetry = 0;  ///< ||K - K^T|| / ||K||: undamped modes use (K + K^T) / 2
+  double run_time_s = 0;
+  /// The modes the tables lead with: complex when computed, else undamped.
+  const std::vector<Mode>& primary() const { return complex_requested ? complex : undamped; }
+  double max_residual() const;
+};
+
+/// Runs the modal analysis. Throws InputError for invalid settings (n_modes < 1, negative or
+/// non-finite speed / shift); numerical trouble is returned in status / message.
+/// settings.shift > 0 [rad/s] asks for the modes nearest that frequency (sigma = shift^2 for
+/// the undamped problem, target i shift for the complex one); 0 asks for the lowest modes.
+ModalResult run_modal(const fe::LinearSystem& system, const ModalSettings& settings,
+                      Progress& progress);
+
+/// Tables "modes", "undamped_modes", "mode_shapes", mode-shape plots along each shaft and notes
+/// on how far to trust the result.
+AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& system,
+                            const ModalResult& result, const std::string& analysis_name);
+
+// ---------------------------------------------------------------------------------------------
+// Pieces shared with the Campbell analysis.
+
+/// Maps the model's method choice to the solver's.
+eig::Method to_eig_method(EigenMethod method);
+
+/// Whirl of a mode with eigenvalue lambda (Im lambda >= 0) at reference speed `speed`. The orbit
+/// of the node with the largest lateral amplitude, x = Re(X e^{i w t}), y = Re(Y e^{i w t}) in
+/// the node frame, turns about e3 with sense sign(Im(X conj(Y))) (counter-clockwise > 0, since
+/// the mean of x y' - y x' is w Im(X conj(Y))). Forward when that sense equals the node's spin
+/// sense sign(speed_ratio) x sign(speed) (speed 0 counts as positive; a node that does not spin
+/// is judged against +e3). When no node translates laterally (a disk that only tilts), the orbit
+/// of the spin axis' tip (theta_y, -theta_x) at the node that tilts most is used; its sense is
+/// Im(theta_x conj(theta_y)). None for real roots, modes with less than 1 % lateral energy and
+/// orbits flatter than 1e-4 (|2 Im(X conj(Y))| / (|X|^2 + |Y|^2), 1 for a circle, 0 for a line).
+Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& shape,
+                      std::complex<double> lambda, double speed);
+
+ModeKind mode_kind(const fe::ModeFamilies& families);
+
+/// Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (Allemang & Brown, 1982).
+double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
+
+/// |lambda|^2 below which a mode counts as rigid-body: 1e-10 max_i K_ii / M_ii.
+double rigid_body_limit(const fe::LinearSystem& system, double speed);
+
+/// Fills every field of a Mode from lambda and its shape.
+Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
+                   const Eigen::VectorXcd& shape, double residual, double speed,
+                   double rigid_limit);
+
+}  // namespace geardyn::analyses

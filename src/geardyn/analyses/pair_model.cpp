@@ -1,0 +1,304 @@
+#include "geardyn/analyses/pair_model.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+
+#include "geardyn/analyses/correlation.hpp"
+#include "geardyn/analyses/mesh_harmonics.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/gear/correlation.hpp"
+
+namespace geardyn::analyses {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kSteelModulusPa = 206e9;  // ISO 6336-1 E_st: the default material
+constexpr int kSyntheticSamples = 512;
+
+// The gear library names the fields of GearPairSpec / IsoStiffnessOptions; the model file uses
+// its own key names. Errors are re-thrown with the model's key so the user can find the line.
+const std::map<std::string, std::string, std::less<>>& library_to_model_keys() {
+  static const std::map<std::string, std::string, std::less<>> keys = {
+      {"teeth_pinion", "teeth1"},
+      {"teeth_wheel", "teeth2"},
+      {"module", "module"},
+      {"pressure_angle", "pressure_angle_deg"},
+      {"helix_angle", "helix_angle_deg"},
+      {"pinion_spiral_angle", "pinion_spiral_angle_deg"},
+      {"face_width", "face_width"},
+      {"addendum_coefficient", "addendum_coefficient"},
+      {"dedendum_coefficient", "dedendum_coefficient"},
+      {"profile_shift_pinion", "profile_shift1"},
+      {"profile_shift_wheel", "profile_shift2"},
+      {"centre_distance", "centre_distance"},
+      {"shaft_angle", "shaft_angle_deg"},
+      {"outer_cone_distance", "outer_cone_distance"},
+      {"mesh", "internal"},
+      {"correction_factor", "stiffness_correction"},
+      {"application_factor", "application_factor"},
+      {"rim_thickness", "rim_thickness"},
+      {"web_thickness", "web_thickness"},
+      {"youngs_modulus_pinion", "material1"},
+      {"youngs_modulus_wheel", "material2"},
+      {"pinion_torque", "torque"},
+      {"tangential_force", "torque"},
+      {"samples", "ste_samples"},
+  };
+  return keys;
+}
+
+[[noreturn]] void rethrow_with_model_keys(const InputError& e, const std::string& key_path,
+                                          const SourceLocation& where) {
+  std::string key = e.key_path();
+  const std::string prefix = key_path + ".";
+  if (key.rfind(prefix, 0) == 0) {
+    const std::string field = key.substr(prefix.size());
+    auto it = library_to_model_keys().find(field);
+    if (field.empty())
+      key = key_path;  // a property of the whole pair (e.g. its contact ratio)
+    else if (it != library_to_model_keys().end())
+      key = prefix + it->second;
+  }
+  // The table's location unless the library knew better (a CSV file's line and column).
+  const SourceLocation at = e.where().line > 0 ? e.where() : where;
+  throw InputError(at, key, e.expected(), e.found(), e.hint());
+}
+
+gear::GearType gear_type(model::GearType t) {
+  switch (t) {
+    case model::GearType::Spur:
+      return gear::GearType::Spur;
+    case model::GearType::Helical:
+      return gear::GearType::Helical;
+    case model::GearType::StraightBevel:
+      return gear::GearType::StraightBevel;
+    case model::GearType::SpiralBevel:
+      return gear::GearType::SpiralBevel;
+    case model::GearType::Hypoid:
+      return gear::GearType::Hypoid;
+  }
+  return gear::GearType::Spur;
+}
+
+gear::GearPairSpec spec_of(const model::GearPair& p, const std::string& key_path) {
+  gear::GearPairSpec s;
+  s.name = p.name;
+  s.key_path = key_path;
+  s.where = p.where;
+  s.type = gear_type(p.type);
+  s.mesh = p.internal ? gear::MeshType::Internal : gear::MeshType::External;
+  s.teeth_pinion = p.teeth1;
+  s.teeth_wheel = p.teeth2;
+  s.module_m = p.module;
+  s.pressure_angle_rad = p.pressure_angle;
+  s.helix_angle_rad = p.helix_angle;
+  s.pinion_spiral_angle_rad = p.pinion_spiral_angle;
+  s.face_width_m = p.face_width;
+  s.addendum_coefficient = p.addendum_coefficient;
+  s.dedendum_coefficient = p.dedendum_coefficient;
+  s.profile_shift_pinion = p.profile_shift1;
+  s.profile_shift_wheel = p.profile_shift2;
+  s.centre_distance_m = p.centre_distance;
+  if (!std::isnan(p.shaft_angle)) s.shaft_angle_rad = p.shaft_angle;
+  s.outer_cone_distance_m = p.outer_cone_distance;
+  return s;
+}
+
+double modulus_of(const model::Model& m, const std::string& material) {
+  if (material.empty()) return kSteelModulusPa;
+  const model::Material* mat = m.find_material(material);
+  if (mat == nullptr) throw std::logic_error("gear-pair material not resolved: " + material);
+  return mat->youngs_modulus;
+}
+
+/// Analysis `name`'s key path and location, for errors found by the checks.
+std::string analysis_key(const model::Model& m, const model::Analysis& a, const char* key) {
+  for (std::size_t i = 0; i < m.analyses.size(); ++i)
+    if (&m.analyses[i] == &a) return fmt::format("analyses[{}].{}", i, key);
+  return fmt::format("analyses.{}", key);
+}
+
+}  // namespace
+
+fs::path resolve_model_path(const model::Model& model, const std::string& file) {
+  const fs::path p(file);
+  if (p.is_absolute() || model.source_file.empty()) return p;
+  return fs::path(model.source_file).parent_path() / p;
+}
+
+std::size_t pair_index(const model::Model& model, const std::string& name) {
+  if (name.empty()) {
+    if (model.gear_pairs.size() != 1)
+      throw std::logic_error("gearan: no pair named and the model has not exactly one");
+    return 0;
+  }
+  for (std::size_t i = 0; i < model.gear_pairs.size(); ++i)
+    if (model.gear_pairs[i].name == name) return i;
+  throw std::logic_error("gearan: gear pair not resolved by the parser: " + name);
+}
+
+double PairModel::equivalent_mass_kg() const {
+  for (const auto& [key, inertia] :
+       {std::pair{"inertia1", pair->inertia1}, std::pair{"inertia2", pair->inertia2}})
+    if (std::isnan(inertia))
+      throw InputError(pair->where, fmt::format("{}.{}", key_path, key),
+                       "the polar inertia of the gear for the dynamic mesh model", "nothing",
+                       "give it, or use model = \"infinite_inertia\"");
+  try {
+    return gear::equivalent_mass(pair->inertia1, pair->inertia2, base_radius1_m, base_radius2_m);
+  } catch (const InputError& e) {
+    throw InputError(pair->where, key_path + ".inertia1", e.expected(), e.found(), e.hint());
+  }
+}
+
+gear::DynamicMeshOptions PairModel::mesh_options(MeshForceModel model, bool contact_loss) const {
+  gear::DynamicMeshOptions o;
+  o.model = model == MeshForceModel::Dynamic ? gear::MeshModel::Dynamic
+                                             : gear::MeshModel::InfiniteInertia;
+  if (o.model == gear::MeshModel::Dynamic) o.equivalent_mass_kg = equivalent_mass_kg();
+  o.static_force_n = static_force_n;
+  o.damping_ratio = pair->mesh_damping_ratio;
+  o.contact_loss = contact_loss;
+  if (!std::isnan(pair->backlash)) o.backlash_m = pair->backlash;
+  return o;
+}
+
+PairModel build_pair_model(const model::Model& model, std::size_t index) {
+  const model::GearPair& p = model.gear_pairs.at(index);
+  PairModel pm;
+  pm.pair = &p;
+  pm.index = index;
+  pm.key_path = fmt::format("gear_pairs[{}]", index);
+  try {
+    pm.geometry = gear::gear_pair_geometry(spec_of(p, pm.key_path));
+
+    const gear::SpiralHand hand =
+        p.hand == model::Hand::Right ? gear::SpiralHand::Right : gear::SpiralHand::Left;
+    const gear::Rotation rotation = p.rotation == model::GearRotation::Clockwise
+                                        ? gear::Rotation::Clockwise
+                                        : gear::Rotation::CounterClockwise;
+    pm.drive = {"drive", p.torque, gear::MemberRole::Driving, hand, rotation};
+    pm.coast = {"coast", p.torque, gear::MemberRole::Driven, hand, rotation};
+    pm.drive_forces = gear::tooth_forces(pm.geometry, pm.drive);
+    pm.coast_forces = gear::tooth_forces(pm.geometry, pm.coast);
+
+    gear::IsoStiffnessOptions& iso = pm.iso_options;
+    iso.correction_factor = p.stiffness_correction;
+    iso.rim_thickness_m = p.rim_thickness;
+    iso.web_thickness_m = p.web_thickness;
+    iso.application_factor = p.application_factor;
+    iso.tangential_force_n = p.load_correction ? pm.drive_forces.pinion.tangential_n
+                                               : std::numeric_limits<double>::quiet_NaN();
+    iso.youngs_modulus_pinion_pa = modulus_of(model, p.material1);
+    iso.youngs_modulus_wheel_pa = modulus_of(model, p.material2);
+
+    gear::MeshStiffnessOptions stiffness_options;
+    stiffness_options.iso = iso;
+    stiffness_options.samples = p.ste_samples > 0 ? p.ste_samples : kSyntheticSamples;
+    pm.stiffness = gear::time_varying_mesh_stiffness(pm.geometry, stiffness_options);
+    const gear::SyntheticSte synthetic = gear::synthetic_ste(pm.stiffness, pm.geometry, p.torque);
+
+    // r_b,i = r_m,i cos(alpha_t): the radius synthetic_ste uses for gear 1, and its counterpart.
+    const double cos_alpha_t = std::cos(pm.geometry.transverse_pressure_angle_rad);
+    pm.base_radius1_m = synthetic.base_radius_m;
+    pm.base_radius2_m = pm.geometry.wheel.mean_pitch_radius_m * cos_alpha_t;
+    pm.static_force_n = synthetic.static_force_n;
+
+    if (p.ste_file.empty()) {
+      pm.ste = gear::SteCurve::from_samples(synthetic.ste_m, gear::SteInterpolation::Linear, {},
+                                            p.torque)
+                   .shifted(p.ste_shift);
+    } else {
+      pm.ste_from_file = true;
+      pm.ste_path = resolve_model_path(model, p.ste_file);
+      std::error_code ec;
+      if (!fs::is_regular_file(pm.ste_path, ec))
+        throw InputError(
+            p.where, pm.key_path + ".ste_file",
+            "a readable STE CSV file (relative to the model file)",
+            fmt::format("\"{}\" ({} does not exist)", p.ste_file, pm.ste_path.string()));
+      gear::SteReadOptions read;
+      read.teeth = p.teeth1;
+      read.base_radius_m = pm.base_radius1_m;
+      read.shift = p.ste_shift;
+      read.samples = static_cast<std::size_t>(p.ste_samples);
+      if (!std::isnan(p.ste_speed))
+        read.mesh_period_s = 2.0 * std::numbers::pi / (p.ste_speed * p.teeth1);
+      read.interpolation = p.ste_interpolation == model::SteInterpolationKind::Hold
+                               ? gear::SteInterpolation::Hold
+                               : gear::SteInterpolation::Linear;
+      const gear::SteTable table = gear::read_ste_csv(pm.ste_path, read);
+      try {
+        pm.ste = table.at_torque(p.torque, p.ste_extrapolation);
+      } catch (const InputError& e) {
+        throw InputError(
+            p.where, pm.key_path + ".torque",
+            fmt::format("{} (STE file {})", e.expected(), p.ste_file), e.found(),
+            e.hint().empty() ? "set ste_extrapolation = true to extrapolate" : e.hint());
+      }
+    }
+  } catch (const InputError& e) {
+    rethrow_with_model_keys(e, pm.key_path, p.where);
+  }
+  return pm;
+}
+
+void check_gear_analyses(const model::Model& model) {
+  std::vector<PairModel> pairs;
+  for (std::size_t i = 0; i < model.gear_pairs.size(); ++i)
+    pairs.push_back(build_pair_model(model, i));
+  for (const model::Analysis& a : model.analyses) {
+    if (const auto* h = a.settings_as<MeshHarmonicsSettings>()) {
+      const PairModel& pm = pairs[pair_index(model, h->pair)];
+      const int teeth = h->gear == 1 ? pm.pair->teeth1 : pm.pair->teeth2;
+      const double cr =
+          std::isnan(h->contact_ratio) ? pm.geometry.total_contact_ratio : h->contact_ratio;
+      if (!(cr >= 1.0 && cr <= 3.0 && cr < teeth))
+        throw InputError(
+            a.where, analysis_key(model, a, "contact_ratio"),
+            fmt::format("a tooth-load window contact ratio in [1, 3] and below the "
+                        "{} teeth of gear {}",
+                        teeth, h->gear),
+            fmt::format("{:.6g}{}", cr,
+                        std::isnan(h->contact_ratio)
+                            ? fmt::format(" (the total contact ratio of pair '{}')", pm.pair->name)
+                            : ""),
+            "give contact_ratio for the window explicitly");
+      if (h->max_order > 64 * teeth)
+        throw InputError(a.where, analysis_key(model, a, "max_order"),
+                         fmt::format("an order <= 64 N = {} (resolved by the samples of one "
+                                     "revolution)",
+                                     64 * teeth),
+                         std::to_string(h->max_order));
+    }
+    if (const auto* c = a.settings_as<CorrelationSettings>()) {
+      const fs::path path = resolve_model_path(model, c->measured_file);
+      std::error_code ec;
+      if (!fs::is_regular_file(path, ec))
+        throw InputError(
+            a.where, analysis_key(model, a, "measured_file"),
+            "a readable measured-response CSV file (relative to the model file)",
+            fmt::format("\"{}\" ({} does not exist)", c->measured_file, path.string()));
+      const gear::MeasuredResponse m = gear::read_measured_response_csv(path);
+      if (!std::isnan(c->reference_peak)) {
+        const bool file_speed = m.abscissa == gear::ResponseAbscissa::SpeedRpm;
+        if (file_speed != c->reference_is_speed)
+          throw InputError(
+              a.where,
+              analysis_key(model, a,
+                           c->reference_is_speed ? "reference_peak_rpm" : "reference_peak_hz"),
+              fmt::format("reference_peak_{} for a measured file over {}",
+                          file_speed ? "rpm" : "hz", file_speed ? "speed_rpm" : "frequency_hz"),
+              fmt::format("reference_peak_{}", c->reference_is_speed ? "rpm" : "hz"));
+      }
+    }
+  }
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,102 @@
+#include "geardyn/analyses/run_analysis.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <chrono>
+#include <string_view>
+
+#include "geardyn/analyses/cyclic_forced_response.hpp"
+#include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/assembly/solid_component.hpp"
+#include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/model/parse.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+/// True when a `set` entry changes a solid or a material: the solids built for the base model
+/// do not apply to the variant.
+bool changes_solids(const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) {
+    const std::size_t b = o.find_first_not_of(" \t");
+    const std::string_view key =
+        b == std::string::npos ? std::string_view() : std::string_view(o).substr(b);
+    if (key.starts_with("solids") || key.starts_with("materials")) return true;
+  }
+  return false;
+}
+
+/// The analysis on its variant of the model (its `set` entries applied to the document).
+Outcome run_variant(const model::Model& model, const model::Analysis& analysis,
+                    const Context& context) {
+  if (context.document() == nullptr)
+    throw std::logic_error("run_analysis: an analysis with `set` needs the model document");
+  model::ModelDocument variant = *context.document();
+  for (const auto& o : analysis.overrides) model::apply_override(variant, o);
+  const model::Model variant_model = model::build_model(variant);
+  const model::Analysis* plain = variant_model.find_analysis(analysis.name);
+  if (plain == nullptr) throw std::logic_error("run_analysis: variant lost its analysis");
+  model::Analysis without_set = *plain;
+  without_set.overrides.clear();
+  try {
+    fe::LinearSystem variant_system;
+    if (type_of(analysis).declare().needs_rotor)
+      variant_system = assembly::build_system(variant_model);
+    Context variant_context(model, analysis);
+    variant_context.with_progress(&context.progress())
+        .with_document(&variant)
+        .with_solids(changes_solids(analysis.overrides) ? nullptr : context.solids());
+    if (type_of(analysis).declare().needs_rotor) variant_context.with_system(&variant_system);
+    Outcome out = run_analysis(variant_model, without_set, variant_context);
+    out.output.notes.push_back(
+        fmt::format("Model variant for this analysis: {}.", fmt::join(analysis.overrides, ", ")));
+    return out;
+  } catch (const NumericalError& e) {
+    Outcome out;
+    out.output.name = analysis.name;
+    out.output.type = analysis.type;
+    out.output.status = Status::Failed;
+    out.output.message = e.what();
+    return out;
+  }
+}
+
+}  // namespace
+
+Outcome run_analysis(const model::Model& model, const model::Analysis& analysis,
+                     const Context& context) {
+  if (!analysis.overrides.empty()) return run_variant(model, analysis, context);
+  const auto start = std::chrono::steady_clock::now();
+  Outcome out;
+  try {
+    out = type_of(analysis).run(model, analysis, context);
+  } catch (const NumericalError& e) {
+    out = Outcome{};
+    out.output.status = Status::Failed;
+    out.output.message = e.what();
+  }
+  out.output.name = analysis.name;
+  out.output.type = analysis.type;
+  out.output.run_time_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+void check_inputs(const model::Model& model, const assembly::SolidComponents& solids) {
+  assembly::check_solid_sets(model, solids);
+  for (const auto& a : model.analyses) {
+    const AnalysisType& type = type_of(a);
+    if (!type.check_inputs) continue;
+    Context context(model, a);
+    context.with_solids(&solids);
+    type.check_inputs(model, a, context);
+  }
+  // Whole-model checks of the gear pairs (geometry, STE files) and of the analyses that use
+  // them (measured files, tooth-load window), and of the forced responses' node sets.
+  check_gear_analyses(model);
+  check_forced_analyses(model, solids);
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,184 @@
+#include "geardyn/analyses/sweep.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <thread>
+
+#include "geardyn/analyses/run_analysis.hpp"
+#include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/model/parse.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+double extract_scalar(const model::Analysis& analysis, const Outcome& outcome,
+                      const SweepOutput& spec, std::string& unit) {
+  const AnalysisType& type = type_of(analysis);
+  if (!type.scalar)
+    throw std::runtime_error(fmt::format("analysis type '{}' offers no scalar outputs", type.name));
+  return type.scalar(outcome, spec.request(), unit);
+}
+
+SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings& settings,
+                      Progress& progress) {
+  SweepResult result;
+  result.parameter = settings.parameter;
+  result.values = settings.values;
+  const std::size_t n = settings.values.size();
+  const std::size_t n_out = settings.outputs.size();
+  result.outputs.assign(n_out, std::vector<double>(n, kNaN));
+  result.units.assign(n_out, "");
+  result.point_status.assign(n, Status::Ok);
+  result.point_message.assign(n, "");
+  for (const auto& o : settings.outputs) result.labels.push_back(o.label);
+
+  unsigned threads = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
+                                          : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(n, 1)));
+  result.threads_used = static_cast<int>(threads);
+
+  std::atomic<std::size_t> next{0}, done{0};
+  std::mutex progress_mutex, unit_mutex;
+  progress.start(fmt::format("sweep of {}", settings.parameter), n);
+
+  auto worker = [&]() {
+    for (std::size_t i = next++; i < n; i = next++) {
+      try {
+        model::ModelDocument point = document;
+        model::set_number(point, settings.parameter, settings.values[i]);
+        for (const auto& linked : settings.linked_parameters)
+          model::set_number(point, linked, settings.values[i]);
+        const model::Model m = model::build_model(point);
+        const model::Analysis* a = m.find_analysis(settings.analysis);
+        if (a == nullptr)
+          throw std::runtime_error("analysis '" + settings.analysis + "' not found");
+        const fe::LinearSystem system = assembly::build_system(m);
+        Context context(m, *a);
+        context.with_document(&point).with_system(&system);
+        const Outcome outcome = run_analysis(m, *a, context);
+        const AnalysisOutput& out = outcome.output;
+        if (out.status != Status::Ok) {
+          result.point_status[i] = out.status;
+          result.point_message[i] = out.message;
+        } else {
+          for (std::size_t j = 0; j < n_out; ++j) {
+            std::string unit;
+            result.outputs[j][i] = extract_scalar(*a, outcome, settings.outputs[j], unit);
+            std::lock_guard<std::mutex> lock(unit_mutex);
+            result.units[j] = unit;
+          }
+        }
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::exception& e) {
+        result.point_status[i] = Status::Failed;
+        result.point_message[i] = e.what();
+      }
+      const std::size_t d = ++done;
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress.update(d);
+    }
+  };
+
+  // Input errors of a point (an override out of range) abort the whole sweep with the message.
+  std::exception_ptr input_error;
+  std::mutex error_mutex;
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned t = 0; t < threads; ++t)
+      pool.emplace_back([&]() {
+        try {
+          worker();
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!input_error) input_error = std::current_exception();
+          next = n;  // stop handing out points
+        }
+      });
+  }
+  progress.finish();
+  if (input_error) std::rethrow_exception(input_error);
+
+  std::size_t failed = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (result.point_status[i] != Status::Ok) ++failed;
+  if (failed > 0) {
+    result.status = Status::Failed;
+    for (std::size_t i = 0; i < n; ++i)
+      if (result.point_status[i] != Status::Ok) {
+        result.message =
+            fmt::format("{} of {} points failed; first at {} = {}: {}", failed, n,
+                        settings.parameter, settings.values[i], result.point_message[i]);
+        break;
+      }
+  }
+  return result;
+}
+
+AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& settings,
+                            const std::string& analysis_name) {
+  AnalysisOutput out;
+  out.name = analysis_name;
+  out.type = "sweep";
+  out.status = result.status;
+  out.message = result.message;
+
+  Table table;
+  table.name = "sweep";
+  table.title = fmt::format("Sweep of {} (analysis '{}')", settings.parameter, settings.analysis);
+  table.add("value", "", result.values);
+  for (std::size_t j = 0; j < result.outputs.size(); ++j) {
+    const std::string unit = result.units[j];
+    std::string suffix = unit.empty() ? "" : "_" + unit;
+    for (auto& ch : suffix)
+      if (ch == '/') ch = '_';
+    table.add(result.labels[j] + suffix, unit, result.outputs[j]);
+  }
+  std::vector<std::string> status;
+  for (auto s : result.point_status) status.emplace_back(to_string(s));
+  table.add_text("status", status);
+  out.tables.push_back(std::move(table));
+
+  for (std::size_t j = 0; j < result.outputs.size(); ++j) {
+    Plot plot;
+    plot.name = "sweep_" + result.labels[j];
+    plot.title = fmt::format("{} versus {}", result.labels[j], settings.parameter);
+    plot.x_label = settings.parameter;
+    plot.y_label = result.units[j].empty()
+                       ? result.labels[j]
+                       : fmt::format("{} [{}]", result.labels[j], result.units[j]);
+    plot.x_log = settings.log_x;
+    // Amplitudes spanning decades read best on a log axis.
+    double lo = INFINITY, hi = 0.0;
+    for (double v : result.outputs[j])
+      if (v > 0.0 && std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    plot.y_log = hi > 0.0 && hi / lo > 100.0;
+    Trace trace;
+    trace.name = result.labels[j];
+    trace.x = result.values;
+    trace.y = result.outputs[j];
+    trace.mode = Trace::Mode::LinesMarkers;
+    plot.traces.push_back(std::move(trace));
+    out.plots.push_back(std::move(plot));
+  }
+  out.notes.push_back(
+      fmt::format("{} points on {} threads; each point rebuilds the model from "
+                  "the file with the new value, so results equal a serial run.",
+                  result.values.size(), result.threads_used));
+  return out;
+}
+
+}  // namespace geardyn::analyses

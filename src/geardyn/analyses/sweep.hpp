@@ -1,0 +1,70 @@
+#pragma once
+// Parameter sweep (study): one model value, addressed by its key path in the model file, is
+// varied over a list; per point the model is rebuilt from the document, one analysis is run and
+// scalar results are taken from its tables. Points run in parallel on threads; each point is
+// independent and results are stored by index, so the output equals a serial run.
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::model {
+class ModelDocument;
+}
+
+namespace geardyn::analyses {
+
+/// A scalar result a sweep tabulates per point: one of the scalar outputs the target analysis's
+/// type offers (registry.hpp, ScalarOutput).
+struct SweepOutput {
+  std::string quantity;     ///< a ScalarOutput name, e.g. "natural_frequency"
+  int mode = 1;             ///< 1-based mode (natural_frequency, critical_speed)
+  std::string sensor;       ///< peak_amplitude, peak_location, amplitude_at
+  double at = model::kNaN;  ///< amplitude_at: speed or frequency [rad/s]
+  bool at_speed = false;    ///< `at` is a speed (at_rpm) rather than a frequency (at_hz)
+  std::string label;        ///< column name stem
+
+  /// What this output asks of a result.
+  ScalarRequest request() const { return {quantity, mode, sensor, at, at_speed}; }
+};
+
+struct SweepSettings : model::SettingsOf<SweepSettings> {
+  std::string parameter;  ///< key path, e.g. "bearings[0].kxx" or "gear_meshes[0].stiffness"
+  std::vector<std::string> linked_parameters;  ///< further key paths set to the same value
+  std::vector<double> values;                  ///< in the units of the key
+  std::string analysis;                        ///< name of the analysis run per point
+  std::vector<SweepOutput> outputs;
+  bool log_x = false;  ///< plot with a log axis
+  int threads = 0;     ///< 0: all cores
+};
+
+struct SweepResult {
+  std::string parameter;
+  std::vector<double> values;                ///< parameter values, in the key's units
+  std::vector<std::string> labels;           ///< one per output
+  std::vector<std::string> units;            ///< unit of each output column
+  std::vector<std::vector<double>> outputs;  ///< outputs[j][i]: output j at point i (NaN: failed)
+  std::vector<Status> point_status;
+  std::vector<std::string> point_message;
+  int threads_used = 1;
+  Status status = Status::Ok;
+  std::string message;
+};
+
+/// Runs the sweep. `threads` <= 0 uses all hardware threads.
+SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings& settings,
+                      Progress& progress);
+
+/// The scalar `spec` of an analysis outcome through its type's `scalar`, with its unit;
+/// std::runtime_error when the outcome has no such data.
+double extract_scalar(const model::Analysis& analysis, const Outcome& outcome,
+                      const SweepOutput& spec, std::string& unit);
+
+AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& settings,
+                            const std::string& analysis_name);
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,435 @@
+#include "geardyn/analyses/transient.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "geardyn/core/error.hpp"
+#include "geardyn/signal/spectrum.hpp"
+#include "geardyn/transient/linear_rotor_system.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+constexpr double kRadPerSToRpm = 60.0 / (2.0 * std::numbers::pi);
+constexpr double kMaxSteps = 1e8;
+constexpr int kMinSpectrumSamples = 16;
+constexpr std::size_t kMaxPlotPoints = 4000;
+
+// Where the settings came from, for error messages: the analysis that holds this very object.
+struct Origin {
+  SourceLocation where;
+  std::string key;  // "analyses.<name>" or "transient"
+};
+
+Origin find_origin(const model::Model& model, const TransientSettings& settings) {
+  for (const auto& a : model.analyses)
+    if (a.settings_as<TransientSettings>() == &settings) return {a.where, "analyses." + a.name};
+  return {SourceLocation{model.source_file, 0, 0}, "transient"};
+}
+
+bool is_rotation(model::Component c) {
+  return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
+}
+
+void validate(const model::Model& model, const TransientSettings& s, const Origin& o) {
+  auto fail = [&](const std::string& key, const std::string& expected, const std::string& found) {
+    throw InputError(o.where, o.key + "." + key, expected, found);
+  };
+  if (!(s.duration > 0.0) || !std::isfinite(s.duration))
+    fail("duration", "a positive duration [s]", fmt::format("{}", s.duration));
+  if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
+    fail("time_step", "a positive time step [s]", fmt::format("{}", s.time_step));
+  if (s.time_step > s.duration)
+    fail("time_step", fmt::format("a time step no longer than the duration ({} s)", s.duration),
+         fmt::format("{}", s.time_step));
+  if (s.duration / s.time_step > kMaxSteps)
+    fail("time_step", fmt::format("at most {:.0e} steps over the duration", kMaxSteps),
+         fmt::format("{:.3g} steps", s.duration / s.time_step));
+  if (!(s.speed >= 0.0) || !std::isfinite(s.speed))
+    fail("speed", "a speed >= 0 [rad/s]", fmt::format("{}", s.speed));
+  if (!std::isnan(s.speed_end) && (!(s.speed_end >= 0.0) || !std::isfinite(s.speed_end)))
+    fail("speed_end", "a speed >= 0 [rad/s]", fmt::format("{}", s.speed_end));
+  if (!(s.rho_infinity >= 0.0 && s.rho_infinity <= 1.0))
+    fail("rho_infinity", "a value in [0, 1]", fmt::format("{}", s.rho_infinity));
+  if (!(s.steady_fraction > 0.0 && s.steady_fraction <= 1.0))
+    fail("steady_fraction", "a fraction in (0, 1]", fmt::format("{}", s.steady_fraction));
+  if (s.output_every < 1)
+    fail("output_every", "an integer >= 1", fmt::format("{}", s.output_every));
+  const double steps = std::ceil(s.duration / s.time_step * (1.0 - 1e-9));
+  if (s.output_every > steps)
+    fail("output_every",
+         fmt::format("at most the number of steps ({:.0f}) so that samples after t = 0 are stored",
+                     steps),
+         fmt::format("{}", s.output_every));
+  for (const auto& name : s.unbalances)
+    if (std::none_of(model.unbalances.begin(), model.unbalances.end(),
+                     [&](const model::Unbalance& u) { return u.name == name; }))
+      fail("unbalances", "names of unbalances of the model", "'" + name + "'");
+  for (const auto& name : s.sensors)
+    if (std::none_of(model.sensors.begin(), model.sensors.end(),
+                     [&](const model::Sensor& x) { return x.name == name; }))
+      fail("sensors", "names of sensors of the model", "'" + name + "'");
+}
+
+// Largest and smallest distance from the centre, and the sense of travel. The centre is the
+// middle of the bounding box: exact for an ellipse whatever part of a period the record ends
+// on, where the mean of a record of N + fraction periods is off by up to major / (2 pi N).
+TransientOrbit estimate_orbit(const Eigen::Ref<const Eigen::VectorXd>& x,
+                              const Eigen::Ref<const Eigen::VectorXd>& y) {
+  TransientOrbit o;
+  const double cx = 0.5 * (x.maxCoeff() + x.minCoeff());
+  const double cy = 0.5 * (y.maxCoeff() + y.minCoeff());
+  const Eigen::Index n = x.size();
+  double major = 0.0, minor = std::numeric_limits<double>::infinity();
+  double swept = 0.0, scale = 0.0;  // sum of cross products, sum of |p||dp|
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const double px = x[k] - cx, py = y[k] - cy;
+    const double r = std::hypot(px, py);
+    major = std::max(major, r);
+    minor = std::min(minor, r);
+    if (k + 1 < n) {
+      const double dx = x[k + 1] - x[k], dy = y[k + 1] - y[k];
+      swept += px * dy - py * dx;
+      scale += r * std::hypot(dx, dy);
+    }
+  }
+  o.major = major;
+  o.minor = minor;
+  if (scale > 0.0 && std::abs(swept) > 1e-6 * scale)
+    o.whirl = swept > 0.0 ? signal::Whirl::Forward : signal::Whirl::Backward;
+  return o;
+}
+
+}  // namespace
+
+TransientResult run_transient(const model::Model& model, const fe::LinearSystem& system,
+                              const TransientSettings& settings, Progress& progress) {
+  const Origin origin = find_origin(model, settings);
+  validate(model, settings, origin);
+
+  TransientResult result;
+  result.settings = settings;
+  // ceil, forgiving the rounding of duration / time_step (0.3 / 1e-4 = 2999.9999999999995).
+  result.steps = std::max(
+      1, static_cast<int>(std::ceil(settings.duration / settings.time_step * (1.0 - 1e-9))));
+  result.sample_interval = settings.time_step * settings.output_every;
+
+  // Sensors.
+  std::vector<const model::Sensor*> selected;
+  for (const auto& sensor : model.sensors) {
+    if (!settings.sensors.empty() && std::find(settings.sensors.begin(), settings.sensors.end(),
+                                               sensor.name) == settings.sensors.end())
+      continue;
+    const int node = system.dofs.find_node(sensor.node);
+    if (node < 0)
+      throw InputError(sensor.where, "sensors." + sensor.name + ".node", "a node of the model",
+                       "'" + sensor.node + "'");
+    selected.push_back(&sensor);
+    result.sensor_names.push_back(sensor.name);
+    result.sensor_rotational.push_back(is_rotation(sensor.dof));
+    result.sensor_equations.push_back(system.dofs.dof(node, sensor.dof));
+  }
+
+  const transient::SpeedProfile profile =
+      std::isnan(settings.speed_end)
+          ? transient::SpeedProfile::constant(settings.speed)
+          : transient::SpeedProfile::run_up(settings.speed, settings.speed_end, settings.duration);
+  transient::LinearRotorSystem rotor(model, system, profile, settings.unbalances);
+
+  transient::IntegratorOptions options;
+  options.scheme = settings.integrator == Integrator::Newmark ? transient::Scheme::Newmark
+                                                              : transient::Scheme::GeneralizedAlpha;
+  options.rho_infinity = settings.rho_infinity;
+  options.time_step = settings.time_step;
+  options.num_steps = result.steps;
+
+  const std::size_t n_sensors = result.sensor_names.size();
+  const std::size_t capacity = static_cast<std::size_t>(result.steps / settings.output_every) + 2;
+  result.time.reserve(capacity);
+  result.speed.reserve(capacity);
+  std::vector<double> samples;  // row-major samples x sensors while recording
+  samples.reserve(capacity * n_sensors);
+
+  const int n = system.size();
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(n), v = Eigen::VectorXd::Zero(n);
+  result.integration = transient::integrate(
+      rotor, options, q, v,
+      [&](int step, double t, const Eigen::VectorXd& qs, const Eigen::VectorXd&,
+          const Eigen::VectorXd&) {
+        if (step % settings.output_every != 0) return;
+        result.time.push_back(t);
+        result.speed.push_back(profile.speed(t));
+        for (std::size_t s = 0; s < n_sensors; ++s) {
+          const int e = result.sensor_equations[s];
+          samples.push_back(e >= 0 ? qs[e] : 0.0);
+        }
+      },
+      progress);
+
+  const Eigen::Index rows = static_cast<Eigen::Index>(result.time.size());
+  result.values =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          samples.data(), rows, static_cast<Eigen::Index>(n_sensors));
+
+  result.status = result.integration.status;
+  if (result.status != Status::Ok) {
+    result.message = "time integration stopped: " + result.integration.message;
+    return result;
+  }
+
+  // Steady part: the last steady_fraction of the record.
+  const double t0 = result.time.front(), t1 = result.time.back();
+  const double start = t1 - settings.steady_fraction * (t1 - t0);
+  const auto first =
+      std::lower_bound(result.time.begin(), result.time.end(), start - 1e-9 * settings.time_step);
+  result.steady_first = static_cast<int>(first - result.time.begin());
+  result.steady_start = result.time[static_cast<std::size_t>(result.steady_first)];
+  const Eigen::Index steady_rows = rows - result.steady_first;
+
+  if (steady_rows >= kMinSpectrumSamples && n_sensors > 0) {
+    const double fs = 1.0 / result.sample_interval;
+    for (std::size_t s = 0; s < n_sensors; ++s) {
+      const Eigen::VectorXd x = result.values.col(static_cast<Eigen::Index>(s)).tail(steady_rows);
+      const auto spectrum = signal::amplitude_spectrum(x, fs, signal::Window::Hann);
+      if (s == 0) {
+        result.spectrum_frequency_hz = spectrum.frequency_hz;
+        result.spectrum_resolution_hz = spectrum.resolution_hz;
+        result.spectrum_amplitude.resize(spectrum.amplitude.size(),
+                                         static_cast<Eigen::Index>(n_sensors));
+      }
+      result.spectrum_amplitude.col(static_cast<Eigen::Index>(s)) = spectrum.amplitude;
+    }
+  }
+
+  // Orbits: nodes with both a ux and a uy sensor (the first of each, in sensor order).
+  if (steady_rows >= 3) {
+    std::vector<std::string> done;
+    for (std::size_t ix = 0; ix < selected.size(); ++ix) {
+      const model::Sensor& sx = *selected[ix];
+      if (sx.dof != model::Component::Ux ||
+          std::find(done.begin(), done.end(), sx.node) != done.end())
+        continue;
+      int iy = -1;
+      for (std::size_t j = 0; j < selected.size() && iy < 0; ++j)
+        if (selected[j]->node == sx.node && selected[j]->dof == model::Component::Uy)
+          iy = static_cast<int>(j);
+      if (iy < 0) continue;
+      done.push_back(sx.node);
+      TransientOrbit orbit =
+          estimate_orbit(result.values.col(static_cast<Eigen::Index>(ix)).tail(steady_rows),
+                         result.values.col(iy).tail(steady_rows));
+      orbit.node = sx.node;
+      orbit.sensor_x = static_cast<int>(ix);
+      orbit.sensor_y = iy;
+      orbit.speed_ratio = system.dofs.node(system.dofs.node_index(sx.node)).speed_ratio;
+      if (orbit.speed_ratio < 0.0) orbit.whirl = signal::reversed(orbit.whirl);
+      result.orbits.push_back(orbit);
+    }
+  }
+  return result;
+}
+
+namespace {
+
+// At most about max_points points that keep the envelope: per bucket its minimum and maximum,
+// in time order (a plot of a long record must not hide its peaks).
+void envelope(const std::vector<double>& x, const Eigen::Ref<const Eigen::VectorXd>& y,
+              std::vector<double>& xo, std::vector<double>& yo) {
+  const std::size_t n = x.size();
+  xo.clear();
+  yo.clear();
+  if (n <= kMaxPlotPoints) {
+    xo = x;
+    yo.assign(y.data(), y.data() + n);
+    return;
+  }
+  const std::size_t buckets = kMaxPlotPoints / 2;
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const std::size_t lo = b * n / buckets, hi = (b + 1) * n / buckets;
+    std::size_t imin = lo, imax = lo;
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (y[static_cast<Eigen::Index>(i)] < y[static_cast<Eigen::Index>(imin)]) imin = i;
+      if (y[static_cast<Eigen::Index>(i)] > y[static_cast<Eigen::Index>(imax)]) imax = i;
+    }
+    for (std::size_t i : {std::min(imin, imax), std::max(imin, imax)}) {
+      xo.push_back(x[i]);
+      yo.push_back(y[static_cast<Eigen::Index>(i)]);
+    }
+  }
+}
+
+std::string unit_suffix(bool rotational) { return rotational ? "rad" : "m"; }
+
+}  // namespace
+
+AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearSystem& system,
+                                const TransientResult& result, const std::string& analysis_name) {
+  AnalysisOutput out;
+  out.name = analysis_name;
+  out.type = "transient";
+  out.status = result.status;
+  out.message = result.message;
+  const auto& s = result.settings;
+  const std::size_t n_sensors = result.sensor_names.size();
+
+  // Time histories.
+  Table history;
+  history.name = "time_history";
+  history.title = "Sensor time histories";
+  history.add("time_s", "s", result.time);
+  std::vector<double> rpm(result.speed.size());
+  std::transform(result.speed.begin(), result.speed.end(), rpm.begin(),
+                 [](double w) { return w * kRadPerSToRpm; });
+  history.add("speed_rpm", "rpm", rpm);
+  for (std::size_t i = 0; i < n_sensors; ++i) {
+    const Eigen::VectorXd col = result.values.col(static_cast<Eigen::Index>(i));
+    history.add(result.sensor_names[i] + "_" + unit_suffix(result.sensor_rotational[i]),
+                unit_suffix(result.sensor_rotational[i]),
+                std::vector<double>(col.data(), col.data() + col.size()));
+  }
+  out.tables.push_back(std::move(history));
+
+  for (bool rotational : {false, true}) {
+    Plot plot;
+    plot.name = rotational ? "time_history_rad" : "time_history_m";
+    plot.title = rotational ? "Rotations" : "Displacements";
+    plot.x_label = "time [s]";
+    plot.y_label = rotational ? "rotation [rad]" : "displacement [m]";
+    for (std::size_t i = 0; i < n_sensors; ++i) {
+      if (result.sensor_rotational[i] != rotational) continue;
+      Trace trace;
+      trace.name = result.sensor_names[i];
+      envelope(result.time, result.values.col(static_cast<Eigen::Index>(i)), trace.x, trace.y);
+      plot.traces.push_back(std::move(trace));
+    }
+    if (!plot.traces.empty()) out.plots.push_back(std::move(plot));
+  }
+
+  // Spectra of the steady part.
+  if (result.spectrum_frequency_hz.size() > 0) {
+    Table spectrum;
+    spectrum.name = "spectrum";
+    spectrum.title = fmt::format(
+        "Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s", result.steady_start);
+    const Eigen::VectorXd& f = result.spectrum_frequency_hz;
+    const std::vector<double> fv(f.data(), f.data() + f.size());
+    spectrum.add("frequency_hz", "Hz", fv);
+    Plot plot;
+    plot.name = "spectrum";
+    plot.title = "Amplitude spectra of the steady part (0-peak)";
+    plot.x_label = "frequency [Hz]";
+    plot.y_label = "amplitude (0-peak) [m or rad]";
+    plot.y_log = true;
+    for (std::size_t i = 0; i < n_sensors; ++i) {
+      const Eigen::VectorXd col = result.spectrum_amplitude.col(static_cast<Eigen::Index>(i));
+      spectrum.add(result.sensor_names[i] + "_" + unit_suffix(result.sensor_rotational[i]),
+                   unit_suffix(result.sensor_rotational[i]),
+                   std::vector<double>(col.data(), col.data() + col.size()));
+      Trace trace;
+      trace.name = result.sensor_names[i];
+      envelope(fv, col, trace.x, trace.y);
+      plot.traces.push_back(std::move(trace));
+    }
+    out.tables.push_back(std::move(spectrum));
+    out.plots.push_back(std::move(plot));
+  }
+
+  // Orbits.
+  if (!result.orbits.empty()) {
+    Table orbits;
+    orbits.name = "orbits";
+    orbits.title = "Orbits over the steady part (node frame e1, e2)";
+    std::vector<std::string> nodes, whirl;
+    std::vector<double> major, minor;
+    Plot plot;
+    plot.name = "orbits";
+    plot.title = "Orbits over the steady part";
+    plot.x_label = "x (e1) [m]";
+    plot.y_label = "y (e2) [m]";
+    plot.equal_aspect = true;
+    const Eigen::Index steady_rows =
+        static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
+    for (const auto& o : result.orbits) {
+      nodes.push_back(o.node);
+      major.push_back(o.major);
+      minor.push_back(o.minor);
+      whirl.emplace_back(signal::to_string(o.whirl));
+      Trace trace;
+      trace.name = o.node;
+      const Eigen::Index stride =
+          std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
+      for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows;
+           k += stride) {
+        trace.x.push_back(result.values(k, o.sensor_x));
+        trace.y.push_back(result.values(k, o.sensor_y));
+      }
+      plot.traces.push_back(std::move(trace));
+    }
+    orbits.add_text("node", nodes);
+    orbits.add("major_m", "m", major);
+    orbits.add("minor_m", "m", minor);
+    orbits.add_text("whirl", whirl);
+    out.tables.push_back(std::move(orbits));
+    out.plots.push_back(std::move(plot));
+  }
+
+  // How far to trust it.
+  out.notes.push_back("integration: " + result.integration.brief_report());
+  if (result.integration.steps_taken > 0 && !result.integration.solver.empty())
+    out.notes.push_back("iteration matrix factorised with " + result.integration.solver);
+  if (result.status == Status::Ok) {
+    const double w_max = std::isnan(s.speed_end) ? s.speed : std::max(s.speed, s.speed_end);
+    double ratio_max = 0.0;
+    for (const auto& node : system.dofs.nodes())
+      ratio_max = std::max(ratio_max, std::abs(node.speed_ratio));
+    const double w_exc = w_max * std::max(ratio_max, 1.0);
+    if (w_exc > 0.0) {
+      const double wh = w_exc * s.time_step;
+      out.notes.push_back(fmt::format(
+          "at the highest 1x excitation frequency, {:.4g} Hz, omega h = {:.3g}: the scheme's "
+          "relative period (phase) error is about (omega h)^2 / 12 = {:.2g}, the amplitude error "
+          "of a forced response of the same order",
+          w_exc / (2 * std::numbers::pi), wh, wh * wh / 12.0));
+      if (w_exc * result.sample_interval > std::numbers::pi / 4)
+        out.notes.push_back(fmt::format(
+            "the stored samples (every {} steps, {:.4g} Hz) hold fewer than 8 per period of the "
+            "1x excitation: lower output_every for usable spectra and orbits",
+            s.output_every, 1.0 / result.sample_interval));
+    }
+    if (result.spectrum_frequency_hz.size() > 0)
+      out.notes.push_back(fmt::format(
+          "steady part t = {:.6g} .. {:.6g} s ({} samples); spectra: Hann window, resolution "
+          "{:.4g} Hz, 0-peak amplitude with coherent-gain correction; a component between two "
+          "bins reads up to {:.1f} % low",
+          result.steady_start, result.time.back(),
+          static_cast<long>(result.time.size()) - result.steady_first,
+          result.spectrum_resolution_hz, 100 * signal::max_scalloping_loss(signal::Window::Hann)));
+    else
+      out.notes.push_back(fmt::format("the steady part holds fewer than {} samples: no spectra",
+                                      kMinSpectrumSamples));
+    if (!std::isnan(s.speed_end) && s.speed_end != s.speed)
+      out.notes.push_back(
+          "run-up: the speed changes over the 'steady' part, so its spectra are smeared over the "
+          "speeds it spans and its orbits are not steady");
+    if (!result.orbits.empty())
+      out.notes.push_back(
+          "orbits: major/minor are the largest/smallest distances from the orbit's centre (middle "
+          "of its bounding box) over the steady part, the semi-axes for a single-frequency "
+          "orbit; whirl relative to the spin");
+  }
+  if (system.K_loss.nonZeros() > 0 && system.K_loss.norm() > 0.0)
+    out.notes.push_back(
+        "the model's hysteretic (structural) loss factors have no time-domain equivalent and are "
+        "not in this run: only viscous, Rayleigh and modal damping act; give Rayleigh or modal "
+        "damping for a transient comparable with the harmonic analyses");
+  for (std::size_t i = 0; i < n_sensors; ++i)
+    if (result.sensor_equations[i] < 0)
+      out.notes.push_back("sensor '" + result.sensor_names[i] +
+                          "' measures a constrained DOF and reads 0");
+  return out;
+}
+
+}  // namespace geardyn::analyses

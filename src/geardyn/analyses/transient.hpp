@@ -1,0 +1,99 @@
+#pragma once
+// The transient analysis of DESIGN 3/4.1: the linear rotor model integrated in time at constant
+// speed or through a linear run-up, driven by its unbalances, observed by its sensors.
+//
+//   model + fe::LinearSystem + TransientSettings
+//     -> LinearRotorSystem (linear_rotor_system.hpp) -> integrate (integrator.hpp)
+//     -> sensor time histories (every output_every step)
+//     -> steady part (last steady_fraction of the record): Hann amplitude spectra (0-peak,
+//        signal/spectrum.hpp) and orbits of the nodes with both ux and uy sensors.
+// The record starts from rest (q = v = 0) at t = 0 with a consistent acceleration.
+#include <Eigen/Dense>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geardyn/core/progress.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/fe/linear_system.hpp"
+#include "geardyn/model/model.hpp"
+#include "geardyn/signal/orbit.hpp"
+#include "geardyn/transient/integrator.hpp"
+
+namespace geardyn::analyses {
+
+enum class Integrator { Newmark, GeneralizedAlpha };
+
+struct TransientSettings : model::SettingsOf<TransientSettings> {
+  double speed = 0.0;              ///< constant speed, or start of a run-up [rad/s]
+  double speed_end = model::kNaN;  ///< run-up end speed (NaN: constant speed)
+  double duration = model::kNaN;   ///< [s]
+  double time_step = model::kNaN;  ///< [s]
+  Integrator integrator = Integrator::GeneralizedAlpha;
+  double rho_infinity = 0.9;            ///< spectral radius at infinity (generalised-alpha)
+  double steady_fraction = 0.5;         ///< last fraction of the record used for spectra and orbits
+  std::vector<std::string> unbalances;  ///< empty: all
+  std::vector<std::string> sensors;     ///< empty: all
+  int output_every = 1;                 ///< store every n-th step
+};
+
+/// Orbit of one node over the steady part, from its ux and uy sensor histories (node frame).
+/// major / minor are the largest and smallest distances of the path from its centre (the middle
+/// of its bounding box): the semi-axes for a single-frequency (elliptical) orbit, the extreme
+/// excursions otherwise.
+/// The whirl sense is relative to the node's spin (geometric sense about e3 times the sign of
+/// its speed ratio; a non-spinning node counts the positive sense as forward).
+struct TransientOrbit {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::string node;
+  int sensor_x = -1, sensor_y = -1;  ///< indices into TransientResult::sensor_names
+  double major = kNaN;               ///< [m]
+  double minor = kNaN;               ///< [m]
+  signal::Whirl whirl = signal::Whirl::Straight;
+  double speed_ratio = 0.0;
+};
+
+struct TransientResult {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  Status status = Status::Ok;
+  std::string message;  ///< why status is not Ok, where, and what usually helps
+
+  TransientSettings settings;     ///< as requested
+  int steps = 0;                  ///< steps requested: ceil(duration / time_step)
+  double sample_interval = kNaN;  ///< time_step x output_every [s]
+
+  std::vector<std::string> sensor_names;
+  std::vector<bool> sensor_rotational;  ///< rad (true) or m
+  std::vector<int> sensor_equations;    ///< -1: constrained DOF, reads 0
+  std::vector<double> time;             ///< stored samples [s]
+  std::vector<double> speed;            ///< reference speed at each sample [rad/s]
+  Eigen::MatrixXd values;               ///< samples x sensors [m or rad]
+
+  int steady_first = 0;        ///< first sample of the steady part
+  double steady_start = kNaN;  ///< its time [s]
+  Eigen::VectorXd spectrum_frequency_hz;
+  Eigen::MatrixXd spectrum_amplitude;  ///< bins x sensors, 0-peak, Hann, coherent-gain corrected
+  double spectrum_resolution_hz = kNaN;
+  std::vector<TransientOrbit> orbits;
+
+  transient::IntegrationSummary integration;
+};
+
+/// Validates the settings (InputError naming the analysis key: non-positive duration or
+/// time step, rho_infinity outside [0, 1], steady_fraction outside (0, 1], output_every < 1 or
+/// above the number of steps, negative speeds, unknown unbalance or sensor names, more than 1e8
+/// steps), builds the rotor system and integrates it. Numerical failures (divergence, singular
+/// mass matrix) come back as a non-Ok status with the samples up to the failure and no spectra
+/// or orbits. Reports progress per step.
+TransientResult run_transient(const model::Model& model, const fe::LinearSystem& system,
+                              const TransientSettings& settings, Progress& progress);
+
+/// Tables "time_history" (time_s, speed_rpm, per sensor <name>_m or <name>_rad), "spectrum"
+/// (frequency_hz, per sensor <name>_m or <name>_rad: 0-peak amplitude) and "orbits" (node,
+/// major_m, minor_m, whirl); plots of the time histories (one per unit), the orbits (equal
+/// aspect) and the spectra (log amplitude); notes on accuracy and the integrator's work.
+AnalysisOutput transient_output(const model::Model& model, const fe::LinearSystem& system,
+                                const TransientResult& result, const std::string& analysis_name);
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,102 @@
+// The `type = "transient"` analysis in the registry: its model-file keys and their rules, its
+// checks, how it runs and what it offers to sweeps.
+#include "geardyn/analyses/common_checks.hpp"
+#include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/transient.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+using model::FieldType;
+using model::FieldValue;
+using model::Ref;
+using model::TableContext;
+
+void finish(Analysis& a, const TableContext& t) {
+  auto& s = a.settings_of<TransientSettings>();
+  if (s.time_step >= s.duration)
+    t.fail("time_step", fmt::format("a time step < duration = {} s", value_text(s.duration)),
+           fmt::format("{} s", value_text(s.time_step)));
+}
+
+void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
+  const auto& t = a.settings_of<TransientSettings>();
+  const auto& m = check.model();
+  check.check_named(path + ".unbalances", t.unbalances, model::names_of(m.unbalances), "unbalance",
+                    "unbalances");
+  check.check_named(path + ".sensors", t.sensors, model::names_of(m.sensors), "sensor", "sensors");
+}
+
+std::vector<model::Field> keys() {
+  return {
+      reference_speed_key().to_settings(&TransientSettings::speed),
+      unbalances_key().to_settings(&TransientSettings::unbalances),
+      sensors_key().to_settings(&TransientSettings::sensors),
+      number("speed_end_rpm", kRpm, "End speed of a linear run-up over `duration`.")
+          .ge(0)
+          .note("constant speed")
+          .to_settings(&TransientSettings::speed_end),
+      number("duration", kSecond, "Simulated time.")
+          .required()
+          .gt(0)
+          .to_settings(&TransientSettings::duration),
+      number("time_step", kSecond, "Time step (< duration).")
+          .required()
+          .gt(0)
+          .to_settings(&TransientSettings::time_step),
+      choice("integrator", {"newmark", "generalized_alpha"},
+             "Time integrator: Newmark average acceleration, or generalised-alpha with "
+             "numerical damping set by rho_infinity.")
+          .def("\"generalized_alpha\"")
+          .to_settings_enum(&TransientSettings::integrator,
+                            {Integrator::Newmark, Integrator::GeneralizedAlpha}),
+      number("rho_infinity", kNoUnit,
+             "Spectral radius at infinite frequency "
+             "(generalised-alpha; 1: no numerical damping).")
+          .def("0.9")
+          .ge(0)
+          .le(1)
+          .to_settings(&TransientSettings::rho_infinity),
+      number("steady_fraction", kNoUnit, "Last fraction of the record used for spectra and orbits.")
+          .def("0.5")
+          .gt(0)
+          .le(1)
+          .to_settings(&TransientSettings::steady_fraction),
+      integer("output_every", "Store every n-th time step.")
+          .def("1")
+          .ge(1)
+          .le(1000000)
+          .to_settings(&TransientSettings::output_every),
+  };
+}
+
+}  // namespace
+
+AnalysisType transient_analysis() {
+  AnalysisType type;
+  type.name = "transient";
+  type.declare = [] {
+    auto d = declaration<TransientSettings>("transient",
+                                            "Time integration at constant speed or in a linear "
+                                            "run-up.");
+    d.fields = keys();
+    d.finish = finish;
+    d.check = check;
+    d.needs_rotor = true;
+    return d;
+  };
+  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
+    const auto& s = a.settings_of<TransientSettings>();
+    TransientResult r = run_transient(m, c.system(), s, c.progress());
+    AnalysisOutput out = transient_output(m, c.system(), r, a.name);
+    return outcome(std::move(out), std::move(r));
+  };
+  return type;
+}
+
+}  // namespace geardyn::analyses

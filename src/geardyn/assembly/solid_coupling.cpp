@@ -1,0 +1,460 @@
+#include "geardyn/assembly/solid_coupling.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "geardyn/core/error.hpp"
+#include "geardyn/fe/dof_map.hpp"
+#include "geardyn/fe/element_types.hpp"
+#include "geardyn/fe/rigid_disk.hpp"
+#include "geardyn/reduce/craig_bampton.hpp"
+#include "geardyn/solid/assembly.hpp"
+
+namespace geardyn::assembly {
+namespace {
+
+using Triplets = std::vector<Eigen::Triplet<double>>;
+using RowSparse = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+
+std::size_t index_of(const model::Model& model, const model::Solid& solid) {
+  for (std::size_t i = 0; i < model.solids.size(); ++i)
+    if (&model.solids[i] == &solid) return i;
+  for (std::size_t i = 0; i < model.solids.size(); ++i)
+    if (model.solids[i].name == solid.name) return i;
+  return 0;
+}
+
+const std::vector<int>& set_nodes(const solid::Mesh& mesh, const std::string& solid_name,
+                                  const std::string& set, const SourceLocation& where,
+                                  const std::string& key) {
+  const auto it = mesh.node_sets.find(set);
+  if (it != mesh.node_sets.end() && !it->second.empty()) return it->second;
+  std::string available;
+  for (const auto& [set_name, nodes] : mesh.node_sets)
+    available += (available.empty() ? "" : ", ") + fmt::format("\"{}\"", set_name);
+  throw InputError(where, key,
+                   fmt::format("a node set of solid '{}' ({})", solid_name,
+                               available.empty() ? "it has none" : available),
+                   it == mesh.node_sets.end() ? fmt::format("\"{}\"", set)
+                                              : fmt::format("\"{}\", an empty set", set));
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d s;
+  s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return s;
+}
+
+// Rigid-body motion (U, theta) about point p of every coordinate: translation c at x reads
+// (U + theta x (x - p))_c, rotation c reads theta_c.
+Eigen::MatrixXd rigid_modes(const std::vector<solid::DofInfo>& dofs, const Eigen::Vector3d& p) {
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(dofs.size()), 6);
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    const int c = dofs[k].component;
+    if (c < 0) continue;
+    if (c < 3) {
+      R(row, c) = 1.0;
+      R.block(row, 3, 1, 3) = -skew(dofs[k].x - p).row(c);
+    } else {
+      R(row, c) = 1.0;
+    }
+  }
+  return R;
+}
+
+struct SensorSet {
+  std::string set;
+  const model::Sensor* first = nullptr;  ///< for messages
+  std::size_t sensor_index = 0;
+};
+
+}  // namespace
+
+bool has_joined_solids(const model::Model& model) {
+  return std::any_of(model.solids.begin(), model.solids.end(),
+                     [](const model::Solid& s) { return !s.spiders.empty(); });
+}
+
+SpiderSystem spider_system(const model::Model& model, const model::Solid& solid,
+                           const SolidComponent& built, Progress& progress) {
+  const std::string base = fmt::format("solids[{}]", index_of(model, solid));
+  if (!built.has_mesh())
+    throw InputError(solid.where, base + ".spiders",
+                     "a solid with a mesh (type mesh, annular_plate or gear_sector)",
+                     fmt::format("a solid of type \"{}\"", built.kind()),
+                     "join the mesh the component was reduced from");
+  if (solid.spiders.empty())
+    throw std::logic_error("spider_system: solid '" + solid.name + "' has no spiders");
+  const fe::DofMap rotor = fe::DofMap::build(model);
+
+  SpiderSystem out;
+  solid::Mesh mesh = built.mesh;
+  long next_id = 1;
+  for (long id : mesh.node_ids) next_id = std::max(next_id, id + 1);
+
+  // Spider reference nodes and their rigid elements.
+  std::vector<int> reference(solid.spiders.size(), -1);
+  std::vector<int> rotor_node(solid.spiders.size(), -1);
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    const model::Spider& spider = solid.spiders[k];
+    const std::string key = fmt::format("{}.spiders[{}]", base, k);
+    const std::vector<int>& nodes =
+        set_nodes(mesh, solid.name, spider.node_set, spider.where, key + ".node_set");
+    rotor_node[k] = rotor.find_node(spider.node);
+    if (rotor_node[k] < 0)
+      throw InputError(spider.where, key + ".node",
+                       "a rotor node: \"<shaft>.<k>\" of an existing shaft, or a [[nodes]] name",
+                       fmt::format("\"{}\"", spider.node));
+    reference[k] = mesh.num_nodes();
+    mesh.coords.push_back(rotor.node(rotor_node[k]).position);
+    mesh.node_ids.push_back(next_id++);
+    solid::RigidElement element;
+    element.kind = spider.kind == model::SpiderKind::Rigid ? solid::RigidElement::Kind::Rigid
+                                                           : solid::RigidElement::Kind::Averaging;
+    element.id = static_cast<long>(k + 1);
+    element.reference = reference[k];
+    element.nodes = nodes;
+    element.where = spider.where;
+    mesh.rigid_elements.push_back(std::move(element));
+  }
+
+  // Sensor sets of this solid (one point per set, whatever DOFs its sensors read).
+  std::vector<SensorSet> sensor_sets;
+  for (std::size_t j = 0; j < model.sensors.size(); ++j) {
+    const model::Sensor& s = model.sensors[j];
+    if (s.solid != solid.name) continue;
+    const bool seen = std::any_of(sensor_sets.begin(), sensor_sets.end(),
+                                  [&](const SensorSet& e) { return e.set == s.node_set; });
+    if (seen) continue;
+    (void)set_nodes(mesh, solid.name, s.node_set, s.where, fmt::format("sensors[{}].node_set", j));
+    sensor_sets.push_back({s.node_set, &s, j});
+  }
+
+  solid::AssemblyOptions options;
+  options.threads = 0;
+  options.progress = &progress;
+  out.system = solid::assemble(mesh, options);
+  const solid::SolidSystem& sys = out.system;
+  const int n = sys.num_dofs();
+  const RowSparse recovery = sys.recovery;
+
+  // Constraint rows u = A x (averaging spiders: 6 rows, sensors: 3 rows) and rigid masters.
+  Triplets a_triplets;
+  int n_rows = 0;
+  std::vector<int> row_owner;            // spider k, or -(1 + sensor set index)
+  std::vector<solid::DofInfo> row_info;  // DofInfo of each u
+  std::vector<std::vector<int>> rigid_x(solid.spiders.size());  // rigid masters (x indices)
+  std::vector<int> first_row(solid.spiders.size(), -1);
+  auto add_row = [&](const Eigen::SparseVector<double>& row, int owner, solid::DofInfo info) {
+    for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it)
+      if (it.value() != 0.0)
+        a_triplets.emplace_back(n_rows, static_cast<int>(it.index()), it.value());
+    row_owner.push_back(owner);
+    row_info.push_back(info);
+    ++n_rows;
+  };
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    const int r = reference[k];
+    const std::string key = fmt::format("{}.spiders[{}]", base, k);
+    const Eigen::Vector3d xr = mesh.coords[static_cast<std::size_t>(r)];
+    if (solid.spiders[k].kind == model::SpiderKind::Rigid) {
+      for (int c = 0; c < 6; ++c) {
+        const int d = sys.node_dof(r, c);
+        if (d < 0)
+          throw InputError(solid.spiders[k].where, key + ".node_set",
+                           "a node set that gives the reference point all 6 DOFs (at least 3 "
+                           "nodes not on one line, not all fixed)",
+                           fmt::format("\"{}\", which leaves its {} without stiffness",
+                                       solid.spiders[k].node_set,
+                                       model::kComponentNames[static_cast<std::size_t>(c)]));
+        rigid_x[k].push_back(d);
+      }
+      continue;
+    }
+    first_row[k] = n_rows;
+    for (int c = 0; c < 6; ++c) {
+      const int all = sys.all_dof(r, c);
+      add_row(Eigen::SparseVector<double>(recovery.row(all).transpose()), static_cast<int>(k),
+              {mesh.node_ids[static_cast<std::size_t>(r)], c, xr});
+    }
+  }
+  std::vector<int> sensor_first_row;
+  std::vector<Eigen::Vector3d> sensor_position;
+  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
+    const std::vector<int>& nodes = mesh.node_sets.at(sensor_sets[s].set);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    std::array<Eigen::SparseVector<double>, 3> rows;
+    for (auto& row : rows) row.resize(n);
+    int counted = 0;
+    for (int node : nodes) {
+      if (sys.all_dof(node, 0) < 0) continue;  // a node of no element: it has no motion
+      centroid += mesh.coords[static_cast<std::size_t>(node)];
+      for (int c = 0; c < 3; ++c)
+        rows[static_cast<std::size_t>(c)] += recovery.row(sys.all_dof(node, c)).transpose();
+      ++counted;
+    }
+    if (counted == 0)
+      throw InputError(sensor_sets[s].first->where,
+                       fmt::format("sensors[{}].node_set", sensor_sets[s].sensor_index),
+                       "a node set with nodes of the solid's elements",
+                       fmt::format("\"{}\", whose nodes belong to no element", sensor_sets[s].set));
+    centroid /= counted;
+    sensor_position.push_back(centroid);
+    sensor_first_row.push_back(n_rows);
+    // Sensor points get ids after the spider reference nodes.
+    const long id = next_id + static_cast<long>(s);
+    for (int c = 0; c < 3; ++c)
+      add_row(rows[static_cast<std::size_t>(c)] / counted, -1 - static_cast<int>(s),
+              {id, c, centroid});
+  }
+
+  // Change of variables x = S z, z = [x_F; u]: pivots D among the non-master columns of A.
+  std::vector<bool> is_rigid_master(static_cast<std::size_t>(n), false);
+  for (const auto& list : rigid_x)
+    for (int d : list) is_rigid_master[static_cast<std::size_t>(d)] = true;
+  // A over the columns it touches only (sets are a small part of a mesh).
+  std::vector<int> used_columns;  // columns of A with an entry, ascending
+  std::vector<int> used_index(static_cast<std::size_t>(n), -1);
+  {
+    for (const auto& t : a_triplets) used_index[static_cast<std::size_t>(t.col())] = 0;
+    for (int j = 0; j < n; ++j) {
+      if (used_index[static_cast<std::size_t>(j)] < 0) continue;
+      used_index[static_cast<std::size_t>(j)] = static_cast<int>(used_columns.size());
+      used_columns.push_back(j);
+    }
+  }
+  Eigen::MatrixXd A_used =
+      Eigen::MatrixXd::Zero(n_rows, static_cast<Eigen::Index>(used_columns.size()));
+  for (const auto& t : a_triplets)
+    A_used(t.row(), used_index[static_cast<std::size_t>(t.col())]) += t.value();
+  auto column = [&](int j) { return A_used.col(used_index[static_cast<std::size_t>(j)]); };
+  std::vector<int> candidates;
+  for (int j : used_columns)
+    if (!is_rigid_master[static_cast<std::size_t>(j)]) candidates.push_back(j);
+  std::vector<int> pivots;
+  Eigen::MatrixXd A_D_inv;
+  if (n_rows > 0) {
+    Eigen::MatrixXd A_c(n_rows, static_cast<Eigen::Index>(candidates.size()));
+    for (std::size_t j = 0; j < candidates.size(); ++j)
+      A_c.col(static_cast<Eigen::Index>(j)) = column(candidates[j]);
+    auto rank_of = [](const Eigen::MatrixXd& a) -> int {
+      if (a.rows() == 0 || a.cols() == 0) return 0;
+      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+      qr.setThreshold(1e-9);
+      return static_cast<int>(qr.rank());
+    };
+    if (rank_of(A_c) < n_rows) {
+      // Name the first point whose rows are not independent of the ones before it.
+      int bad = n_rows - 1;
+      for (int r = 1; r <= n_rows; ++r) {
+        if (rank_of(A_c.topRows(r)) < r) {
+          bad = r - 1;
+          break;
+        }
+      }
+      const int owner = row_owner[static_cast<std::size_t>(bad)];
+      if (owner >= 0) {
+        const auto k = static_cast<std::size_t>(owner);
+        throw InputError(solid.spiders[k].where, fmt::format("{}.spiders[{}].node_set", base, k),
+                         "a node set whose rigid fit is not already fixed by the other spiders "
+                         "(at least 3 nodes not on one line, not all fixed or rigidly joined)",
+                         fmt::format("\"{}\"", solid.spiders[k].node_set),
+                         "join each node set once");
+      }
+      const SensorSet& ss = sensor_sets[static_cast<std::size_t>(-1 - owner)];
+      throw InputError(ss.first->where, fmt::format("sensors[{}].node_set", ss.sensor_index),
+                       "a node set that moves on its own (not fixed, not rigidly joined to a "
+                       "rotor node, not measured by another sensor set of the same motion)",
+                       fmt::format("\"{}\"", ss.set),
+                       "a rigidly joined set moves with its rotor node: put the sensor there");
+    }
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A_c);
+    for (int k = 0; k < n_rows; ++k)
+      pivots.push_back(candidates[static_cast<std::size_t>(qr.colsPermutation().indices()[k])]);
+    Eigen::MatrixXd A_D(n_rows, n_rows);
+    for (int k = 0; k < n_rows; ++k) A_D.col(k) = column(pivots[static_cast<std::size_t>(k)]);
+    A_D_inv = A_D.partialPivLu().inverse();
+  }
+  std::vector<int> position(static_cast<std::size_t>(n), -1);  // x index -> z index (x_F)
+  {
+    std::vector<bool> pivot(static_cast<std::size_t>(n), false);
+    for (int d : pivots) pivot[static_cast<std::size_t>(d)] = true;
+    int next = 0;
+    for (int j = 0; j < n; ++j)
+      if (!pivot[static_cast<std::size_t>(j)]) position[static_cast<std::size_t>(j)] = next++;
+  }
+  const int n_free = n - n_rows;
+  Triplets s_triplets;
+  for (int j = 0; j < n; ++j)
+    if (position[static_cast<std::size_t>(j)] >= 0)
+      s_triplets.emplace_back(j, position[static_cast<std::size_t>(j)], 1.0);
+  if (n_rows > 0) {
+    // x_D = A_D^-1 u - A_D^-1 A_F x_F
+    std::vector<int> others;
+    for (int j : used_columns)
+      if (position[static_cast<std::size_t>(j)] >= 0) others.push_back(j);
+    Eigen::MatrixXd A_F(n_rows, static_cast<Eigen::Index>(others.size()));
+    for (std::size_t j = 0; j < others.size(); ++j)
+      A_F.col(static_cast<Eigen::Index>(j)) = column(others[j]);
+    const Eigen::MatrixXd B = A_D_inv * A_F;
+    for (int i = 0; i < n_rows; ++i) {
+      const int d = pivots[static_cast<std::size_t>(i)];
+      for (int k = 0; k < n_rows; ++k)
+        if (A_D_inv(i, k) != 0.0) s_triplets.emplace_back(d, n_free + k, A_D_inv(i, k));
+      for (std::size_t j = 0; j < others.size(); ++j) {
+        const double v = B(i, static_cast<Eigen::Index>(j));
+        if (v != 0.0) s_triplets.emplace_back(d, position[static_cast<std::size_t>(others[j])], -v);
+      }
+    }
+  }
+  out.transform.resize(n, n);
+  out.transform.setFromTriplets(s_triplets.begin(), s_triplets.end());
+  out.transform.makeCompressed();
+
+  const Eigen::SparseMatrix<double> St = out.transform.transpose();
+  const Eigen::SparseMatrix<double> KS = sys.K * out.transform;
+  const Eigen::SparseMatrix<double> MS = sys.M * out.transform;
+  Eigen::SparseMatrix<double> Kz = St * KS, Mz = St * MS;
+  // The two triangles of S^T K S are summed in different orders: make them equal.
+  out.K = 0.5 * (Kz + Eigen::SparseMatrix<double>(Kz.transpose()));
+  out.M = 0.5 * (Mz + Eigen::SparseMatrix<double>(Mz.transpose()));
+  out.K.makeCompressed();
+  out.M.makeCompressed();
+
+  out.dofs.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    if (position[static_cast<std::size_t>(j)] >= 0)
+      out.dofs[static_cast<std::size_t>(position[static_cast<std::size_t>(j)])] =
+          sys.dofs[static_cast<std::size_t>(j)];
+  for (int k = 0; k < n_rows; ++k)
+    out.dofs[static_cast<std::size_t>(n_free + k)] = row_info[static_cast<std::size_t>(k)];
+
+  // Masters and points: spiders in order, then sensor sets.
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    fe::SuperelementPoint point;
+    point.node = solid.spiders[k].node;
+    out.points.push_back(point);
+    for (int c = 0; c < 6; ++c)
+      out.masters.push_back(
+          solid.spiders[k].kind == model::SpiderKind::Rigid
+              ? position[static_cast<std::size_t>(rigid_x[k][static_cast<std::size_t>(c)])]
+              : n_free + first_row[k] + c);
+  }
+  double common_ratio = rotor.node(rotor_node.front()).speed_ratio;
+  for (int node : rotor_node)
+    if (std::abs(rotor.node(node).speed_ratio - common_ratio) > 1e-12) common_ratio = 0.0;
+  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
+    fe::SuperelementPoint point;
+    point.node = solid.name + "/" + sensor_sets[s].set;
+    point.new_node = true;
+    point.position = sensor_position[s];
+    point.speed_ratio = common_ratio;
+    point.components = {true, true, true, false, false, false};
+    out.points.push_back(point);
+    for (int c = 0; c < 3; ++c) out.masters.push_back(n_free + sensor_first_row[s] + c);
+  }
+
+  const Eigen::Vector3d p = mesh.coords[static_cast<std::size_t>(reference.front())];
+  const Eigen::MatrixXd R = rigid_modes(out.dofs, p);
+  out.rigid_mass = R.transpose() * (out.M * R);
+  return out;
+}
+
+CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
+                          const SolidComponent& built, Progress& progress) {
+  const std::string base = fmt::format("solids[{}]", index_of(model, solid));
+  SpiderSystem ss = spider_system(model, solid, built, progress);
+  const int n_interior = static_cast<int>(ss.dofs.size() - ss.masters.size());
+  if (solid.coupling_modes > n_interior)
+    throw InputError(solid.where, base + ".coupling_modes",
+                     fmt::format("at most {} (the DOFs of the solid that are not spider or "
+                                 "sensor points)",
+                                 n_interior),
+                     std::to_string(solid.coupling_modes));
+  reduce::CraigBamptonOptions options;
+  options.n_modes = solid.coupling_modes;
+  CoupledSolid out;
+  out.name = solid.name;
+  try {
+    out.reduced = reduce::craig_bampton(ss.K, ss.M, ss.dofs, ss.masters, options,
+                                        built.source_sha256, {}, progress);
+  } catch (const InputError& e) {
+    // The masters are the spider points: a free interior is a solid the spiders do not hold.
+    throw InputError(solid.where, base + ".spiders",
+                     "spiders that hold every rigid-body motion of the solid and of each of its "
+                     "parts",
+                     e.found(),
+                     "join every part of the solid through node sets that fix its motion (a set "
+                     "of at least 3 nodes not on one line), or fix it with fixed_sets");
+  }
+  out.transform = std::move(ss.transform);
+  out.rigid_mass = ss.rigid_mass;
+
+  fe::Superelement& body = out.body;
+  body.name = solid.name;
+  body.points = ss.points;
+  body.n_generalized = out.reduced.n_modal;
+  body.K = 0.5 * (out.reduced.K + out.reduced.K.transpose());
+  body.M = 0.5 * (out.reduced.M + out.reduced.M.transpose());
+
+  // Gyroscopic matrix of the rigid body when every spider node spins at one speed about one
+  // axis: the rigid-disk matrix (node frame) at the first spider point, rotated to global axes.
+  const fe::DofMap rotor = fe::DofMap::build(model);
+  const fe::NodeInfo& first = rotor.node(rotor.node_index(solid.spiders.front().node));
+  bool common = first.speed_ratio != 0.0;
+  for (const model::Spider& spider : solid.spiders) {
+    const fe::NodeInfo& node = rotor.node(rotor.node_index(spider.node));
+    common = common && std::abs(node.speed_ratio - first.speed_ratio) <= 1e-12 &&
+             (node.frame.col(2) - first.frame.col(2)).norm() <= 1e-12;
+  }
+  const Eigen::Vector3d e3 = first.frame.col(2);
+  const double polar = e3.dot(out.rigid_mass.bottomRightCorner<3, 3>() * e3);
+  if (common) {
+    out.polar_inertia = polar;
+    const fe::Matrix6d rotation = fe::node_rotation(first.frame);
+    body.G = Eigen::MatrixXd::Zero(body.size(), body.size());
+    body.G.topLeftCorner<6, 6>() = first.speed_ratio * rotation *
+                                   fe::rigid_disk_gyroscopic(out.polar_inertia) *
+                                   rotation.transpose();
+  }
+
+  const int n_sensors = static_cast<int>(ss.points.size() - solid.spiders.size());
+  out.description = fmt::format(
+      "joined to the rotor by {} spider{}{}: {} fixed-interface mode{}{}, mass {:.6g} kg, "
+      "polar inertia {:.6g} kg m^2{}",
+      solid.spiders.size(), solid.spiders.size() == 1 ? "" : "s",
+      n_sensors > 0 ? fmt::format(" and {} sensor point{}", n_sensors, n_sensors == 1 ? "" : "s")
+                    : std::string(),
+      out.reduced.n_modal, out.reduced.n_modal == 1 ? "" : "s",
+      out.reduced.n_modal > 0
+          ? fmt::format(" (up to {:.6g} Hz)", out.reduced.fixed_interface_hz.maxCoeff())
+          : std::string(),
+      out.rigid_mass(0, 0), polar,
+      common ? "" : " (no gyroscopic term: the spider nodes do not spin together)");
+  return out;
+}
+
+std::vector<CoupledSolid> couple_solids(const model::Model& model, const SolidComponents* built,
+                                        Progress& progress) {
+  std::vector<CoupledSolid> out;
+  for (const model::Solid& solid : model.solids) {
+    if (solid.spiders.empty()) continue;
+    if (built != nullptr) {
+      const auto it = built->find(solid.name);
+      if (it != built->end()) {
+        out.push_back(couple_solid(model, solid, it->second, progress));
+        continue;
+      }
+    }
+    const SolidComponent component = build_solid(model, solid, progress);
+    out.push_back(couple_solid(model, solid, component, progress));
+  }
+  return out;
+}
+
+}  // namespace geardyn::assembly

@@ -1,0 +1,279 @@
+// The model file's [[gear_pairs]] section: the gear pairs of the mesh-excitation chain.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "geardyn/model/schema_builder.hpp"
+#include "geardyn/model/schema_sections.hpp"
+
+namespace geardyn::model {
+namespace {
+
+using namespace keys;  // NOLINT: the declaration table reads as a table
+
+constexpr Unit kTorque{"N m", 1.0};
+const std::vector<std::string> kCylindrical = {"spur", "helical"};
+const std::vector<std::string> kSpiral = {"spiral_bevel", "hypoid"};
+
+void finish_gear_pair(GearPair& g, const TableContext& t) {
+  const bool bevel = g.type == GearType::StraightBevel || g.type == GearType::SpiralBevel ||
+                     g.type == GearType::Hypoid;
+  if (g.internal && bevel)
+    t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
+           "true");
+  if (g.internal && g.teeth2 <= g.teeth1)
+    t.fail("teeth2",
+           fmt::format("more teeth than gear 1 (teeth1 = {}) for an internal gear pair", g.teeth1),
+           std::to_string(g.teeth2));
+  if (t.has("rim_thickness") != t.has("web_thickness"))
+    t.fail(t.has("rim_thickness") ? "web_thickness" : "rim_thickness",
+           "rim_thickness and web_thickness together (a gear blank with a web), or neither",
+           "only one of them");
+  if (!t.has("ste_file") &&
+      (t.has("ste_interpolation") || t.has("ste_extrapolation") || t.has("ste_speed_rpm")))
+    t.fail(t.has("ste_interpolation")   ? "ste_interpolation"
+           : t.has("ste_extrapolation") ? "ste_extrapolation"
+                                        : "ste_speed_rpm",
+           "an ste_file to apply to (the synthetic STE from ISO 6336 is sampled uniformly)",
+           "no ste_file");
+}
+
+std::vector<Field> gear_pair_fields_1() {
+  return {
+      name_key("Unique gear-pair name.").required().to(&GearPair::name),
+      choice("type", kGearTypes, "Gear type; selects the keys below.")
+          .def("\"spur\"")
+          .to_enum(&GearPair::type, {GearType::Spur, GearType::Helical, GearType::StraightBevel,
+                                     GearType::SpiralBevel, GearType::Hypoid}),
+      boolean("internal", "Gear 2 is an internal gear (ring gear).")
+          .def("false")
+          .only_in(kCylindrical)
+          .to(&GearPair::internal),
+      integer("teeth1", "Number of teeth z1 of gear 1 (pinion).")
+          .required()
+          .ge(3)
+          .le(100000)
+          .to(&GearPair::teeth1),
+      integer("teeth2", "Number of teeth z2 of gear 2 (internal gear: its tooth count).")
+          .required()
+          .ge(3)
+          .le(100000)
+          .to(&GearPair::teeth2),
+      number("module", kMetre,
+             "Normal module m_n (spur, helical); outer transverse module m_e at the heel "
+             "(bevel; hypoid: the wheel's).")
+          .required()
+          .gt(0)
+          .to(&GearPair::module),
+      number("pressure_angle_deg", kDegree, "Normal pressure angle of the basic rack.")
+          .def("20.0")
+          .gt(0)
+          .lt(45)
+          .to(&GearPair::pressure_angle),
+      number("helix_angle_deg", kDegree,
+             "Helix angle (helical), mean spiral angle (spiral bevel), the wheel's mean "
+             "spiral angle (hypoid).")
+          .required()
+          .gt(0)
+          .lt(90)
+          .only_in(kHelical)
+          .to(&GearPair::helix_angle),
+      number("pinion_spiral_angle_deg", kDegree,
+             "Hypoid: the pinion's mean spiral angle (> the wheel's helix_angle_deg).")
+          .required()
+          .gt(0)
+          .lt(90)
+          .only_in({"hypoid"})
+          .to(&GearPair::pinion_spiral_angle),
+      choice("hand", {"right", "left"}, "Hand of gear 1's helix or spiral.")
+          .def("\"right\"")
+          .only_in(kHelical)
+          .to_enum(&GearPair::hand, {Hand::Right, Hand::Left}),
+      choice("rotation", {"cw", "ccw"},
+             "Direction of rotation of gear 1, seen from its back (cone base) towards "
+             "the apex; with `hand` it sets which flank is loaded and the sign of the "
+             "axial force.")
+          .def("\"cw\"")
+          .only_in(kSpiral)
+          .to_enum(&GearPair::rotation, {GearRotation::Clockwise, GearRotation::CounterClockwise}),
+      number("face_width", kMetre, "Face width b.").required().gt(0).to(&GearPair::face_width),
+      number("profile_shift1", kNoUnit, "Profile shift coefficient x1 of gear 1.")
+          .def("0.0")
+          .ge(-2.0)
+          .le(2.0)
+          .to(&GearPair::profile_shift1),
+      number("profile_shift2", kNoUnit,
+             "Profile shift coefficient x2 of gear 2 (ISO 21771 sign for internal "
+             "gears; bevel gears need x2 = -x1).")
+          .def("0.0")
+          .ge(-2.0)
+          .le(2.0)
+          .to(&GearPair::profile_shift2),
+      number("addendum_coefficient", kNoUnit, "Addendum of the basic rack h_aP / m_n.")
+          .def("1.0")
+          .gt(0)
+          .le(2.0)
+          .to(&GearPair::addendum_coefficient),
+      number("dedendum_coefficient", kNoUnit, "Dedendum of the basic rack h_fP / m_n.")
+          .def("1.25")
+          .gt(0)
+          .le(2.5)
+          .to(&GearPair::dedendum_coefficient),
+      number("centre_distance", kMetre,
+             "Working centre distance (must leave backlash >= 0 for the profile shifts).")
+          .gt(0)
+          .note("the zero-backlash value for x1 + x2")
+          .only_in(kCylindrical)
+          .to(&GearPair::centre_distance),
+      number("shaft_angle_deg", kDegree, "Shaft angle Sigma.")
+          .def("90.0")
+          .gt(0)
+          .lt(180)
+          .only_in(kBevel)
+          .to(&GearPair::shaft_angle),
+      number("outer_cone_distance", kMetre,
+             "Outer cone distance R_e (checked against m_e z1 / (2 sin delta1)).")
+          .gt(0)
+          .note("from module, teeth and shaft angle")
+          .only_in(kBevel)
+          .to(&GearPair::outer_cone_distance),
+  };
+}
+
+std::vector<Field> gear_pair_fields_2() {
+  return {
+      number("torque", kTorque, "Torque on gear 1 (drive side).")
+          .required()
+          .gt(0)
+          .to(&GearPair::torque),
+      number("inertia1", kInertia,
+             "Polar moment of inertia of gear 1 (with what turns rigidly with it); "
+             "may be inf.")
+          .gt(0)
+          .allow_infinity()
+          .note("needed by mesh_force / mesh_harmonics with model = \"dynamic\"")
+          .to(&GearPair::inertia1),
+      number("inertia2", kInertia, "Polar moment of inertia of gear 2; may be inf.")
+          .gt(0)
+          .allow_infinity()
+          .note("needed by mesh_force / mesh_harmonics with model = \"dynamic\"")
+          .to(&GearPair::inertia2),
+      reference("material1", Ref::Material,
+                "Material of gear 1 (its Young's modulus enters the ISO 6336 stiffness).")
+          .note("steel, E = 206 GPa")
+          .to(&GearPair::material1),
+      reference("material2", Ref::Material, "Material of gear 2.")
+          .note("steel, E = 206 GPa")
+          .to(&GearPair::material2),
+      number("stiffness_correction", kNoUnit,
+             "ISO 6336-1 correction factor C_M (measured / theoretical stiffness).")
+          .def("0.8")
+          .gt(0)
+          .le(2.0)
+          .to(&GearPair::stiffness_correction),
+      number("application_factor", kNoUnit,
+             "ISO 6336-1 application factor K_A in the light-load correction.")
+          .def("1.0")
+          .ge(1.0)
+          .le(10.0)
+          .to(&GearPair::application_factor),
+      boolean("load_correction",
+              "Apply ISO 6336-1's stiffness reduction for line loads F_t K_A / b below "
+              "100 N/mm.")
+          .def("true")
+          .to(&GearPair::load_correction),
+      number("rim_thickness", kMetre,
+             "Rim thickness s_R of a gear blank with a web (ISO 6336-1 C_R; give "
+             "web_thickness too).")
+          .gt(0)
+          .note("solid disc, C_R = 1")
+          .to(&GearPair::rim_thickness),
+      number("web_thickness", kMetre, "Web thickness b_s of a gear blank with a web.")
+          .gt(0)
+          .note("solid disc, C_R = 1")
+          .to(&GearPair::web_thickness),
+      text("ste_file",
+           "Static transmission error over one mesh cycle, CSV relative to the model "
+           "file (format in gear/ste.hpp: an angle_deg or angle_rad column of gear 1's "
+           "rotation, or a time_s or time_ms column (with ste_speed_rpm), over one mesh "
+           "cycle, ste_<unit> or ste_<unit>@<torque>Nm columns; "
+           "angular STE is scaled by gear 1's base radius); the first row is the tooth "
+           "entering contact.")
+          .note("synthetic STE e = F_s / k from the ISO 6336 mesh stiffness")
+          .to(&GearPair::ste_file),
+      choice("ste_interpolation", {"linear", "hold"},
+             "How the STE file is read between its rows: periodic linear, or each row "
+             "held to the next (contact steps).")
+          .def("\"linear\"")
+          .to_enum(&GearPair::ste_interpolation,
+                   {SteInterpolationKind::Linear, SteInterpolationKind::Hold}),
+      boolean("ste_extrapolation",
+              "Allow a torque outside the file's torques (linear extrapolation).")
+          .def("false")
+          .to(&GearPair::ste_extrapolation),
+      number("ste_shift", kNoUnit,
+             "Moves the start of the STE cycle (the tooth entering contact) by this "
+             "fraction of a mesh cycle.")
+          .def("0.0")
+          .ge(0)
+          .lt(1)
+          .to(&GearPair::ste_shift),
+      number("ste_speed_rpm", kRpm,
+             "Speed of gear 1 while an STE file with a time abscissa (time_s, time_ms) "
+             "was recorded: one mesh period is 60 / (speed teeth1) s.")
+          .gt(0)
+          .note("required with a time abscissa")
+          .to(&GearPair::ste_speed),
+      integer("ste_samples", "Samples of the STE per mesh cycle.")
+          .ge(16)
+          .le(100000)
+          .note("512 for the synthetic STE; the file's rows per cycle")
+          .to(&GearPair::ste_samples),
+      number("mesh_damping_ratio", kNoUnit,
+             "Damping ratio zeta of the mesh: c = 2 zeta sqrt(k_mean m_e).")
+          .def("0.08")
+          .ge(0)
+          .le(1.0)
+          .to(&GearPair::mesh_damping_ratio),
+      number("backlash", kMetre,
+             "Backlash along the line of action: back-side contact when the DTE falls "
+             "below -backlash.")
+          .gt(0)
+          .note("no back-side contact")
+          .to(&GearPair::backlash),
+  };
+}
+
+}  // namespace
+
+Section gear_pairs_section() {
+  return S("gear_pairs", SectionKind::ArrayOfTables, "[[gear_pairs]]",
+           "Gear pairs of the mesh-excitation chain (DESIGN 4.4-4.5): geometry and contact ratio "
+           "(ISO 21771; bevel and hypoid gears as virtual cylindrical gears at mid face), tooth "
+           "forces, ISO 6336-1 mesh stiffness, the static transmission error (STE) from a file or "
+           "synthetic from the stiffness, the dynamic mesh force and the engine-order harmonics "
+           "(analyses gear_pair, mesh_force, mesh_harmonics). Gear 1 is the pinion; `torque` acts "
+           "on it. The geometry is checked (interference, contact ratio >= 1, backlash) before any "
+           "analysis runs.")
+      .in_array(&Model::gear_pairs)
+      .located(&GearPair::where)
+      .fields(join_fields({gear_pair_fields_1(), gear_pair_fields_2()}))
+      .variants("type",
+                {
+                    variant<GearPair>("spur", "Spur gears (external or internal)."),
+                    variant<GearPair>("helical", "Helical gears (external or internal)."),
+                    variant<GearPair>("straight_bevel",
+                                      "Straight bevel gears (virtual spur gears at mid "
+                                      "face)."),
+                    variant<GearPair>("spiral_bevel", "Spiral bevel gears."),
+                    variant<GearPair>("hypoid",
+                                      "Hypoid gears (approximation: the offset is neglected "
+                                      "in the cone geometry; pinion enlargement from the "
+                                      "spiral angles)."),
+                })
+      .finish<GearPair>(finish_gear_pair);
+}
+
+}  // namespace geardyn::model

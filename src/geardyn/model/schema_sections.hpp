@@ -1,0 +1,38 @@
+#pragma once
+// The sections of the model file's declaration table, one function each (schema_rotor.cpp,
+// schema_solids.cpp, schema_gears.cpp); schema_model.cpp puts them under the root with the
+// analysis types. Internal to the model module.
+#include <string>
+#include <vector>
+
+#include "geardyn/model/schema.hpp"
+
+namespace geardyn::model {
+
+// Gear types of [[gear_meshes]] and [[gear_pairs]] (`type` choices) and the groups some keys
+// are restricted to.
+inline const std::vector<std::string> kGearTypes = {"spur", "helical", "straight_bevel",
+                                                    "spiral_bevel", "hypoid"};
+inline const std::vector<std::string> kHelical = {"helical", "spiral_bevel", "hypoid"};
+inline const std::vector<std::string> kBevel = {"straight_bevel", "spiral_bevel", "hypoid"};
+
+/// The fields of several lists, in order.
+std::vector<Field> join_fields(std::vector<std::vector<Field>> parts);
+
+Section materials_section();
+Section shafts_section();
+Section nodes_section();
+Section disks_section();
+Section point_masses_section();
+Section bearings_section();
+Section couplings_section();
+Section gear_meshes_section();
+Section constraints_section();
+Section unbalances_section();
+Section forces_section();
+Section sensors_section();
+Section damping_section();
+Section solids_section();
+Section gear_pairs_section();
+
+}  // namespace geardyn::model

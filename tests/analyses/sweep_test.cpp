@@ -1,0 +1,115 @@
+// Parameter sweeps: values against closed forms, and threads give the same answer as serial.
+#include "geardyn/analyses/sweep.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "geardyn/analyses/model_file.hpp"
+#include "geardyn/model/parse.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+// A point mass m on a lateral spring k (a free node; all other DOFs fixed):
+//
+//        k
+//   |--/\/\/--[ m ]        omega_n = sqrt(k / m)
+//
+// The sweep varies k (bearing kxx, with kyy linked) and reads the first natural frequency and
+// the unbalance-free FRF peak. Closed form: f_n = sqrt(k/m) / (2 pi).
+const char* kModel = R"(
+version = 1
+[[materials]]
+name = "steel"
+youngs_modulus = 2e11
+poisson_ratio = 0.3
+density = 7800
+[[shafts]]
+name = "s"
+material = "steel"
+  [[shafts.elements]]
+  length = 0.1
+  outer_diameter = 0.01
+[[constraints]]
+node = "s.0"
+dofs = "all"
+[[constraints]]
+node = "s.1"
+dofs = "all"
+[[nodes]]
+name = "m"
+position = [1, 0, 0]
+[[point_masses]]
+node = "m"
+mass = 10
+[[bearings]]
+node = "m"
+kxx = 1e6
+kyy = 1e6
+kzz = 1e6
+[[constraints]]
+node = "m"
+dofs = ["rx", "ry", "rz"]
+[[sensors]]
+name = "x"
+node = "m"
+dof = "ux"
+[[analyses]]
+name = "modes"
+type = "modal"
+n_modes = 3
+[[analyses]]
+name = "k_sweep"
+type = "sweep"
+parameter = "bearings[0].kxx"
+linked_parameters = ["bearings[0].kyy", "bearings[0].kzz"]
+values = [1e4, 1e5, 1e6, 1e7, 1e8]
+analysis = "modes"
+outputs = [{ quantity = "natural_frequency", mode = 1 }]
+)";
+
+TEST(Sweep, NaturalFrequencyFollowsTheClosedForm) {
+  const auto doc = analyses::parse_document(kModel, "sweep_test.toml");
+  const model::Model m = model::build_model(doc);
+  const auto& settings = m.analyses[1].settings_of<analyses::SweepSettings>();
+  const SweepResult r = run_sweep(doc, settings, null_progress());
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  ASSERT_EQ(r.outputs.size(), 1u);
+  for (std::size_t i = 0; i < r.values.size(); ++i) {
+    const double exact = std::sqrt(r.values[i] / 10.0) / (2.0 * std::numbers::pi);
+    // Three equal frequencies (x, y, z springs); the eigen-solve is accurate to round-off,
+    // so 1e-9 relative leaves room for the conditioning of the stiffest case only.
+    EXPECT_NEAR(r.outputs[0][i], exact, 1e-9 * exact) << "k = " << r.values[i];
+  }
+  EXPECT_EQ(r.units[0], "Hz");
+}
+
+TEST(Sweep, ThreadsGiveTheSerialResultBitForBit) {
+  const auto doc = analyses::parse_document(kModel, "sweep_test.toml");
+  const model::Model m = model::build_model(doc);
+  auto settings = m.analyses[1].settings_of<analyses::SweepSettings>();
+  settings.threads = 1;
+  const SweepResult serial = run_sweep(doc, settings, null_progress());
+  settings.threads = 4;
+  const SweepResult parallel = run_sweep(doc, settings, null_progress());
+  ASSERT_EQ(serial.outputs.size(), parallel.outputs.size());
+  for (std::size_t j = 0; j < serial.outputs.size(); ++j)
+    for (std::size_t i = 0; i < serial.values.size(); ++i)
+      EXPECT_EQ(serial.outputs[j][i], parallel.outputs[j][i]);  // exact: same work per point
+  EXPECT_EQ(parallel.threads_used, 4);
+}
+
+TEST(Sweep, APointThatFailsIsReportedNotDropped) {
+  // k = 0 leaves the mass free: its "natural frequency" is a rigid-body 0 Hz, which is a valid
+  // result; an out-of-range value (negative stiffness) is bad input and aborts the sweep.
+  const auto doc = analyses::parse_document(kModel, "sweep_test.toml");
+  const model::Model m = model::build_model(doc);
+  auto settings = m.analyses[1].settings_of<analyses::SweepSettings>();
+  settings.values = {1e6, -1.0};
+  EXPECT_THROW(run_sweep(doc, settings, null_progress()), InputError);
+}
+
+}  // namespace
+}  // namespace geardyn::analyses
