@@ -408,6 +408,20 @@ TEST(ModelParse, NonAsciiTextInStringsAndComments) {
   EXPECT_EQ(m.title, "Getriebe \xe2\x80\x93 Stufe 1 (\xc2\xb0)");
 }
 
+TEST(ModelParse, QuotedPartsOfDottedKeysAreFine) {
+  // The text check refuses a quote after a value's '.' (x = 0."...", a toml++ 3.3 hazard) but
+  // must keep accepting dotted keys with quoted parts, in tables and inline tables.
+  const Model m = analyses::parse_model(
+      "version = 1\n"
+      "damping.\"rayleigh_alpha\" = 2.5  # a quoted part of a dotted key\n"
+      "\"damping\".'loss_factor' = 0.01\n"
+      "nodes = [ { \"name\" = \"a\", position = [0.5, 0, 0] } ]\n",
+      "dotted.toml");
+  EXPECT_EQ(m.damping.rayleigh_alpha, 2.5);
+  EXPECT_EQ(m.damping.loss_factor, 0.01);
+  EXPECT_EQ(m.nodes[0].position[0], 0.5);
+}
+
 TEST(ModelParse, FuzzSeedsAreValidModels) {
   // The seed corpus of fuzz/model_fuzz must stay valid, or the fuzzer starts from errors only.
   // Lines "#--set key=value" are overrides applied by the fuzz harness.

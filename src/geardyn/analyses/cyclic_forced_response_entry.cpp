@@ -93,11 +93,8 @@ std::vector<model::Field> keys() {
           .ge(1)
           .increasing()
           .note("orders_per_diameter orders per nodal diameter: h, N - h, ...")
-          .to_fn<Analysis>([](Analysis& a, const FieldValue& v) {
-            auto& s = *a.settings_as<CyclicForcedResponseSettings>();
-            s.engine_orders.clear();
-            for (double k : v.numbers) s.engine_orders.push_back(static_cast<int>(k));
-          }),
+          .to_settings_fn<CyclicForcedResponseSettings>(
+              [](auto& s, const FieldValue& v) { s.engine_orders = integers_of(v); }),
       excitation_set_key().to_settings(&CyclicForcedResponseSettings::excitation_set),
       sensor_sets_key().to_settings(&CyclicForcedResponseSettings::sensor_sets),
       sensor_nodes_key().to_settings_fn<CyclicForcedResponseSettings>(

@@ -1351,6 +1351,10 @@ void check_text(std::string_view text, const std::string& file_name) {
   int line = 1, column = 1;
   bool continued_line = false;  // inside """: after a line-ending backslash, before content
   char before = '\n';           // outside strings and comments: the last non-blank character
+  // Outside strings: the open brackets, and whether a key (not a value) is expected; a dotted
+  // key may continue with a quoted part (a."b"), a value may not (x = 0."b").
+  std::string brackets;
+  bool key_side = true;
   auto fail = [&](std::string expected, std::string found) {
     throw InputError({file_name, line, column}, "(syntax)", std::move(expected), std::move(found));
   };
@@ -1399,12 +1403,23 @@ void check_text(std::string_view text, const std::string& file_name) {
           fail("valid TOML: a backslash only inside a \"...\" string",
                "a backslash outside any string");
         } else if ((c == '"' || c == '\'') &&
-                   std::string_view("=[,{.\n").find(before) == std::string_view::npos) {
-          // TOML starts a string only there; toml++ 3.3 would scan a quote after a bare value
-          // (x = 0x"...") as part of that value, classifying its characters with the table that
-          // has undefined behaviour for some non-ASCII code points.
-          fail("valid TOML: a string only after '=', ',', '[', '{', '.' or first on a line",
+                   (std::string_view("=[,{.\n").find(before) == std::string_view::npos ||
+                    (before == '.' && !key_side))) {
+          // TOML starts a string only there (after '.' only in a dotted key); toml++ 3.3 would
+          // scan a quote after a bare value (x = 0x"..." or x = 0."...") as part of that value,
+          // classifying its characters with the table that has undefined behaviour for some
+          // non-ASCII code points (found by fuzzing).
+          fail("valid TOML: a string only after '=', ',', '[', '{', a key's '.' or first on a line",
                fmt::format("a quote after '{}'", before));
+        } else if (c == '=') {
+          key_side = false;
+        } else if (c == '[' || c == '{') {
+          brackets.push_back(c);
+          if (c == '{') key_side = true;
+        } else if ((c == ']' || c == '}') && !brackets.empty()) {
+          brackets.pop_back();
+        } else if (c == ',' && !brackets.empty() && brackets.back() == '{') {
+          key_side = true;
         } else if (starts(i, "\"\"\"")) {
           state = State::MultiBasic;
           advance = 3;
@@ -1455,6 +1470,7 @@ void check_text(std::string_view text, const std::string& file_name) {
         break;
     }
     if (state == State::Normal) {
+      if (c == '\n') key_side = brackets.empty() || brackets.back() == '{';
       if (was == State::Comment)
         before = '\n';
       else if (was != State::Normal)
