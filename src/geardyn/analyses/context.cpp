@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace geardyn::analyses {
@@ -48,6 +49,24 @@ const assembly::SolidComponent& Context::solid(const model::Model& model,
     slot = std::make_unique<assembly::SolidComponent>(assembly::build_solid(model, *s, progress()));
   }
   return *slot;
+}
+
+std::vector<const model::Sensor*> select_sensors(const model::Model& model,
+                                                 const std::vector<std::string>& names,
+                                                 const Context& context) {
+  std::vector<const model::Sensor*> sensors;
+  if (names.empty()) {
+    for (const auto& s : model.sensors) sensors.push_back(&s);
+    return sensors;
+  }
+  for (const auto& sensor_name : names) {
+    auto it = std::find_if(model.sensors.begin(), model.sensors.end(),
+                           [&](const model::Sensor& s) { return s.name == sensor_name; });
+    if (it == model.sensors.end())
+      throw context.error("sensors", "the name of a sensor", "'" + sensor_name + "'");
+    sensors.push_back(&*it);
+  }
+  return sensors;
 }
 
 }  // namespace geardyn::analyses

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/core/error.hpp"
@@ -80,6 +81,12 @@ class Context {
   };
   std::shared_ptr<Built> built_ = std::make_shared<Built>();
 };
+
+/// The sensors an analysis reports: all of the model's when `names` is empty, else those named
+/// (in that order). An unknown name is an InputError at the analysis's `sensors` key.
+std::vector<const model::Sensor*> select_sensors(const model::Model& model,
+                                                 const std::vector<std::string>& names,
+                                                 const Context& context);
 
 /// The context of checks made before anything runs (check_inputs): the same locating helpers,
 /// and the solids built so far.
