@@ -22,7 +22,7 @@
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/signal/orbit.hpp"
 #include "geardyn/signal/window.hpp"
-#include "transient/rotor_models.hpp"
+#include "support/transient_rotor_models.hpp"
 
 namespace geardyn::transient {
 namespace {

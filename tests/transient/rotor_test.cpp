@@ -11,7 +11,7 @@
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/transient/integrator.hpp"
 #include "geardyn/transient/linear_rotor_system.hpp"
-#include "rotor_models.hpp"
+#include "support/transient_rotor_models.hpp"
 
 namespace geardyn::transient {
 namespace {

@@ -1,5 +1,6 @@
 #pragma once
-// Small rotor models for the transient tests, built directly as model::Model.
+// Small rotor models for the transient tests (Jeffcott rotor with unbalance, a flexible rotor on
+// bearings), built directly as model::Model.
 #include <cmath>
 #include <string>
 
