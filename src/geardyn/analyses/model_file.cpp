@@ -6,17 +6,28 @@
 
 namespace geardyn::analyses {
 
-const model::Section& model_schema() {
-  static const model::Section schema = [] {
-    std::vector<model::AnalysisDeclaration> declarations;
+const std::vector<model::AnalysisDeclaration>& declarations() {
+  static const std::vector<model::AnalysisDeclaration> all = [] {
+    std::vector<model::AnalysisDeclaration> out;
     for (const auto& t : registry()) {
-      declarations.push_back(t.declare());
-      if (declarations.back().name != t.name)
+      out.push_back(t.declare());
+      if (out.back().name != t.name)
         throw std::logic_error("analysis type '" + t.name + "' declares the keys of '" +
-                               declarations.back().name + "'");
+                               out.back().name + "'");
     }
-    return model::make_model_schema(declarations);
+    return out;
   }();
+  return all;
+}
+
+const model::AnalysisDeclaration& declaration_of(const AnalysisType& type) {
+  for (const auto& d : declarations())
+    if (d.name == type.name) return d;
+  throw std::logic_error("analysis type '" + type.name + "' has no declaration");
+}
+
+const model::Section& model_schema() {
+  static const model::Section schema = model::make_model_schema(declarations());
   return schema;
 }
 

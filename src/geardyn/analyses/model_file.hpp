@@ -7,11 +7,18 @@
 //   model::apply_override(doc, "bearings[0].kxx=2e7");
 //   model::Model m = model::build_model(doc);
 #include <string>
+#include <vector>
 
+#include "geardyn/analyses/registry.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/model/schema.hpp"
 
 namespace geardyn::analyses {
+
+/// The declarations of the registry's analysis types (built once, in registry order).
+const std::vector<model::AnalysisDeclaration>& declarations();
+/// The declaration of `type` (its keys, checks and whether it needs the rotor).
+const model::AnalysisDeclaration& declaration_of(const AnalysisType& type);
 
 /// The model file's declaration table with every analysis type of the registry (built once,
 /// self-checked).

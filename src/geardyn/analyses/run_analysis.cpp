@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "geardyn/analyses/cyclic_forced_response.hpp"
+#include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/assembly/system_builder.hpp"
@@ -41,14 +42,14 @@ Outcome run_variant(const model::Model& model, const model::Analysis& analysis,
   model::Analysis without_set = *plain;
   without_set.overrides.clear();
   try {
+    const bool needs_rotor = declaration_of(type_of(analysis)).needs_rotor;
     fe::LinearSystem variant_system;
-    if (type_of(analysis).declare().needs_rotor)
-      variant_system = assembly::build_system(variant_model);
+    if (needs_rotor) variant_system = assembly::build_system(variant_model);
     Context variant_context(model, analysis);
     variant_context.with_progress(&context.progress())
         .with_document(&variant)
         .with_solids(changes_solids(analysis.overrides) ? nullptr : context.solids());
-    if (type_of(analysis).declare().needs_rotor) variant_context.with_system(&variant_system);
+    if (needs_rotor) variant_context.with_system(&variant_system);
     Outcome out = run_analysis(variant_model, without_set, variant_context);
     out.output.notes.push_back(
         fmt::format("Model variant for this analysis: {}.", fmt::join(analysis.overrides, ", ")));

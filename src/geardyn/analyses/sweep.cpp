@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/run_analysis.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/model/parse.hpp"
@@ -62,9 +63,13 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
         const model::Analysis* a = m.find_analysis(settings.analysis);
         if (a == nullptr)
           throw std::runtime_error("analysis '" + settings.analysis + "' not found");
-        const fe::LinearSystem system = assembly::build_system(m);
+        // The rotor's system only for a target that uses it (a solid or gear analysis has none).
+        fe::LinearSystem system;
+        const bool needs_rotor = declaration_of(type_of(*a)).needs_rotor;
+        if (needs_rotor) system = assembly::build_system(m);
         Context context(m, *a);
-        context.with_document(&point).with_system(&system);
+        context.with_document(&point);
+        if (needs_rotor) context.with_system(&system);
         const Outcome outcome = run_analysis(m, *a, context);
         const AnalysisOutput& out = outcome.output;
         if (out.status != Status::Ok) {

@@ -72,13 +72,28 @@ std::string scalar_help(const std::string& name) {
   return fmt::format("{} (target: {}).", meaning.substr(0, meaning.size()), types);
 }
 
+/// True when some type's scalar `quantity` reads `parameter`.
+bool reads(const std::string& quantity, const std::string& parameter) {
+  const std::vector<std::string> names = scalars_reading(parameter);
+  return std::find(names.begin(), names.end(), quantity) != names.end();
+}
+
+/// The default column label: the quantity with the sensor and/or the mode it reads
+/// (natural_frequency_2, peak_amplitude_bearing_x, contact_ratio).
 void finish_output(SweepOutput& o, const TableContext& t) {
   o.at_speed = t.has("at_rpm");
   if (t.has("label")) return;
-  if (o.quantity == "natural_frequency" || o.quantity == "critical_speed" || !t.has("sensor"))
+  const bool sensor = reads(o.quantity, "sensor") && t.has("sensor");
+  // With a sensor, the mode (peak number) shows only when given.
+  const bool mode = reads(o.quantity, "mode") && (!sensor || t.has("mode"));
+  if (sensor && mode)
+    o.label = fmt::format("{}_{}_{}", o.quantity, o.sensor, o.mode);
+  else if (sensor)
+    o.label = fmt::format("{}_{}", o.quantity, o.sensor);
+  else if (mode)
     o.label = fmt::format("{}_{}", o.quantity, o.mode);
   else
-    o.label = fmt::format("{}_{}", o.quantity, o.sensor);
+    o.label = o.quantity;
 }
 
 model::Section outputs_section() {
@@ -122,7 +137,7 @@ model::Section outputs_section() {
               .to(&SweepOutput::at),
           text("label", "Column name stem in the results table.")
               .identifier()
-              .note("quantity and mode or sensor, e.g. `natural_frequency_1`")
+              .note("quantity with its sensor and/or mode, e.g. `natural_frequency_1`")
               .to(&SweepOutput::label),
       })
       .choices({{{{"at_rpm"}, {"at_hz"}}, true, {"amplitude_at"}}})
