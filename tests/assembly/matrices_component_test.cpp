@@ -100,8 +100,12 @@ sectors = 24
   static std::vector<double> cyclic_frequencies(const model::Model& m,
                                                 const assembly::SolidComponent& solid) {
     const auto& a = m.analyses.front();
-    const AnalysisOutput out = analyses::run_cyclic_modal(
-        solid, a.settings_of<analyses::CyclicModalSettings>(), a.name, null_progress());
+    const auto& s = a.settings_of<analyses::CyclicModalSettings>();
+    const assembly::SolidComponents solids = {{s.solid, solid}};
+    analyses::Context context(m, a);
+    context.with_solids(&solids);
+    const analyses::CyclicModalResult r = analyses::run_cyclic_modal(m, s, context);
+    const AnalysisOutput out = analyses::cyclic_modal_output(m, s, r, context);
     return out.tables.front().column("frequency_hz").numbers;
   }
 
