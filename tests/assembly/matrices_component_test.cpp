@@ -15,6 +15,7 @@
 
 #include "geardyn/analyses/cyclic_modal.hpp"
 #include "geardyn/analyses/model_file.hpp"
+#include "geardyn/analyses/registry.hpp"
 #include "geardyn/analyses/run_analysis.hpp"
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/core/error.hpp"
@@ -100,8 +101,12 @@ sectors = 24
   static std::vector<double> cyclic_frequencies(const model::Model& m,
                                                 const assembly::SolidComponent& solid) {
     const auto& a = m.analyses.front();
-    const AnalysisOutput out = analyses::run_cyclic_modal(
-        solid, a.settings_of<analyses::CyclicModalSettings>(), a.name, null_progress());
+    const auto& s = a.settings_of<analyses::CyclicModalSettings>();
+    const assembly::SolidComponents solids = {{s.solid, solid}};
+    analyses::Context context(m, a);
+    context.with_solids(&solids);
+    const analyses::CyclicModalResult r = analyses::run_cyclic_modal(m, s, context);
+    const AnalysisOutput out = analyses::cyclic_modal_output(m, s, r, context);
     return out.tables.front().column("frequency_hz").numbers;
   }
 
@@ -143,6 +148,32 @@ TEST_F(MatricesComponent, CraigBamptonAndInterfaceModesWorkOnImportedMatrices) {
   ASSERT_EQ(imported.size(), reference.size());
   for (std::size_t i = 0; i < reference.size(); ++i)
     EXPECT_NEAR(imported[i], reference[i], 1e-9 * reference[i]) << "row " << i;
+}
+
+// The drivers' own checks are located by the analysis's Context: a reduction of a component
+// without a mesh names analyses[0].solid at the analysis's line (expected and found as before).
+TEST_F(MatricesComponent, DriverErrorsNameTheAnalysisKey) {
+  auto error_of = [&](const std::string& text) -> InputError {
+    const model::Model m = parse(text);
+    const model::Analysis& a = m.analyses.front();
+    try {
+      (void)analyses::type_of(a).run(m, a, analyses::Context(m, a));
+    } catch (const InputError& e) {
+      return e;
+    }
+    ADD_FAILURE() << "no error";
+    return InputError({}, "", "", "");
+  };
+  const InputError e = error_of(kMaterials + matrices_solid() + R"(
+[[analyses]]
+name = "reduce"
+type = "reduction"
+solid = "plate"
+master_sets = ["outer"]
+)");
+  EXPECT_EQ(e.key_path(), "analyses[0].solid");
+  EXPECT_EQ(e.found(), "solid 'plate' of type \"matrices\"");
+  EXPECT_GT(e.where().line, 0);
 }
 
 TEST_F(MatricesComponent, BadInputNamesTheKey) {

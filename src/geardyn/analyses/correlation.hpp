@@ -4,13 +4,17 @@
 //
 // Resonance peaks of a measured response, Q by the half-power method with interpolated
 // crossings, and the comparison with a reference peak (DESIGN 4.4-4.5; issue [mesh-excitation]):
-// (model, settings) -> AnalysisOutput with tables, plots and notes. Bad input throws InputError
+// run_correlation finds the peaks (CorrelationResult), correlation_output writes the peak table
+// (core/peak_table.hpp), the comparison, the plot and notes. Bad input throws InputError
 // (call check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
 // numerical failure throws NumericalError naming the analysis.
+#include <optional>
 #include <string>
+#include <vector>
 
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/gear/correlation.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::analyses {
@@ -26,7 +30,18 @@ struct CorrelationSettings : model::SettingsOf<CorrelationSettings> {
   double reference_q = model::kNaN;
 };
 
-AnalysisOutput run_correlation(const model::Model& model, const CorrelationSettings& settings,
-                               const std::string& name, Progress& progress = null_progress());
+/// The measured curve, its peaks in the order of their location, and the comparison.
+struct CorrelationResult {
+  gear::MeasuredResponse measured;
+  std::vector<gear::PeakEstimate> peaks;           ///< location in the file's unit (rpm or Hz)
+  std::vector<double> prominence_db;               ///< of each peak, in dB of the amplitude
+  std::optional<gear::PeakComparison> comparison;  ///< with reference_peak_*
+};
+
+CorrelationResult run_correlation(const model::Model& model, const CorrelationSettings& settings,
+                                  const Context& context);
+
+AnalysisOutput correlation_output(const model::Model& model, const CorrelationSettings& settings,
+                                  const CorrelationResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

@@ -1,10 +1,13 @@
 // The `type = "correlation"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/correlation.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -25,6 +28,29 @@ void finish(Analysis& a, const TableContext& t) {
     if (t.has(key) && !reference)
       t.fail(key, "reference_peak_rpm or reference_peak_hz with it (where the reference peak is)",
              "no reference peak position");
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<CorrelationResult>(o);
+  if (q.mode < 1 || static_cast<std::size_t>(q.mode) > r.peaks.size())
+    throw std::runtime_error(fmt::format("{}: peak mode = {} of a measured response with {} peak{}",
+                                         q.quantity, q.mode, r.peaks.size(),
+                                         r.peaks.size() == 1 ? "" : "s"));
+  const gear::PeakEstimate& p = r.peaks[static_cast<std::size_t>(q.mode - 1)];
+  const bool speed = r.measured.abscissa == gear::ResponseAbscissa::SpeedRpm;
+  if (q.quantity == "measured_peak_location") {
+    unit = speed ? "rpm" : "Hz";
+    return p.x;
+  }
+  if (q.quantity == "measured_peak_amplitude") {
+    unit = r.measured.amplitude_unit;
+    return p.amplitude;
+  }
+  if (q.quantity == "measured_peak_q") {
+    unit.clear();
+    return p.q_factor;  // NaN when a half-power crossing lies outside the data
+  }
+  throw std::runtime_error(fmt::format("correlation offers no scalar \'{}\'", q.quantity));
 }
 
 std::vector<model::Field> keys() {
@@ -82,9 +108,28 @@ AnalysisType correlation_analysis() {
     return d;
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    return Outcome{run_correlation(m, a.settings_of<CorrelationSettings>(), a.name, c.progress()),
-                   nullptr};
+    const auto& s = a.settings_of<CorrelationSettings>();
+    CorrelationResult r = run_correlation(m, s, c);
+    AnalysisOutput out = correlation_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {
+      {"measured_peak_location",
+       "Hz",
+       "Location of measured peak `mode` (peaks counted in order of location), in Hz or rpm as "
+       "the measured file's abscissa.",
+       {"mode"}},
+      {"measured_peak_amplitude",
+       "",
+       "Amplitude of measured peak `mode`, in the measured file's SI unit.",
+       {"mode"}},
+      {"measured_peak_q",
+       "",
+       "Half-power quality factor Q of measured peak `mode` (NaN when a crossing lies outside "
+       "the data).",
+       {"mode"}},
+  };
+  type.scalar = scalar;
   return type;
 }
 

@@ -8,13 +8,12 @@
 #include <complex>
 #include <limits>
 #include <memory>
-#include <numbers>
-#include <optional>
 #include <set>
 #include <utility>
 
 #include "geardyn/analyses/solid_helpers.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/core/version.hpp"
 #include "geardyn/cyclic/cyclic_campbell.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
@@ -28,7 +27,7 @@ namespace geardyn::analyses {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 
 /// The ids of the left and right interface nodes of a pairing.
 std::pair<std::vector<long>, std::vector<long>> pair_ids(const cyclic::SectorInterfaces& i) {
@@ -185,54 +184,246 @@ Table rows_in_range(const Table& t, double lo, double hi) {
   return out;
 }
 
-}  // namespace
+/// The Craig-Bampton (or Guyan) reduction of the sector: both interfaces and the master sets
+/// kept physical.
+std::shared_ptr<const reduce::ReducedComponent> reduce_sector(
+    const assembly::SolidComponent& c, const CyclicModalSettings& s,
+    const std::vector<solid::DofInfo>& mesh_dofs, const std::vector<long>& left_ids,
+    const std::vector<long>& right_ids, const Context& context) {
+  if (c.is_reduced())
+    throw context.error("reduction",
+                        "reduction = \"none\" for a reduced component (it is reduced already)",
+                        fmt::format("a further reduction of solid '{}'", c.name));
+  std::vector<long> master_ids = left_ids;
+  master_ids.insert(master_ids.end(), right_ids.begin(), right_ids.end());
+  std::vector<std::vector<int>> lists = {reduce::select_dofs(mesh_dofs, master_ids),
+                                         master_dofs(c, s.master_sets)};
+  reduce::CraigBamptonOptions o;
+  o.n_modes = s.reduction == ReductionMethod::Guyan ? 0 : s.cb_modes;
+  Progress& progress = context.progress();
+  progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", context.name()), 0);
+  auto cb = std::make_shared<const reduce::ReducedComponent>(
+      reduce::craig_bampton(c.stiffness(), c.mass(), mesh_dofs, reduce::merge_dofs(lists), o,
+                            c.source_sha256, kVersion, progress));
+  progress.finish();
+  return cb;
+}
 
-AnalysisOutput run_cyclic_modal(const assembly::SolidComponent& c, const CyclicModalSettings& s,
-                                const std::string& name, Progress& progress) {
-  AnalysisOutput out;
+/// The modes of each nodal diameter of the sector (K, M): directly, or after interface-mode
+/// (Tran) reduction per nodal diameter.
+cyclic::CyclicModesResult solve_diameters(const Eigen::SparseMatrix<double>& K,
+                                          const Eigen::SparseMatrix<double>& M,
+                                          const cyclic::CyclicSector& sector,
+                                          const std::vector<long>& left_ids,
+                                          const std::vector<int>& nds, int n_sectors,
+                                          const CyclicModalSettings& s, const Context& context) {
+  Progress& progress = context.progress();
+  if (s.interface_modes <= 0) {
+    cyclic::CyclicModesOptions o;
+    o.nodal_diameters = nds;
+    o.eigen.n_modes = s.n_modes;
+    cyclic::CyclicModesResult modes = cyclic::solve_cyclic_modes(K, M, sector, o, progress);
+    if (modes.status != Status::Ok) throw NumericalError(context.name(), modes.message);
+    return modes;
+  }
+  const std::set<long> left_set(left_ids.begin(), left_ids.end());
+  cyclic::CyclicModesResult modes;
+  modes.n_sectors = n_sectors;
+  modes.status = Status::Ok;
+  progress.start(
+      fmt::format("{}: interface-mode reduction and solve per nodal diameter", context.name()),
+      nds.size());
+  for (std::size_t k = 0; k < nds.size(); ++k) {
+    modes.diameters.push_back(
+        tran_modes(K, M, sector, left_set, nds[k], s.n_modes, s.interface_modes, context.name()));
+    progress.update(k + 1);
+  }
+  progress.finish();
+  return modes;
+}
+
+/// compare_full: the replicated 360 deg mesh solved without cyclic symmetry, its lowest
+/// frequencies against the cyclic ones (double modes counted twice), when every nodal diameter
+/// was solved.
+CyclicFullComparison compare_with_full_wheel(const assembly::SolidComponent& c,
+                                             const cyclic::CyclicModesResult& modes,
+                                             const std::vector<int>& nds, const Context& context) {
+  CyclicFullComparison out;
+  const int N = c.sectors;
+  const std::set<int> solved(nds.begin(), nds.end());
+  if (static_cast<int>(solved.size()) != N / 2 + 1) return out;
+  Progress& progress = context.progress();
+  progress.start(fmt::format("{}: full 360 deg model", context.name()), 0);
+  const cyclic::ReplicatedMesh rep = cyclic::replicate(c.mesh, N, c.interface_tolerance);
+  solid::AssemblyOptions ao;
+  ao.threads = 0;
+  const solid::SolidSystem full = solid::assemble(rep.mesh, ao);
+  std::vector<std::pair<double, int>> cyc;  // (frequency, nodal diameter) with multiplicity
+  double f_cut = std::numeric_limits<double>::infinity();
+  for (const auto& d : modes.diameters) {
+    for (Eigen::Index j = 0; j < d.frequency_hz.size(); ++j)
+      for (int k = 0; k < d.multiplicity; ++k)
+        cyc.emplace_back(d.frequency_hz[j], d.nodal_diameter);
+    f_cut = std::min(f_cut, d.frequency_hz[d.frequency_hz.size() - 1]);
+  }
+  std::sort(cyc.begin(), cyc.end());
+  int n_compare = 0;
+  while (n_compare < static_cast<int>(cyc.size()) &&
+         cyc[static_cast<std::size_t>(n_compare)].first <= f_cut * (1 + 1e-9))
+    ++n_compare;
+  const eig::SymmetricEigenResult fr =
+      solve_modes(full.K, full.M, n_compare, eig::kNaN, context.name());
+  progress.finish();
+  out.done = true;
+  out.full_dofs = static_cast<int>(full.num_dofs());
+  for (int j = 0; j < n_compare && j < fr.eigenvalues.size(); ++j) {
+    out.full_hz.push_back(hz(fr.eigenvalues[j]));
+    out.cyclic_hz.push_back(cyc[static_cast<std::size_t>(j)].first);
+    out.nodal_diameter.push_back(cyc[static_cast<std::size_t>(j)].second);
+    const double e =
+        (out.cyclic_hz.back() - out.full_hz.back()) / std::max(out.full_hz.back(), 1e-3);
+    out.relative_error.push_back(e);
+    out.worst_error = std::max(out.worst_error, std::abs(e));
+  }
+  return out;
+}
+
+/// The notes on the sector: the component, its interfaces and its reductions.
+void add_sector_notes(AnalysisOutput& out, const assembly::SolidComponent& c,
+                      const CyclicModalSettings& s, const CyclicModalResult& r) {
   out.notes.push_back(c.description);
   for (const auto& w : c.warnings) out.notes.push_back(w);
+  const cyclic::SectorInterfaces& mi = r.mesh_interfaces;
+  out.notes.push_back(fmt::format(
+      "Sector interfaces: {} node pairs, worst mismatch {:.2e} m (tolerance {:.2e} m) at left "
+      "node {}.",
+      mi.pairs.size(), mi.worst_mismatch, mi.tolerance_used, mi.worst_left_node));
+  if (r.reduction) {
+    const reduce::ReducedComponent& cb = *r.reduction;
+    out.notes.push_back(fmt::format(
+        "Sector reduced by {}: {} physical masters (interfaces{}) + {} fixed-interface modes "
+        "(up to {:.1f} Hz) from {} DOFs.",
+        s.reduction == ReductionMethod::Guyan ? "Guyan" : "Craig-Bampton", cb.n_masters(),
+        s.master_sets.empty() ? "" : " and master sets", cb.n_modal,
+        cb.n_modal > 0 ? cb.fixed_interface_hz[cb.n_modal - 1] : 0.0, r.mesh_dofs));
+  }
+  if (s.interface_modes > 0)
+    out.notes.push_back(fmt::format(
+        "Interface-mode (Tran) reduction: the left-interface DOFs of each nodal diameter are "
+        "replaced by its {} lowest interface modes.",
+        s.interface_modes));
+}
+
+/// The rotating-frame Campbell diagram and the resonance speeds in the speed range.
+void add_campbell(AnalysisOutput& out, int n_sectors, const CyclicModalSettings& s,
+                  const cyclic::CyclicModesResult& modes) {
+  cyclic::CyclicCampbellOptions co;
+  co.n_sectors = n_sectors;
+  co.max_engine_order = s.max_engine_order > 0 ? s.max_engine_order : 2 * n_sectors;
+  const double rpm_min = s.speeds.front() * 60.0 / kTwoPi;
+  const double rpm_max = s.speeds.back() * 60.0 / kTwoPi;
+  const Table all = cyclic::cyclic_campbell(cyclic::frequency_lines(modes), co);
+  Table resonances = rows_in_range(all, rpm_min, rpm_max);
+  resonances.title =
+      fmt::format("Resonance speeds between {:.0f} and {:.0f} rpm", rpm_min, rpm_max);
+  out.plots.push_back(campbell_plot(modes, resonances, rpm_min, rpm_max, co.max_engine_order));
+  out.tables.push_back(std::move(resonances));
+}
+
+/// The compare_full table and note (or why the check was skipped).
+void add_comparison(AnalysisOutput& out, const assembly::SolidComponent& c,
+                    const CyclicFullComparison& f) {
+  if (!c.has_mesh()) {
+    out.notes.push_back(fmt::format(
+        "compare_full skipped: solid '{}' (type \"{}\") has no mesh to replicate into the full "
+        "wheel.",
+        c.name, c.kind()));
+    return;
+  }
+  if (!f.done) {
+    out.notes.push_back("compare_full needs every nodal diameter; the check was skipped.");
+    return;
+  }
+  Table t;
+  t.name = "cyclic_vs_full";
+  t.title = "Cyclic symmetry versus the full 360 deg model of the same mesh";
+  std::vector<double> mode;
+  for (std::size_t j = 0; j < f.full_hz.size(); ++j) mode.push_back(static_cast<double>(j + 1));
+  t.add("mode", "", mode);
+  t.add("full_hz", "Hz", f.full_hz);
+  t.add("cyclic_hz", "Hz", f.cyclic_hz);
+  t.add("nodal_diameter", "", f.nodal_diameter);
+  t.add("relative_error", "", f.relative_error);
+  out.tables.push_back(std::move(t));
+  out.notes.push_back(fmt::format(
+      "Full 360 deg model ({} DOFs): the first {} frequencies agree with the cyclic ones "
+      "(double modes counted twice) within {:.1e} relative.",
+      f.full_dofs, mode.size(), f.worst_error));
+}
+
+/// Full-wheel mode shapes (mesh components only): each nodal diameter's sector shapes, expanded
+/// from the reduction and around the wheel.
+void add_wheel_shapes(AnalysisOutput& out, const assembly::SolidComponent& c,
+                      const CyclicModalSettings& s, const CyclicModalResult& r) {
   const int N = c.sectors;
+  const cyclic::CyclicSector mesh_sector(c.dofs(), r.mesh_interfaces);
+  cyclic::ReplicatedMesh rep = cyclic::replicate(c.mesh, N, c.interface_tolerance);
+  auto wheel = std::make_shared<solid::Mesh>(std::move(rep.mesh));
+  std::vector<meshio::Field> fields;
+  std::vector<double> times;
+  constexpr std::size_t kMaxFields = 40;
+  for (const auto& d : r.modes.diameters) {
+    const int n = std::min<int>(s.shapes, static_cast<int>(d.frequency_hz.size()));
+    for (int j = 0; j < n && fields.size() < kMaxFields; ++j) {
+      Eigen::VectorXcd u0 = d.sector_shapes.col(j);
+      if (r.reduction) {
+        const Eigen::MatrixXd re = reduce::expand(*r.reduction, u0.real());
+        const Eigen::MatrixXd im = reduce::expand(*r.reduction, u0.imag());
+        u0 = re.col(0).cast<std::complex<double>>() +
+             std::complex<double>(0.0, 1.0) * im.col(0).cast<std::complex<double>>();
+      }
+      meshio::Field field;
+      field.name = fmt::format("nd{}_mode{}", d.nodal_diameter, j + 1);
+      field.values.assign(static_cast<std::size_t>(wheel->num_nodes()) * 3, 0.0);
+      for (int sec = 0; sec < N; ++sec) {
+        const Eigen::VectorXd us = mesh_sector.expand_to_sector(u0, d.nodal_diameter, sec).real();
+        const std::vector<double> v = node_translations(c.system, c.mesh.num_nodes(), us);
+        const auto& map = rep.node_map[static_cast<std::size_t>(sec)];
+        for (std::size_t i = 0; i < map.size(); ++i)
+          for (int k = 0; k < 3; ++k)
+            field.values[static_cast<std::size_t>(map[i]) * 3 + k] = v[i * 3 + k];
+      }
+      normalise(field.values);
+      fields.push_back(std::move(field));
+      times.push_back(d.frequency_hz[j]);
+    }
+  }
+  add_shape_files(out, wheel, std::move(fields), std::move(times), "wheel_modes",
+                  "Full-wheel mode shapes per nodal diameter (real part, largest displacement 1)");
+}
+
+}  // namespace
+
+CyclicModalResult run_cyclic_modal(const model::Model& model, const CyclicModalSettings& s,
+                                   const Context& context) {
+  const assembly::SolidComponent& c = context.solid(model, s.solid);
+  const int N = c.sectors;
+  CyclicModalResult r;
 
   // The sector the cyclic solve works on: the assembled mesh, its Craig-Bampton reduction, or a
   // reduced component from a file.
   const std::vector<solid::DofInfo> mesh_dofs = c.dofs();
-  const cyclic::SectorInterfaces mesh_interfaces =
-      cyclic::find_interfaces(mesh_dofs, interface_options(c));
-  out.notes.push_back(fmt::format(
-      "Sector interfaces: {} node pairs, worst mismatch {:.2e} m (tolerance {:.2e} m) at left "
-      "node {}.",
-      mesh_interfaces.pairs.size(), mesh_interfaces.worst_mismatch, mesh_interfaces.tolerance_used,
-      mesh_interfaces.worst_left_node));
-  const auto [left_ids, right_ids] = pair_ids(mesh_interfaces);
+  r.mesh_dofs = mesh_dofs.size();
+  r.mesh_interfaces = cyclic::find_interfaces(mesh_dofs, interface_options(c));
+  const auto [left_ids, right_ids] = pair_ids(r.mesh_interfaces);
 
-  std::optional<reduce::ReducedComponent> cb;
   std::vector<solid::DofInfo> dofs = mesh_dofs;
   Eigen::SparseMatrix<double> K = c.stiffness(), M = c.mass();
   if (s.reduction != ReductionMethod::None) {
-    if (c.is_reduced())
-      throw InputError({}, "reduction",
-                       "reduction = \"none\" for a reduced component (it is reduced already)",
-                       fmt::format("a further reduction of solid '{}'", c.name));
-    std::vector<long> master_ids = left_ids;
-    master_ids.insert(master_ids.end(), right_ids.begin(), right_ids.end());
-    std::vector<std::vector<int>> lists = {reduce::select_dofs(mesh_dofs, master_ids),
-                                           master_dofs(c, s.master_sets)};
-    reduce::CraigBamptonOptions o;
-    o.n_modes = s.reduction == ReductionMethod::Guyan ? 0 : s.cb_modes;
-    progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", name), 0);
-    cb = reduce::craig_bampton(K, M, mesh_dofs, reduce::merge_dofs(lists), o, c.source_sha256,
-                               kVersion, progress);
-    progress.finish();
-    dofs = cb->reduced_dofs();
-    K = cb->K.sparseView();
-    M = cb->M.sparseView();
-    out.notes.push_back(fmt::format(
-        "Sector reduced by {}: {} physical masters (interfaces{}) + {} fixed-interface modes "
-        "(up to {:.1f} Hz) from {} DOFs.",
-        s.reduction == ReductionMethod::Guyan ? "Guyan" : "Craig-Bampton", cb->n_masters(),
-        s.master_sets.empty() ? "" : " and master sets", cb->n_modal,
-        cb->n_modal > 0 ? cb->fixed_interface_hz[cb->n_modal - 1] : 0.0, mesh_dofs.size()));
+    r.reduction = reduce_sector(c, s, mesh_dofs, left_ids, right_ids, context);
+    dofs = r.reduction->reduced_dofs();
+    K = r.reduction->K.sparseView();
+    M = r.reduction->M.sparseView();
   }
 
   cyclic::InterfaceOptions io = interface_options(c);
@@ -240,152 +431,35 @@ AnalysisOutput run_cyclic_modal(const assembly::SolidComponent& c, const CyclicM
   io.right_nodes = right_ids;
   const cyclic::CyclicSector sector(dofs, cyclic::find_interfaces(dofs, io));
 
-  std::vector<int> nds = s.nodal_diameters;
-  if (nds.empty())
-    for (int h = 0; h <= N / 2; ++h) nds.push_back(h);
-
-  cyclic::CyclicModesResult modes;
-  if (s.interface_modes > 0) {
-    const std::set<long> left_set(left_ids.begin(), left_ids.end());
-    modes.n_sectors = N;
-    modes.status = Status::Ok;
-    progress.start(fmt::format("{}: interface-mode reduction and solve per nodal diameter", name),
-                   nds.size());
-    for (std::size_t k = 0; k < nds.size(); ++k) {
-      modes.diameters.push_back(
-          tran_modes(K, M, sector, left_set, nds[k], s.n_modes, s.interface_modes, name));
-      progress.update(k + 1);
-    }
-    progress.finish();
-    out.notes.push_back(fmt::format(
-        "Interface-mode (Tran) reduction: the left-interface DOFs of each nodal diameter are "
-        "replaced by its {} lowest interface modes.",
-        s.interface_modes));
-  } else {
-    cyclic::CyclicModesOptions o;
-    o.nodal_diameters = nds;
-    o.eigen.n_modes = s.n_modes;
-    modes = cyclic::solve_cyclic_modes(K, M, sector, o, progress);
-    if (modes.status != Status::Ok) throw NumericalError(name, modes.message);
-  }
-  out.notes.push_back(modes.brief_report());
-  double worst = 0.0;
-  for (const auto& d : modes.diameters) worst = std::max(worst, d.eigen.max_residual());
-  out.notes.push_back(trust_from_residual(worst));
-  out.tables.push_back(modes.table());
-  out.plots.push_back(nd_plot(modes));
-
-  // Rotating-frame Campbell diagram and resonance speeds.
-  if (!s.speeds.empty()) {
-    cyclic::CyclicCampbellOptions co;
-    co.n_sectors = N;
-    co.max_engine_order = s.max_engine_order > 0 ? s.max_engine_order : 2 * N;
-    const double rpm_min = s.speeds.front() * 60.0 / kTwoPi;
-    const double rpm_max = s.speeds.back() * 60.0 / kTwoPi;
-    const Table all = cyclic::cyclic_campbell(cyclic::frequency_lines(modes), co);
-    Table resonances = rows_in_range(all, rpm_min, rpm_max);
-    resonances.title =
-        fmt::format("Resonance speeds between {:.0f} and {:.0f} rpm", rpm_min, rpm_max);
-    out.plots.push_back(campbell_plot(modes, resonances, rpm_min, rpm_max, co.max_engine_order));
-    out.tables.push_back(std::move(resonances));
-  }
+  r.nodal_diameters = s.nodal_diameters;
+  if (r.nodal_diameters.empty())
+    for (int h = 0; h <= N / 2; ++h) r.nodal_diameters.push_back(h);
+  r.modes = solve_diameters(K, M, sector, left_ids, r.nodal_diameters, N, s, context);
+  for (const auto& d : r.modes.diameters)
+    for (Eigen::Index j = 0; j < d.frequency_hz.size(); ++j)
+      r.frequency_hz.push_back(d.frequency_hz[j]);
+  std::sort(r.frequency_hz.begin(), r.frequency_hz.end());
 
   // Check against the replicated full wheel (the same mesh, no cyclic symmetry).
-  if (s.compare_full && !c.has_mesh())
-    out.notes.push_back(fmt::format(
-        "compare_full skipped: solid '{}' (type \"{}\") has no mesh to replicate into the full "
-        "wheel.",
-        c.name, c.kind()));
-  if (s.compare_full && c.has_mesh()) {
-    std::set<int> solved(nds.begin(), nds.end());
-    if (static_cast<int>(solved.size()) != N / 2 + 1) {
-      out.notes.push_back("compare_full needs every nodal diameter; the check was skipped.");
-    } else {
-      progress.start(fmt::format("{}: full 360 deg model", name), 0);
-      const cyclic::ReplicatedMesh rep = cyclic::replicate(c.mesh, N, c.interface_tolerance);
-      solid::AssemblyOptions ao;
-      ao.threads = 0;
-      const solid::SolidSystem full = solid::assemble(rep.mesh, ao);
-      std::vector<std::pair<double, int>> cyc;  // (frequency, nodal diameter) with multiplicity
-      double f_cut = std::numeric_limits<double>::infinity();
-      for (const auto& d : modes.diameters) {
-        for (Eigen::Index j = 0; j < d.frequency_hz.size(); ++j)
-          for (int k = 0; k < d.multiplicity; ++k)
-            cyc.emplace_back(d.frequency_hz[j], d.nodal_diameter);
-        f_cut = std::min(f_cut, d.frequency_hz[d.frequency_hz.size() - 1]);
-      }
-      std::sort(cyc.begin(), cyc.end());
-      int n_compare = 0;
-      while (n_compare < static_cast<int>(cyc.size()) &&
-             cyc[static_cast<std::size_t>(n_compare)].first <= f_cut * (1 + 1e-9))
-        ++n_compare;
-      const eig::SymmetricEigenResult fr = solve_modes(full.K, full.M, n_compare, eig::kNaN, name);
-      progress.finish();
-      Table t;
-      t.name = "cyclic_vs_full";
-      t.title = "Cyclic symmetry versus the full 360 deg model of the same mesh";
-      std::vector<double> mode, f_full, f_cyc, nd, err;
-      double worst_err = 0.0;
-      for (int j = 0; j < n_compare && j < fr.eigenvalues.size(); ++j) {
-        mode.push_back(j + 1);
-        f_full.push_back(hz(fr.eigenvalues[j]));
-        f_cyc.push_back(cyc[static_cast<std::size_t>(j)].first);
-        nd.push_back(cyc[static_cast<std::size_t>(j)].second);
-        const double e = (f_cyc.back() - f_full.back()) / std::max(f_full.back(), 1e-3);
-        err.push_back(e);
-        worst_err = std::max(worst_err, std::abs(e));
-      }
-      t.add("mode", "", mode);
-      t.add("full_hz", "Hz", f_full);
-      t.add("cyclic_hz", "Hz", f_cyc);
-      t.add("nodal_diameter", "", nd);
-      t.add("relative_error", "", err);
-      out.tables.push_back(std::move(t));
-      out.notes.push_back(fmt::format(
-          "Full 360 deg model ({} DOFs): the first {} frequencies agree with the cyclic ones "
-          "(double modes counted twice) within {:.1e} relative.",
-          full.num_dofs(), mode.size(), worst_err));
-    }
-  }
+  if (s.compare_full && c.has_mesh())
+    r.full = compare_with_full_wheel(c, r.modes, r.nodal_diameters, context);
+  return r;
+}
 
-  // Full-wheel mode shapes (mesh components only).
-  if (c.has_mesh() && s.shapes > 0) {
-    const cyclic::CyclicSector mesh_sector(mesh_dofs, mesh_interfaces);
-    cyclic::ReplicatedMesh rep = cyclic::replicate(c.mesh, N, c.interface_tolerance);
-    auto wheel = std::make_shared<solid::Mesh>(std::move(rep.mesh));
-    std::vector<meshio::Field> fields;
-    std::vector<double> times;
-    constexpr std::size_t kMaxFields = 40;
-    for (const auto& d : modes.diameters) {
-      const int n = std::min<int>(s.shapes, static_cast<int>(d.frequency_hz.size()));
-      for (int j = 0; j < n && fields.size() < kMaxFields; ++j) {
-        Eigen::VectorXcd u0 = d.sector_shapes.col(j);
-        if (cb) {
-          const Eigen::MatrixXd re = reduce::expand(*cb, u0.real());
-          const Eigen::MatrixXd im = reduce::expand(*cb, u0.imag());
-          u0 = re.col(0).cast<std::complex<double>>() +
-               std::complex<double>(0.0, 1.0) * im.col(0).cast<std::complex<double>>();
-        }
-        meshio::Field field;
-        field.name = fmt::format("nd{}_mode{}", d.nodal_diameter, j + 1);
-        field.values.assign(static_cast<std::size_t>(wheel->num_nodes()) * 3, 0.0);
-        for (int sec = 0; sec < N; ++sec) {
-          const Eigen::VectorXd us = mesh_sector.expand_to_sector(u0, d.nodal_diameter, sec).real();
-          const std::vector<double> v = node_translations(c.system, c.mesh.num_nodes(), us);
-          const auto& map = rep.node_map[static_cast<std::size_t>(sec)];
-          for (std::size_t i = 0; i < map.size(); ++i)
-            for (int k = 0; k < 3; ++k)
-              field.values[static_cast<std::size_t>(map[i]) * 3 + k] = v[i * 3 + k];
-        }
-        normalise(field.values);
-        fields.push_back(std::move(field));
-        times.push_back(d.frequency_hz[j]);
-      }
-    }
-    add_shape_files(
-        out, wheel, std::move(fields), std::move(times), "wheel_modes",
-        "Full-wheel mode shapes per nodal diameter (real part, largest displacement 1)");
-  }
+AnalysisOutput cyclic_modal_output(const model::Model& model, const CyclicModalSettings& s,
+                                   const CyclicModalResult& r, const Context& context) {
+  const assembly::SolidComponent& c = context.solid(model, s.solid);
+  AnalysisOutput out;
+  add_sector_notes(out, c, s, r);
+  out.notes.push_back(r.modes.brief_report());
+  double worst = 0.0;
+  for (const auto& d : r.modes.diameters) worst = std::max(worst, d.eigen.max_residual());
+  out.notes.push_back(trust_from_residual(worst));
+  out.tables.push_back(r.modes.table());
+  out.plots.push_back(nd_plot(r.modes));
+  if (!s.speeds.empty()) add_campbell(out, c.sectors, s, r.modes);
+  if (s.compare_full) add_comparison(out, c, r.full);
+  if (c.has_mesh() && s.shapes > 0) add_wheel_shapes(out, c, s, r);
   return out;
 }
 

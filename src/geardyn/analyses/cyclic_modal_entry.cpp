@@ -1,10 +1,13 @@
 // The `type = "cyclic_modal"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/cyclic_modal.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -33,6 +36,18 @@ void finish(Analysis& a, const TableContext& t) {
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   const auto& c = a.settings_of<CyclicModalSettings>();
   (void)check_solid_use(path, c.solid, check, true, c.nodal_diameters);
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<CyclicModalResult>(o);
+  if (q.quantity != "natural_frequency")
+    throw std::runtime_error(fmt::format("cyclic_modal offers no scalar \'{}\'", q.quantity));
+  unit = std::string("Hz");
+  if (q.mode < 1 || static_cast<std::size_t>(q.mode) > r.frequency_hz.size())
+    throw std::runtime_error(
+        fmt::format("natural_frequency: mode {} of {} computed over all nodal diameters", q.mode,
+                    r.frequency_hz.size()));
+  return r.frequency_hz[static_cast<std::size_t>(q.mode - 1)];
 }
 
 std::vector<model::Field> keys() {
@@ -101,8 +116,16 @@ AnalysisType cyclic_modal_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<CyclicModalSettings>();
-    return Outcome{run_cyclic_modal(c.solid(m, s.solid), s, a.name, c.progress()), nullptr};
+    CyclicModalResult r = run_cyclic_modal(m, s, c);
+    AnalysisOutput out = cyclic_modal_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {{"natural_frequency",
+                   "Hz",
+                   "Natural frequency of mode `mode` counted over all nodal diameters solved, in "
+                   "ascending order of frequency (a double mode of a nodal diameter counts once).",
+                   {"mode"}}};
+  type.scalar = scalar;
   return type;
 }
 

@@ -2,18 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <numbers>
 #include <utility>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::analyses {
 
-namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-}  // namespace
-
-double to_rpm(double omega) { return omega * 60.0 / kTwoPi; }
+double to_rpm(double omega) { return omega * 60.0 / units::kTwoPi; }
 
 std::string rpm_text(double rpm) { return fmt::format("{:.6g} rpm", rpm); }
 

@@ -3,12 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <numbers>
+#include <limits>
 #include <vector>
 
-#include "geardyn/analyses/gear_common.hpp"  // MeshForceModel, which pair_model.hpp uses
 #include "geardyn/analyses/gear_helpers.hpp"
-#include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/gear/geometry.hpp"
 #include "geardyn/gear/tooth_forces.hpp"
 
@@ -16,8 +15,9 @@ namespace geardyn::analyses {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kDeg = 180.0 / std::numbers::pi;
+using units::kTwoPi;
+/// Degrees per radian, as the tables have always multiplied by it (bit for bit).
+constexpr double kDeg = 180.0 / units::kPi;
 
 /// The STE the dynamic model uses, with the mesh stiffness it implies, over one mesh cycle.
 Table ste_table(const PairModel& pm, const std::string& table_name) {
@@ -97,24 +97,102 @@ Table iso_table(const std::vector<PairModel>& pairs) {
   return t;
 }
 
-/// Natural frequency of the mesh, sqrt(k_mean / m_e) / 2 pi [Hz], with k_mean of the STE used.
-double mesh_natural_frequency_hz(const PairModel& pm, double mass_kg) {
-  return std::sqrt(pm.static_force_n * pm.ste->mean_inverse_elastic_per_m() / mass_kg) / kTwoPi;
+/// The mesh-stiffness table, its plots and the notes of one pair.
+void add_pair_output(AnalysisOutput& out, const PairModel& pm, bool several) {
+  const std::string suffix = several ? "_" + pm.pair->name : "";
+  Table ste = ste_table(pm, "mesh_stiffness" + suffix);
+  const std::vector<double>& angle = ste.column("pinion_angle_deg").numbers;
+
+  Plot k;
+  k.name = "mesh_stiffness" + suffix;
+  k.title = fmt::format("Mesh stiffness of '{}' over one mesh cycle", pm.pair->name);
+  k.x_label = "rotation of gear 1 [deg]";
+  k.y_label = "mesh stiffness [N/m]";
+  k.traces.push_back(line(pm.ste_from_file ? "from the STE file" : "ISO 6336 (synthetic STE)",
+                          angle, ste.column("stiffness_n_per_m").numbers));
+  if (pm.ste_from_file) {
+    // The ISO-based curve for comparison (unshifted: its sample 0 is the contact entry).
+    std::vector<double> iso_angle = scaled(pm.stiffness.pinion_angle_rad, kDeg);
+    k.traces.push_back(line("ISO 6336-1 (geometry)", iso_angle, pm.stiffness.stiffness_n_per_m,
+                            Trace::Mode::Lines, "dash"));
+  }
+  Plot e;
+  e.name = "ste" + suffix;
+  e.title = fmt::format("Static transmission error of '{}' at T1 = {:.6g} N m", pm.pair->name,
+                        pm.pair->torque);
+  e.x_label = "rotation of gear 1 [deg]";
+  e.y_label = "STE along the line of action [um]";
+  e.traces.push_back(line("STE", angle, scaled(ste.column("ste_m").numbers, 1e6)));
+  out.tables.push_back(std::move(ste));
+  out.plots.push_back(std::move(k));
+  out.plots.push_back(std::move(e));
+
+  const gear::GearPairGeometry& g = pm.geometry;
+  const double k_mean = mean_mesh_stiffness(pm);
+  out.notes.push_back(fmt::format(
+      "'{}': contact ratio eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}; mesh "
+      "frequency = {} x speed of gear 1; F_s = T1 / r_b1 = {:.6g} N (r_b1 = {:.6g} m).",
+      pm.pair->name, g.transverse_contact_ratio, g.overlap_ratio, g.total_contact_ratio,
+      pm.pair->teeth1, pm.static_force_n, pm.base_radius1_m));
+  out.notes.push_back(fmt::format(
+      "'{}': mean mesh stiffness {:.6g} N/m from the {} (ISO 6336-1 c_gamma_alpha b = {:.6g} "
+      "N/m); the time-varying ISO curve is a single-pair law with load sharing, not a "
+      "loaded tooth-contact analysis.",
+      pm.pair->name, k_mean,
+      pm.ste_from_file ? fmt::format("STE file {}", pm.pair->ste_file)
+                       : std::string("synthetic STE"),
+      pm.stiffness.iso.mesh_stiffness_n_per_m));
+  if (gear::is_bevel(g.spec.type))
+    out.notes.push_back(fmt::format(
+        "'{}': bevel / hypoid geometry as the virtual cylindrical pair at mid face (ISO "
+        "10300-1, Tredgold); the ISO 6336 stiffness is applied to that virtual pair, outside "
+        "ISO 6336's scope.",
+        pm.pair->name));
+  if (!std::isnan(pm.pair->inertia1) && !std::isnan(pm.pair->inertia2)) {
+    const double fn = mesh_natural_frequency_hz(pm);
+    out.notes.push_back(fmt::format(
+        "'{}': mesh natural frequency sqrt(k_mean / m_e) / 2 pi = {:.6g} Hz (m_e = {:.6g} kg), "
+        "met by the mesh frequency at gear 1 speed {}.",
+        pm.pair->name, fn, pm.equivalent_mass_kg(), rpm_text(60.0 * fn / pm.pair->teeth1)));
+  }
 }
 
 }  // namespace
 
-AnalysisOutput run_gear_pair(const model::Model& model, const GearPairSettings& settings,
-                             const std::string& name, Progress& progress) {
-  (void)name;
-  std::vector<PairModel> pairs;
+double mean_mesh_stiffness(const PairModel& pm) {
+  return pm.static_force_n * pm.ste->mean_inverse_elastic_per_m();
+}
+
+double mesh_natural_frequency_hz(const PairModel& pm) {
+  if (std::isnan(pm.pair->inertia1) || std::isnan(pm.pair->inertia2))
+    return std::numeric_limits<double>::quiet_NaN();
+  return std::sqrt(pm.static_force_n * pm.ste->mean_inverse_elastic_per_m() /
+                   pm.equivalent_mass_kg()) /
+         kTwoPi;
+}
+
+GearPairResult run_gear_pair(const model::Model& model, const GearPairSettings& settings,
+                             const Context& context) {
+  GearPairResult r;
+  Progress& progress = context.progress();
   if (settings.pair.empty()) {
-    for (std::size_t i = 0; i < model.gear_pairs.size(); ++i)
-      pairs.push_back(build_pair_model(model, i));
+    progress.start("gear pairs", model.gear_pairs.size());
+    for (std::size_t i = 0; i < model.gear_pairs.size(); ++i) {
+      r.pairs.push_back(build_pair_model(model, i));
+      progress.update(i + 1);
+    }
   } else {
-    pairs.push_back(build_pair_model(model, pair_index(model, settings.pair)));
+    progress.start("gear pairs", 1);
+    r.pairs.push_back(build_pair_model(model, pair_index(model, settings.pair)));
+    progress.update(1);
   }
-  progress.start("gear pairs", pairs.size());
+  progress.finish();
+  return r;
+}
+
+AnalysisOutput gear_pair_output(const model::Model& /*model*/, const GearPairSettings& /*settings*/,
+                                const GearPairResult& result, const Context& /*context*/) {
+  const std::vector<PairModel>& pairs = result.pairs;
   AnalysisOutput out;
   std::vector<gear::GearPairGeometry> geometries, force_pairs;
   std::vector<gear::MeshLoadCase> loads;
@@ -128,68 +206,7 @@ AnalysisOutput run_gear_pair(const model::Model& model, const GearPairSettings& 
   out.tables.push_back(gear::geometry_table(geometries));
   out.tables.push_back(gear::tooth_force_table(force_pairs, loads));
   out.tables.push_back(iso_table(pairs));
-
-  std::size_t done = 0;
-  for (const PairModel& pm : pairs) {
-    const std::string suffix = pairs.size() == 1 ? "" : "_" + pm.pair->name;
-    Table ste = ste_table(pm, "mesh_stiffness" + suffix);
-    const std::vector<double>& angle = ste.column("pinion_angle_deg").numbers;
-
-    Plot k;
-    k.name = "mesh_stiffness" + suffix;
-    k.title = fmt::format("Mesh stiffness of '{}' over one mesh cycle", pm.pair->name);
-    k.x_label = "rotation of gear 1 [deg]";
-    k.y_label = "mesh stiffness [N/m]";
-    k.traces.push_back(line(pm.ste_from_file ? "from the STE file" : "ISO 6336 (synthetic STE)",
-                            angle, ste.column("stiffness_n_per_m").numbers));
-    if (pm.ste_from_file) {
-      // The ISO-based curve for comparison (unshifted: its sample 0 is the contact entry).
-      std::vector<double> iso_angle = scaled(pm.stiffness.pinion_angle_rad, kDeg);
-      k.traces.push_back(line("ISO 6336-1 (geometry)", iso_angle, pm.stiffness.stiffness_n_per_m,
-                              Trace::Mode::Lines, "dash"));
-    }
-    Plot e;
-    e.name = "ste" + suffix;
-    e.title = fmt::format("Static transmission error of '{}' at T1 = {:.6g} N m", pm.pair->name,
-                          pm.pair->torque);
-    e.x_label = "rotation of gear 1 [deg]";
-    e.y_label = "STE along the line of action [um]";
-    e.traces.push_back(line("STE", angle, scaled(ste.column("ste_m").numbers, 1e6)));
-    out.tables.push_back(std::move(ste));
-    out.plots.push_back(std::move(k));
-    out.plots.push_back(std::move(e));
-
-    const gear::GearPairGeometry& g = pm.geometry;
-    const double k_mean = pm.static_force_n * pm.ste->mean_inverse_elastic_per_m();
-    out.notes.push_back(fmt::format(
-        "'{}': contact ratio eps_alpha = {:.4f}, eps_beta = {:.4f}, eps_gamma = {:.4f}; mesh "
-        "frequency = {} x speed of gear 1; F_s = T1 / r_b1 = {:.6g} N (r_b1 = {:.6g} m).",
-        pm.pair->name, g.transverse_contact_ratio, g.overlap_ratio, g.total_contact_ratio,
-        pm.pair->teeth1, pm.static_force_n, pm.base_radius1_m));
-    out.notes.push_back(fmt::format(
-        "'{}': mean mesh stiffness {:.6g} N/m from the {} (ISO 6336-1 c_gamma_alpha b = {:.6g} "
-        "N/m); the time-varying ISO curve is a single-pair law with load sharing, not a "
-        "loaded tooth-contact analysis.",
-        pm.pair->name, k_mean,
-        pm.ste_from_file ? fmt::format("STE file {}", pm.pair->ste_file)
-                         : std::string("synthetic STE"),
-        pm.stiffness.iso.mesh_stiffness_n_per_m));
-    if (gear::is_bevel(g.spec.type))
-      out.notes.push_back(fmt::format(
-          "'{}': bevel / hypoid geometry as the virtual cylindrical pair at mid face (ISO "
-          "10300-1, Tredgold); the ISO 6336 stiffness is applied to that virtual pair, outside "
-          "ISO 6336's scope.",
-          pm.pair->name));
-    if (!std::isnan(pm.pair->inertia1) && !std::isnan(pm.pair->inertia2)) {
-      const double fn = mesh_natural_frequency_hz(pm, pm.equivalent_mass_kg());
-      out.notes.push_back(fmt::format(
-          "'{}': mesh natural frequency sqrt(k_mean / m_e) / 2 pi = {:.6g} Hz (m_e = {:.6g} kg), "
-          "met by the mesh frequency at gear 1 speed {}.",
-          pm.pair->name, fn, pm.equivalent_mass_kg(), rpm_text(60.0 * fn / pm.pair->teeth1)));
-    }
-    progress.update(++done);
-  }
-  progress.finish();
+  for (const PairModel& pm : pairs) add_pair_output(out, pm, pairs.size() != 1);
   return out;
 }
 

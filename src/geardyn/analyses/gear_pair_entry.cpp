@@ -1,10 +1,14 @@
 // The `type = "gear_pair"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/gear_pair.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -22,6 +26,38 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   use.pair = &a.settings_of<GearPairSettings>().pair;
   use.empty_allowed = true;
   check_gear_pair_use(a, path, check, use);
+}
+
+/// The pair a scalar request reads: `mode` counts the pairs analysed (1 for a single pair).
+const PairModel& requested_pair(const GearPairResult& r, const ScalarRequest& q) {
+  if (q.mode < 1 || static_cast<std::size_t>(q.mode) > r.pairs.size())
+    throw std::runtime_error(
+        fmt::format("{}: mode = {} asks for gear pair {}, but the analysis has {} pair{}",
+                    q.quantity, q.mode, q.mode, r.pairs.size(), r.pairs.size() == 1 ? "" : "s"));
+  return r.pairs[static_cast<std::size_t>(q.mode - 1)];
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const PairModel& pm = requested_pair(result_of<GearPairResult>(o), q);
+  if (q.quantity == "contact_ratio") {
+    unit.clear();
+    return pm.geometry.total_contact_ratio;
+  }
+  if (q.quantity == "mesh_stiffness") {
+    unit = std::string("N/m");
+    return mean_mesh_stiffness(pm);
+  }
+  if (q.quantity == "mesh_natural_frequency") {
+    unit = std::string("Hz");
+    const double fn = mesh_natural_frequency_hz(pm);
+    if (std::isnan(fn))
+      throw std::runtime_error(fmt::format(
+          "mesh_natural_frequency: gear pair '{}' has no inertia1 and inertia2 (the mesh's "
+          "equivalent mass needs both)",
+          pm.pair->name));
+    return fn;
+  }
+  throw std::runtime_error(fmt::format("gear_pair offers no scalar \'{}\'", q.quantity));
 }
 
 std::vector<model::Field> keys() {
@@ -46,9 +82,29 @@ AnalysisType gear_pair_analysis() {
     return d;
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    return Outcome{run_gear_pair(m, a.settings_of<GearPairSettings>(), a.name, c.progress()),
-                   nullptr};
+    const auto& s = a.settings_of<GearPairSettings>();
+    GearPairResult r = run_gear_pair(m, s, c);
+    AnalysisOutput out = gear_pair_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {
+      {"contact_ratio",
+       "",
+       "Total contact ratio eps_gamma = eps_alpha + eps_beta of gear pair `mode` (counted among "
+       "the pairs analysed; 1 for a single pair).",
+       {"mode"}},
+      {"mesh_stiffness",
+       "N/m",
+       "Mean mesh stiffness k_mean = F_s x (mean over the mesh cycle of 1 / (STE - geometric TE)) "
+       "of gear pair `mode`.",
+       {"mode"}},
+      {"mesh_natural_frequency",
+       "Hz",
+       "Natural frequency of the mesh sqrt(k_mean / m_e) / 2 pi of gear pair `mode` (needs both "
+       "inertias).",
+       {"mode"}},
+  };
+  type.scalar = scalar;
   return type;
 }
 

@@ -3,18 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <numbers>
 #include <vector>
 
 #include "geardyn/analyses/gear_helpers.hpp"
-#include "geardyn/analyses/pair_model.hpp"
-#include "geardyn/gear/dynamic_mesh.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::analyses {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 
 /// Mesh frequency [Hz] at gear 1's speed `omega1` [rad/s]: f_m = z1 omega1 / 2 pi.
 double mesh_frequency(double omega1, int teeth1) { return teeth1 * omega1 / kTwoPi; }
@@ -39,54 +37,21 @@ Plot sweep_plot(const std::string& plot_name, const std::string& title, const st
   return p;
 }
 
-}  // namespace
-
-AnalysisOutput run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
-                              const std::string& name, Progress& progress) {
-  const PairModel pm = build_pair_model(model, pair_index(model, settings.pair));
+/// The notes on the mesh model, its resonance and the continuation.
+void add_model_notes(AnalysisOutput& out, const MeshForceSettings& settings,
+                     const MeshForceResult& r) {
+  const PairModel& pm = r.pair;
   const int z1 = pm.pair->teeth1;
-  const gear::DynamicMesh mesh(*pm.ste, pm.mesh_options(settings.model, settings.contact_loss));
   const bool dynamic = settings.model == MeshForceModel::Dynamic;
-
-  gear::MeshSweepOptions sweep;
-  for (double omega : settings.speeds)
-    sweep.mesh_frequencies_hz.push_back(mesh_frequency(omega, z1));
-  sweep.teeth = z1;
-  sweep.direction = settings.direction == SweepDirectionKind::Up     ? gear::SweepDirection::Up
-                    : settings.direction == SweepDirectionKind::Down ? gear::SweepDirection::Down
-                                                                     : gear::SweepDirection::Both;
-  const gear::MeshSweepResult r = gear::sweep_mesh_frequency(mesh, sweep, progress);
-
-  AnalysisOutput out;
-  if (!r.up.empty())
-    out.tables.push_back(gear::MeshSweepResult::table(
-        r.up, "sweep_up",
-        fmt::format("Dynamic mesh force of '{}' versus speed of gear 1, sweep up", pm.pair->name)));
-  if (!r.down.empty())
-    out.tables.push_back(gear::MeshSweepResult::table(
-        r.down, "sweep_down",
-        fmt::format("Dynamic mesh force of '{}' versus speed of gear 1, sweep down (in the order "
-                    "computed)",
-                    pm.pair->name)));
-  out.plots.push_back(sweep_plot("dynamic_factor", "Dynamic factor F_max / F_s", "F_max / F_s", r,
-                                 [](const gear::MeshSweepPoint& q) { return q.dynamic_factor; }));
-  out.plots.push_back(sweep_plot("dte_rms", "RMS of the dynamic transmission error (fluctuation)",
-                                 "DTE RMS [um]", r,
-                                 [](const gear::MeshSweepPoint& q) { return q.dte_rms_m * 1e6; }));
-  out.plots.push_back(
-      sweep_plot("contact_loss", "Fraction of time without tooth contact", "contact loss [-]", r,
-                 [](const gear::MeshSweepPoint& q) { return q.contact_loss_fraction; }));
-
   out.notes.push_back(fmt::format(
       "Pair '{}': F_s = {:.6g} N, k_mean = {:.6g} N/m, {}; mesh frequency f_m = {} n1 / 60.",
-      pm.pair->name, pm.static_force_n, mesh.mean_stiffness_n_m(),
+      pm.pair->name, pm.static_force_n, r.mean_stiffness_n_m,
       dynamic ? fmt::format("m_e = {:.6g} kg, zeta = {:.4g} (c = {:.6g} N s/m)",
-                            mesh.options().equivalent_mass_kg, pm.pair->mesh_damping_ratio,
-                            mesh.damping_n_s_m())
+                            r.equivalent_mass_kg, pm.pair->mesh_damping_ratio, r.damping_n_s_m)
               : std::string("infinite inertias: F_d(t) = F_s k(t) / k_mean (no dynamics)"),
       z1));
   if (dynamic) {
-    const double fn = mesh.natural_frequency_hz();
+    const double fn = r.natural_frequency_hz;
     out.notes.push_back(fmt::format(
         "Mesh resonance: f_n = sqrt(k_mean / m_e) / 2 pi = {:.6g} Hz, met by the mesh frequency at "
         "gear 1 speed {} (half of it, the second mesh harmonic, at {}).",
@@ -97,9 +62,11 @@ AnalysisOutput run_mesh_force(const model::Model& model, const MeshForceSettings
       "between the up and down sweeps is the hysteresis of contact loss, not a numerical "
       "artefact. The steady state is exact for the piecewise-constant stiffness to the "
       "Poincaré tolerance 1e-9.");
+}
 
-  // Contact loss, and the points without a steady state: reported, never hidden.
-  std::vector<std::string> failed;
+/// The contact-loss note; the sweep points without a steady state are added to `failed`.
+void add_contact_loss_note(AnalysisOutput& out, const MeshForceSettings& settings,
+                           const gear::MeshSweepResult& r, std::vector<std::string>& failed) {
   double loss_min = -1.0, loss_max = -1.0;
   for (const auto* points : {&r.up, &r.down}) {
     for (const gear::MeshSweepPoint& q : *points) {
@@ -119,53 +86,120 @@ AnalysisOutput run_mesh_force(const model::Model& model, const MeshForceSettings
         "harmonics depend on the sweep direction.",
         rpm_text(loss_min), rpm_text(loss_max),
         settings.contact_loss ? "" : " — but contact_loss = false, so the model lets them pull"));
-  else if (dynamic)
+  else if (settings.model == MeshForceModel::Dynamic)
     out.notes.push_back("No contact loss at any computed speed: the mesh stays in contact.");
+}
+
+/// The time histories at the detail speeds (tables and two plots); failures go to `failed`.
+void add_details(AnalysisOutput& out, const MeshForceResult& r, std::vector<std::string>& failed) {
+  if (r.details.empty()) return;
+  Plot force, dte;
+  force.name = "detail_force";
+  force.title = "Dynamic mesh force over one period of the steady state";
+  force.x_label = "mesh cycles [-]";
+  force.y_label = "F_d [N]";
+  dte.name = "detail_dte";
+  dte.title = "Dynamic transmission error over one period of the steady state";
+  dte.x_label = "mesh cycles [-]";
+  dte.y_label = "DTE [um]";
+  for (const MeshForceDetail& detail : r.details) {
+    const double rpm = to_rpm(detail.speed);
+    const gear::MeshResponse& d = detail.response;
+    if (d.status != Status::Ok) {
+      failed.push_back(
+          fmt::format("{} (detail: {}; {})", rpm_text(rpm), to_string(d.status), d.message));
+      continue;
+    }
+    const std::string label = fmt::format("{:.6g} rpm", rpm);
+    std::vector<double> cycles = scaled(d.time_s, d.mesh_frequency_hz);
+    Table t;
+    t.name = fmt::format("detail_{:.0f}rpm", rpm);
+    t.title = fmt::format(
+        "Steady state at gear 1 speed {} (f_m = {:.6g} Hz, period {} mesh "
+        "cycle{})",
+        rpm_text(rpm), d.mesh_frequency_hz, d.period_cycles, d.period_cycles == 1 ? "" : "s");
+    t.add("time_s", "s", d.time_s);
+    t.add("mesh_cycles", "", cycles);
+    t.add("dte_m", "m", d.dte_m);
+    t.add("velocity_m_s", "m/s", d.velocity_m_s);
+    t.add("contact_force_n", "N", d.contact_force_n);
+    t.add("force_n", "N", d.force_n);
+    bool duplicate = false;
+    for (const Table& other : out.tables) duplicate = duplicate || other.name == t.name;
+    if (duplicate) t.name += fmt::format("_{}", out.tables.size());
+    force.traces.push_back(line(label, cycles, d.force_n));
+    dte.traces.push_back(line(label, cycles, scaled(d.dte_m, 1e6)));
+    out.tables.push_back(std::move(t));
+    if (!d.message.empty()) out.notes.push_back(fmt::format("At {}: {}", label, d.message));
+  }
+  out.plots.push_back(std::move(force));
+  out.plots.push_back(std::move(dte));
+}
+
+}  // namespace
+
+MeshForceResult run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
+                               const Context& context) {
+  MeshForceResult r{build_pair_model(model, pair_index(model, settings.pair)),
+                    {},
+                    0.0,
+                    0.0,
+                    0.0,
+                    model::kNaN,
+                    {}};
+  const PairModel& pm = r.pair;
+  const int z1 = pm.pair->teeth1;
+  const gear::DynamicMesh mesh(*pm.ste, pm.mesh_options(settings.model, settings.contact_loss));
+  r.mean_stiffness_n_m = mesh.mean_stiffness_n_m();
+  r.damping_n_s_m = mesh.damping_n_s_m();
+  r.equivalent_mass_kg = mesh.options().equivalent_mass_kg;
+  if (settings.model == MeshForceModel::Dynamic)
+    r.natural_frequency_hz = mesh.natural_frequency_hz();
+
+  gear::MeshSweepOptions sweep;
+  for (double omega : settings.speeds)
+    sweep.mesh_frequencies_hz.push_back(mesh_frequency(omega, z1));
+  sweep.teeth = z1;
+  sweep.direction = settings.direction == SweepDirectionKind::Up     ? gear::SweepDirection::Up
+                    : settings.direction == SweepDirectionKind::Down ? gear::SweepDirection::Down
+                                                                     : gear::SweepDirection::Both;
+  r.sweep = gear::sweep_mesh_frequency(mesh, sweep, context.progress());
 
   // Time histories at the requested speeds, each from the static equilibrium.
-  if (!settings.detail_speeds.empty()) {
-    Plot force, dte;
-    force.name = "detail_force";
-    force.title = "Dynamic mesh force over one period of the steady state";
-    force.x_label = "mesh cycles [-]";
-    force.y_label = "F_d [N]";
-    dte.name = "detail_dte";
-    dte.title = "Dynamic transmission error over one period of the steady state";
-    dte.x_label = "mesh cycles [-]";
-    dte.y_label = "DTE [um]";
-    for (double omega : settings.detail_speeds) {
-      const double rpm = to_rpm(omega);
-      const gear::MeshResponse d = mesh.solve(mesh_frequency(omega, z1));
-      if (d.status != Status::Ok) {
-        failed.push_back(
-            fmt::format("{} (detail: {}; {})", rpm_text(rpm), to_string(d.status), d.message));
-        continue;
-      }
-      const std::string label = fmt::format("{:.6g} rpm", rpm);
-      std::vector<double> cycles = scaled(d.time_s, d.mesh_frequency_hz);
-      Table t;
-      t.name = fmt::format("detail_{:.0f}rpm", rpm);
-      t.title = fmt::format(
-          "Steady state at gear 1 speed {} (f_m = {:.6g} Hz, period {} mesh "
-          "cycle{})",
-          rpm_text(rpm), d.mesh_frequency_hz, d.period_cycles, d.period_cycles == 1 ? "" : "s");
-      t.add("time_s", "s", d.time_s);
-      t.add("mesh_cycles", "", cycles);
-      t.add("dte_m", "m", d.dte_m);
-      t.add("velocity_m_s", "m/s", d.velocity_m_s);
-      t.add("contact_force_n", "N", d.contact_force_n);
-      t.add("force_n", "N", d.force_n);
-      bool duplicate = false;
-      for (const Table& other : out.tables) duplicate = duplicate || other.name == t.name;
-      if (duplicate) t.name += fmt::format("_{}", out.tables.size());
-      force.traces.push_back(line(label, cycles, d.force_n));
-      dte.traces.push_back(line(label, cycles, scaled(d.dte_m, 1e6)));
-      out.tables.push_back(std::move(t));
-      if (!d.message.empty()) out.notes.push_back(fmt::format("At {}: {}", label, d.message));
-    }
-    out.plots.push_back(std::move(force));
-    out.plots.push_back(std::move(dte));
-  }
+  for (double omega : settings.detail_speeds)
+    r.details.push_back({omega, mesh.solve(mesh_frequency(omega, z1))});
+  return r;
+}
+
+AnalysisOutput mesh_force_output(const model::Model& /*model*/, const MeshForceSettings& settings,
+                                 const MeshForceResult& result, const Context& context) {
+  const PairModel& pm = result.pair;
+  const gear::MeshSweepResult& r = result.sweep;
+  AnalysisOutput out;
+  if (!r.up.empty())
+    out.tables.push_back(gear::MeshSweepResult::table(
+        r.up, "sweep_up",
+        fmt::format("Dynamic mesh force of '{}' versus speed of gear 1, sweep up", pm.pair->name)));
+  if (!r.down.empty())
+    out.tables.push_back(gear::MeshSweepResult::table(
+        r.down, "sweep_down",
+        fmt::format("Dynamic mesh force of '{}' versus speed of gear 1, sweep down (in the order "
+                    "computed)",
+                    pm.pair->name)));
+  out.plots.push_back(sweep_plot("dynamic_factor", "Dynamic factor F_max / F_s", "F_max / F_s", r,
+                                 [](const gear::MeshSweepPoint& q) { return q.dynamic_factor; }));
+  out.plots.push_back(sweep_plot("dte_rms", "RMS of the dynamic transmission error (fluctuation)",
+                                 "DTE RMS [um]", r,
+                                 [](const gear::MeshSweepPoint& q) { return q.dte_rms_m * 1e6; }));
+  out.plots.push_back(
+      sweep_plot("contact_loss", "Fraction of time without tooth contact", "contact loss [-]", r,
+                 [](const gear::MeshSweepPoint& q) { return q.contact_loss_fraction; }));
+  add_model_notes(out, settings, result);
+
+  // Contact loss, and the points without a steady state: reported, never hidden.
+  std::vector<std::string> failed;
+  add_contact_loss_note(out, settings, r, failed);
+  add_details(out, result, failed);
 
   if (!failed.empty()) {
     std::string list;
@@ -175,7 +209,7 @@ AnalysisOutput run_mesh_force(const model::Model& model, const MeshForceSettings
         "analysis '{}': no periodic steady state of the mesh at {} speed{}: {}. {} What usually "
         "helps: more mesh damping (mesh_damping_ratio), a finer speed grid near the resonance, "
         "or model = \"infinite_inertia\" far below the mesh resonance.",
-        name, failed.size(), failed.size() == 1 ? "" : "s", list, r.message);
+        context.name(), failed.size(), failed.size() == 1 ? "" : "s", list, r.message);
   }
   return out;
 }

@@ -4,18 +4,20 @@
 //
 // The dynamic mesh model over a speed range of gear 1, swept up and/or down: dynamic factor, DTE
 // and contact loss versus speed, the mesh resonance speed (f_n = sqrt(k_mean / m_e) / 2 pi), time
-// histories at `detail_rpm` (DESIGN 4.4-4.5; issue [mesh-excitation]): (model, settings) ->
-// AnalysisOutput with tables, plots and notes. Bad input throws InputError (call
-// check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
+// histories at `detail_rpm` (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_force solves
+// (MeshForceResult), mesh_force_output writes tables, plots and notes. Bad input throws InputError
+// (call check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
 // numerical failure throws NumericalError naming the analysis, or, where the rest of the result
 // is still worth having (a speed sweep), comes back as a non-Ok status with every failed point
 // listed in the message.
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/gear_common.hpp"
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/gear/dynamic_mesh.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::analyses {
@@ -33,7 +35,27 @@ struct MeshForceSettings : model::SettingsOf<MeshForceSettings> {
   std::vector<double> detail_speeds;  ///< time histories at these speeds of gear 1 [rad/s]
 };
 
-AnalysisOutput run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
-                              const std::string& name, Progress& progress = null_progress());
+/// The steady state at one of the `detail_rpm` speeds.
+struct MeshForceDetail {
+  double speed = 0.0;  ///< of gear 1 [rad/s]
+  gear::MeshResponse response;
+};
+
+/// The swept steady states of the mesh, its constants and the detailed time histories.
+struct MeshForceResult {
+  PairModel pair;
+  gear::MeshSweepResult sweep;
+  double mean_stiffness_n_m = 0.0;            ///< k_mean of the mesh model
+  double damping_n_s_m = 0.0;                 ///< c
+  double equivalent_mass_kg = 0.0;            ///< m_e (dynamic model)
+  double natural_frequency_hz = model::kNaN;  ///< sqrt(k_mean / m_e) / 2 pi (NaN: no dynamics)
+  std::vector<MeshForceDetail> details;       ///< in the order of detail_rpm
+};
+
+MeshForceResult run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
+                               const Context& context);
+
+AnalysisOutput mesh_force_output(const model::Model& model, const MeshForceSettings& settings,
+                                 const MeshForceResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

@@ -1,10 +1,16 @@
 // The `type = "mesh_force"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/mesh_force.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -34,6 +40,37 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   use.pair = &f.pair;
   use.dynamic = f.model == MeshForceModel::Dynamic;
   check_gear_pair_use(a, path, check, use);
+}
+
+/// The largest value of `field` over the converged points of both sweeps (runtime_error: none).
+double largest(const MeshForceResult& r, const std::string& quantity,
+               double (*field)(const gear::MeshSweepPoint&)) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const auto* points : {&r.sweep.up, &r.sweep.down})
+    for (const gear::MeshSweepPoint& q : *points)
+      if (q.status == Status::Ok) best = std::max(best, field(q));
+  if (!std::isfinite(best))
+    throw std::runtime_error(
+        fmt::format("{}: no speed of the sweep reached a periodic steady state", quantity));
+  return best;
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<MeshForceResult>(o);
+  if (q.quantity == "dynamic_factor") {
+    unit.clear();
+    return largest(r, q.quantity, [](const gear::MeshSweepPoint& p) { return p.dynamic_factor; });
+  }
+  if (q.quantity == "peak_mesh_force") {
+    unit = std::string("N");
+    return largest(r, q.quantity, [](const gear::MeshSweepPoint& p) { return p.force_max_n; });
+  }
+  if (q.quantity == "mesh_resonance_speed") {
+    unit = std::string(
+        "rpm");  // the speed of gear 1 at which the mesh frequency meets f_n (NaN: no dynamics)
+    return 60.0 * r.natural_frequency_hz / r.pair.pair->teeth1;
+  }
+  throw std::runtime_error(fmt::format("mesh_force offers no scalar \'{}\'", q.quantity));
 }
 
 std::vector<model::Field> keys() {
@@ -80,9 +117,27 @@ AnalysisType mesh_force_analysis() {
     return d;
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    return Outcome{run_mesh_force(m, a.settings_of<MeshForceSettings>(), a.name, c.progress()),
-                   nullptr};
+    const auto& s = a.settings_of<MeshForceSettings>();
+    MeshForceResult r = run_mesh_force(m, s, c);
+    AnalysisOutput out = mesh_force_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {
+      {"dynamic_factor",
+       "",
+       "Dynamic factor F_max / F_s of the mesh force, the largest over the speeds computed.",
+       {}},
+      {"peak_mesh_force",
+       "N",
+       "Largest dynamic mesh force F_max over the speeds computed (both sweep directions).",
+       {}},
+      {"mesh_resonance_speed",
+       "rpm",
+       "Speed of gear 1 at which the mesh frequency meets the mesh natural frequency "
+       "sqrt(k_mean / m_e) / 2 pi (NaN for model = \"infinite_inertia\").",
+       {}},
+  };
+  type.scalar = scalar;
   return type;
 }
 

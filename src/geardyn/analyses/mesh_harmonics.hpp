@@ -5,16 +5,20 @@
 // At one speed: the dynamic mesh force over one mesh cycle, tiled to one revolution of the
 // chosen gear, times the tooth-load window -> the filtered tooth force -> its order spectrum ->
 // the engine-order harmonics k = h, N - h (...) per nodal diameter h, in tangential, radial and
-// axial components (DESIGN 4.4-4.5; issue [mesh-excitation]): (model, settings) ->
-// AnalysisOutput with tables, plots and notes. Bad input throws InputError (call
+// axial components (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_harmonics solves
+// (MeshHarmonicsResult), mesh_harmonics_output writes tables, plots and notes. Bad input throws
+// InputError (call
 // check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
 // numerical failure throws NumericalError naming the analysis.
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/gear_common.hpp"
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/analyses/tooth_force.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/gear/load_window.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::analyses {
@@ -33,7 +37,23 @@ struct MeshHarmonicsSettings : model::SettingsOf<MeshHarmonicsSettings> {
   int max_order = 0;                   ///< order spectrum up to this (0: 2 N)
 };
 
-AnalysisOutput run_mesh_harmonics(const model::Model& model, const MeshHarmonicsSettings& settings,
-                                  const std::string& name, Progress& progress = null_progress());
+/// The tooth force over one revolution, its order spectrum and its harmonics per nodal diameter.
+struct MeshHarmonicsResult {
+  PairModel pair;
+  ToothForceRevolution revolution;
+  int max_order = 0;  ///< of the order spectrum
+  /// Tangential amplitude [N] of orders 0 .. max_order of the tooth force (0: the mean).
+  std::vector<double> order_amplitude_n;
+  std::vector<int> diameters;  ///< nodal diameters of `harmonics`
+  std::vector<gear::HarmonicComponents> harmonics;
+};
+
+MeshHarmonicsResult run_mesh_harmonics(const model::Model& model,
+                                       const MeshHarmonicsSettings& settings,
+                                       const Context& context);
+
+AnalysisOutput mesh_harmonics_output(const model::Model& model,
+                                     const MeshHarmonicsSettings& settings,
+                                     const MeshHarmonicsResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

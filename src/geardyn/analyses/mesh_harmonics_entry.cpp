@@ -1,10 +1,13 @@
 // The `type = "mesh_harmonics"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/mesh_harmonics.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -25,6 +28,24 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   use.gear = h.gear;
   use.nodal_diameters = &h.nodal_diameters;
   check_gear_pair_use(a, path, check, use);
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<MeshHarmonicsResult>(o);
+  if (q.quantity == "harmonic_amplitude") {
+    unit = std::string("N");
+    if (q.mode < 1 || q.mode > r.max_order)
+      throw std::runtime_error(fmt::format(
+          "harmonic_amplitude: engine order mode = {} is outside the order spectrum 1 .. {} "
+          "(max_order)",
+          q.mode, r.max_order));
+    return r.order_amplitude_n[static_cast<std::size_t>(q.mode)];
+  }
+  if (q.quantity == "dynamic_factor") {
+    unit.clear();
+    return r.revolution.mesh.dynamic_factor;
+  }
+  throw std::runtime_error(fmt::format("mesh_harmonics offers no scalar \'{}\'", q.quantity));
 }
 
 std::vector<model::Field> keys() {
@@ -67,10 +88,23 @@ AnalysisType mesh_harmonics_analysis() {
     return d;
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    return Outcome{
-        run_mesh_harmonics(m, a.settings_of<MeshHarmonicsSettings>(), a.name, c.progress()),
-        nullptr};
+    const auto& s = a.settings_of<MeshHarmonicsSettings>();
+    MeshHarmonicsResult r = run_mesh_harmonics(m, s, c);
+    AnalysisOutput out = mesh_harmonics_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {
+      {"harmonic_amplitude",
+       "N",
+       "Tangential amplitude (one-sided) of engine order `mode` (the harmonic number, per "
+       "revolution of the loaded gear) of the tooth force, as in the order spectrum.",
+       {"mode"}},
+      {"dynamic_factor",
+       "",
+       "Dynamic factor F_max / F_s of the mesh force, the largest over the speeds computed.",
+       {}},
+  };
+  type.scalar = scalar;
   return type;
 }
 

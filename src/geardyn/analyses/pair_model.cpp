@@ -4,12 +4,13 @@
 
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <stdexcept>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/correlation.hpp"
 #include "geardyn/analyses/mesh_harmonics.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/gear/correlation.hpp"
 
 namespace geardyn::analyses {
@@ -117,13 +118,6 @@ double modulus_of(const model::Model& m, const std::string& material) {
   return mat->youngs_modulus;
 }
 
-/// Analysis `name`'s key path and location, for errors found by the checks.
-std::string analysis_key(const model::Model& m, const model::Analysis& a, const char* key) {
-  for (std::size_t i = 0; i < m.analyses.size(); ++i)
-    if (&m.analyses[i] == &a) return fmt::format("analyses[{}].{}", i, key);
-  return fmt::format("analyses.{}", key);
-}
-
 }  // namespace
 
 fs::path resolve_model_path(const model::Model& model, const std::string& file) {
@@ -228,8 +222,7 @@ PairModel build_pair_model(const model::Model& model, std::size_t index) {
       read.base_radius_m = pm.base_radius1_m;
       read.shift = p.ste_shift;
       read.samples = static_cast<std::size_t>(p.ste_samples);
-      if (!std::isnan(p.ste_speed))
-        read.mesh_period_s = 2.0 * std::numbers::pi / (p.ste_speed * p.teeth1);
+      if (!std::isnan(p.ste_speed)) read.mesh_period_s = units::kTwoPi / (p.ste_speed * p.teeth1);
       read.interpolation = p.ste_interpolation == model::SteInterpolationKind::Hold
                                ? gear::SteInterpolation::Hold
                                : gear::SteInterpolation::Linear;
@@ -254,14 +247,15 @@ void check_gear_analyses(const model::Model& model) {
   for (std::size_t i = 0; i < model.gear_pairs.size(); ++i)
     pairs.push_back(build_pair_model(model, i));
   for (const model::Analysis& a : model.analyses) {
+    const Context context(model, a);
     if (const auto* h = a.settings_as<MeshHarmonicsSettings>()) {
       const PairModel& pm = pairs[pair_index(model, h->pair)];
       const int teeth = h->gear == 1 ? pm.pair->teeth1 : pm.pair->teeth2;
       const double cr =
           std::isnan(h->contact_ratio) ? pm.geometry.total_contact_ratio : h->contact_ratio;
       if (!(cr >= 1.0 && cr <= 3.0 && cr < teeth))
-        throw InputError(
-            a.where, analysis_key(model, a, "contact_ratio"),
+        throw context.error(
+            "contact_ratio",
             fmt::format("a tooth-load window contact ratio in [1, 3] and below the "
                         "{} teeth of gear {}",
                         teeth, h->gear),
@@ -271,28 +265,25 @@ void check_gear_analyses(const model::Model& model) {
                             : ""),
             "give contact_ratio for the window explicitly");
       if (h->max_order > 64 * teeth)
-        throw InputError(a.where, analysis_key(model, a, "max_order"),
-                         fmt::format("an order <= 64 N = {} (resolved by the samples of one "
-                                     "revolution)",
-                                     64 * teeth),
-                         std::to_string(h->max_order));
+        throw context.error("max_order",
+                            fmt::format("an order <= 64 N = {} (resolved by the samples of one "
+                                        "revolution)",
+                                        64 * teeth),
+                            std::to_string(h->max_order));
     }
     if (const auto* c = a.settings_as<CorrelationSettings>()) {
       const fs::path path = resolve_model_path(model, c->measured_file);
       std::error_code ec;
       if (!fs::is_regular_file(path, ec))
-        throw InputError(
-            a.where, analysis_key(model, a, "measured_file"),
-            "a readable measured-response CSV file (relative to the model file)",
+        throw context.error(
+            "measured_file", "a readable measured-response CSV file (relative to the model file)",
             fmt::format("\"{}\" ({} does not exist)", c->measured_file, path.string()));
       const gear::MeasuredResponse m = gear::read_measured_response_csv(path);
       if (!std::isnan(c->reference_peak)) {
         const bool file_speed = m.abscissa == gear::ResponseAbscissa::SpeedRpm;
         if (file_speed != c->reference_is_speed)
-          throw InputError(
-              a.where,
-              analysis_key(model, a,
-                           c->reference_is_speed ? "reference_peak_rpm" : "reference_peak_hz"),
+          throw context.error(
+              c->reference_is_speed ? "reference_peak_rpm" : "reference_peak_hz",
               fmt::format("reference_peak_{} for a measured file over {}",
                           file_speed ? "rpm" : "hz", file_speed ? "speed_rpm" : "frequency_hz"),
               fmt::format("reference_peak_{}", c->reference_is_speed ? "rpm" : "hz"));

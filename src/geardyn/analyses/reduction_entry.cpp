@@ -1,10 +1,13 @@
 // The `type = "reduction"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/reduction.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -39,6 +42,19 @@ void finish(Analysis& a, const TableContext& t) {
 
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   (void)check_solid_use(path, a.settings_of<ReductionSettings>().solid, check, false);
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<ReductionResult>(o);
+  if (q.quantity == "max_frequency_error") {
+    unit = std::string("%");
+    return r.max_error_pct;
+  }
+  if (q.quantity == "reduced_dofs") {
+    unit.clear();
+    return static_cast<double>(r.reduced->size());
+  }
+  throw std::runtime_error(fmt::format("reduction offers no scalar \'{}\'", q.quantity));
 }
 
 std::vector<model::Field> keys() {
@@ -90,8 +106,22 @@ AnalysisType reduction_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<ReductionSettings>();
-    return Outcome{run_reduction(c.solid(m, s.solid), s, a.name, c.progress()), nullptr};
+    ReductionResult r = run_reduction(m, s, c);
+    AnalysisOutput out = reduction_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {
+      {"max_frequency_error",
+       "%",
+       "Largest relative frequency error 100 |f_reduced - f_full| / f_full over the full-model "
+       "modes compared (n_modes).",
+       {}},
+      {"reduced_dofs",
+       "",
+       "Number of coordinates of the reduced model (master DOFs + fixed-interface modes).",
+       {}},
+  };
+  type.scalar = scalar;
   return type;
 }
 

@@ -4,20 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/meshio/gmsh_view_writer.hpp"
 
 namespace geardyn::analyses {
 
-namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-}  // namespace
-
-double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / kTwoPi; }
+double hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / units::kTwoPi; }
 
 std::vector<double> node_translations(const solid::SolidSystem& system, int num_nodes,
                                       const Eigen::VectorXd& u) {

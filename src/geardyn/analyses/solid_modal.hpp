@@ -2,15 +2,18 @@
 // solid_modal: the natural frequencies and mode shapes of a solid component, the mesh as given
 // or the replicated full wheel of a cyclic sector.
 //
-// Modes of the mesh as given (or of the replicated full wheel), VTU + Gmsh views:
-// (component, settings) -> AnalysisOutput (tables, plots, notes, mode-shape files). Numerical
-// failures throw NumericalError (the caller reports the analysis as failed); bad input throws
-// InputError.
+// Modes of the mesh as given (or of the replicated full wheel), VTU + Gmsh views: run_solid_modal
+// solves (the component from context.solid), solid_modal_output writes the table, plot, notes and
+// mode-shape files. Numerical failures throw NumericalError (the caller reports the analysis as
+// failed); bad input throws InputError.
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/assembly/solid_component.hpp"
-#include "geardyn/core/progress.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::analyses {
@@ -24,8 +27,21 @@ struct SolidModalSettings : model::SettingsOf<SolidModalSettings> {
   int shapes = 10;             ///< mode shapes written to VTU / Gmsh files (0: none)
 };
 
-AnalysisOutput run_solid_modal(const assembly::SolidComponent& component,
-                               const SolidModalSettings& settings, const std::string& name,
-                               Progress& progress = null_progress());
+/// The modes, and the mesh and system they live on.
+struct SolidModalResult {
+  eig::SymmetricEigenResult modes;
+  std::vector<double> frequency_hz;  ///< natural frequencies, ascending
+  /// The replicated full wheel (full_wheel of a cyclic mesh), else null: the component's own.
+  std::shared_ptr<const solid::Mesh> wheel_mesh;
+  std::shared_ptr<const solid::SolidSystem> wheel_system;
+  int merged_nodes = 0;          ///< interface nodes merged in the replication
+  double worst_merge_gap = 0.0;  ///< [m]
+};
+
+SolidModalResult run_solid_modal(const model::Model& model, const SolidModalSettings& settings,
+                                 const Context& context);
+
+AnalysisOutput solid_modal_output(const model::Model& model, const SolidModalSettings& settings,
+                                  const SolidModalResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

@@ -1,9 +1,12 @@
 // The `type = "solid_modal"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/analyses/solid_modal.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
@@ -19,6 +22,17 @@ using model::TableContext;
 
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   (void)check_solid_use(path, a.settings_of<SolidModalSettings>().solid, check, false);
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const auto& r = result_of<SolidModalResult>(o);
+  if (q.quantity != "natural_frequency")
+    throw std::runtime_error(fmt::format("solid_modal offers no scalar \'{}\'", q.quantity));
+  unit = std::string("Hz");
+  if (q.mode < 1 || static_cast<std::size_t>(q.mode) > r.frequency_hz.size())
+    throw std::runtime_error(
+        fmt::format("natural_frequency: mode {} of {} computed", q.mode, r.frequency_hz.size()));
+  return r.frequency_hz[static_cast<std::size_t>(q.mode - 1)];
 }
 
 std::vector<model::Field> keys() {
@@ -51,8 +65,16 @@ AnalysisType solid_modal_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<SolidModalSettings>();
-    return Outcome{run_solid_modal(c.solid(m, s.solid), s, a.name, c.progress()), nullptr};
+    SolidModalResult r = run_solid_modal(m, s, c);
+    AnalysisOutput out = solid_modal_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
   };
+  type.scalars = {{"natural_frequency",
+                   "Hz",
+                   "Natural frequency of mode `mode` of the solid (the mesh as given, or the "
+                   "whole wheel with full_wheel), in ascending order.",
+                   {"mode"}}};
+  type.scalar = scalar;
   return type;
 }
 

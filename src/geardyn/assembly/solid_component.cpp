@@ -4,10 +4,10 @@
 
 #include <cmath>
 #include <filesystem>
-#include <numbers>
 #include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/io/sha256.hpp"
 #include "geardyn/meshgen/annular_plate.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
@@ -72,7 +72,7 @@ solid::Mesh generate_plate(const model::Model& model, const model::Solid& s, Pro
   p.inner_radius = spec.inner_radius;
   p.outer_radius = spec.outer_radius;
   p.thickness = spec.thickness;
-  p.sector_angle = 2.0 * std::numbers::pi / s.sectors;
+  p.sector_angle = units::kTwoPi / s.sectors;
   p.element_order = spec.order;
   p.elements_radial = spec.radial_elements;
   if (spec.circumferential_elements > 0) {

@@ -73,6 +73,348 @@ struct SensorSet {
   std::size_t sensor_index = 0;
 };
 
+/// The solid's mesh with one reference node per spider (at its rotor node) and its rigid
+/// element.
+struct SpiderPoints {
+  solid::Mesh mesh;
+  std::vector<int> reference;   ///< mesh node of each spider's reference point
+  std::vector<int> rotor_node;  ///< rotor node of each spider
+  long next_id = 1;             ///< first node id after the mesh's and the references'
+};
+
+SpiderPoints spider_points(const model::Solid& solid, const SolidComponent& built,
+                           const fe::DofMap& rotor, const std::string& base) {
+  SpiderPoints sp;
+  sp.mesh = built.mesh;
+  solid::Mesh& mesh = sp.mesh;
+  for (long id : mesh.node_ids) sp.next_id = std::max(sp.next_id, id + 1);
+  sp.reference.assign(solid.spiders.size(), -1);
+  sp.rotor_node.assign(solid.spiders.size(), -1);
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    const model::Spider& spider = solid.spiders[k];
+    const std::string key = fmt::format("{}.spiders[{}]", base, k);
+    const std::vector<int>& nodes =
+        set_nodes(mesh, solid.name, spider.node_set, spider.where, key + ".node_set");
+    sp.rotor_node[k] = rotor.find_node(spider.node);
+    if (sp.rotor_node[k] < 0)
+      throw InputError(spider.where, key + ".node",
+                       "a rotor node: \"<shaft>.<k>\" of an existing shaft, or a [[nodes]] name",
+                       fmt::format("\"{}\"", spider.node));
+    sp.reference[k] = mesh.num_nodes();
+    mesh.coords.push_back(rotor.node(sp.rotor_node[k]).position);
+    mesh.node_ids.push_back(sp.next_id++);
+    solid::RigidElement element;
+    element.kind = spider.kind == model::SpiderKind::Rigid ? solid::RigidElement::Kind::Rigid
+                                                           : solid::RigidElement::Kind::Averaging;
+    element.id = static_cast<long>(k + 1);
+    element.reference = sp.reference[k];
+    element.nodes = nodes;
+    element.where = spider.where;
+    mesh.rigid_elements.push_back(std::move(element));
+  }
+  return sp;
+}
+
+/// The sensor sets of this solid (one point per set, whatever DOFs its sensors read).
+std::vector<SensorSet> sensor_sets_of(const model::Model& model, const model::Solid& solid,
+                                      const solid::Mesh& mesh) {
+  std::vector<SensorSet> sensor_sets;
+  for (std::size_t j = 0; j < model.sensors.size(); ++j) {
+    const model::Sensor& s = model.sensors[j];
+    if (s.solid != solid.name) continue;
+    const bool seen = std::any_of(sensor_sets.begin(), sensor_sets.end(),
+                                  [&](const SensorSet& e) { return e.set == s.node_set; });
+    if (seen) continue;
+    (void)set_nodes(mesh, solid.name, s.node_set, s.where, fmt::format("sensors[{}].node_set", j));
+    sensor_sets.push_back({s.node_set, &s, j});
+  }
+  return sensor_sets;
+}
+
+/// Constraint rows u = A x (averaging spiders: 6 rows, sensors: 3 rows) and rigid masters.
+struct Constraints {
+  Triplets a;
+  int n_rows = 0;
+  std::vector<int> row_owner;             ///< spider k, or -(1 + sensor set index)
+  std::vector<solid::DofInfo> row_info;   ///< DofInfo of each u
+  std::vector<std::vector<int>> rigid_x;  ///< rigid masters (x indices) of each spider
+  std::vector<int> first_row;             ///< of each averaging spider (-1: rigid)
+  std::vector<int> sensor_first_row;
+  std::vector<Eigen::Vector3d> sensor_position;
+
+  void add_row(const Eigen::SparseVector<double>& row, int owner, solid::DofInfo info) {
+    for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it)
+      if (it.value() != 0.0) a.emplace_back(n_rows, static_cast<int>(it.index()), it.value());
+    row_owner.push_back(owner);
+    row_info.push_back(info);
+    ++n_rows;
+  }
+};
+
+/// The rows of the spiders: averaging spiders constrain their reference point's 6 DOFs, rigid
+/// spiders make them masters.
+void add_spider_rows(Constraints& out, const model::Solid& solid, const SpiderPoints& sp,
+                     const solid::SolidSystem& sys, const RowSparse& recovery,
+                     const std::string& base) {
+  const solid::Mesh& mesh = sp.mesh;
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    const int r = sp.reference[k];
+    const std::string key = fmt::format("{}.spiders[{}]", base, k);
+    const Eigen::Vector3d xr = mesh.coords[static_cast<std::size_t>(r)];
+    if (solid.spiders[k].kind == model::SpiderKind::Rigid) {
+      for (int c = 0; c < 6; ++c) {
+        const int d = sys.node_dof(r, c);
+        if (d < 0)
+          throw InputError(solid.spiders[k].where, key + ".node_set",
+                           "a node set that gives the reference point all 6 DOFs (at least 3 "
+                           "nodes not on one line, not all fixed)",
+                           fmt::format("\"{}\", which leaves its {} without stiffness",
+                                       solid.spiders[k].node_set,
+                                       model::kComponentNames[static_cast<std::size_t>(c)]));
+        out.rigid_x[k].push_back(d);
+      }
+      continue;
+    }
+    out.first_row[k] = out.n_rows;
+    for (int c = 0; c < 6; ++c) {
+      const int all = sys.all_dof(r, c);
+      out.add_row(Eigen::SparseVector<double>(recovery.row(all).transpose()), static_cast<int>(k),
+                  {mesh.node_ids[static_cast<std::size_t>(r)], c, xr});
+    }
+  }
+}
+
+/// The rows of the sensor sets: the mean translation of each set's nodes.
+void add_sensor_rows(Constraints& out, const std::vector<SensorSet>& sensor_sets,
+                     const SpiderPoints& sp, const solid::SolidSystem& sys,
+                     const RowSparse& recovery) {
+  const solid::Mesh& mesh = sp.mesh;
+  const int n = sys.num_dofs();
+  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
+    const std::vector<int>& nodes = mesh.node_sets.at(sensor_sets[s].set);
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    std::array<Eigen::SparseVector<double>, 3> rows;
+    for (auto& row : rows) row.resize(n);
+    int counted = 0;
+    for (int node : nodes) {
+      if (sys.all_dof(node, 0) < 0) continue;  // a node of no element: it has no motion
+      centroid += mesh.coords[static_cast<std::size_t>(node)];
+      for (int c = 0; c < 3; ++c)
+        rows[static_cast<std::size_t>(c)] += recovery.row(sys.all_dof(node, c)).transpose();
+      ++counted;
+    }
+    if (counted == 0)
+      throw InputError(sensor_sets[s].first->where,
+                       fmt::format("sensors[{}].node_set", sensor_sets[s].sensor_index),
+                       "a node set with nodes of the solid's elements",
+                       fmt::format("\"{}\", whose nodes belong to no element", sensor_sets[s].set));
+    centroid /= counted;
+    out.sensor_position.push_back(centroid);
+    out.sensor_first_row.push_back(out.n_rows);
+    // Sensor points get ids after the spider reference nodes.
+    const long id = sp.next_id + static_cast<long>(s);
+    for (int c = 0; c < 3; ++c)
+      out.add_row(rows[static_cast<std::size_t>(c)] / counted, -1 - static_cast<int>(s),
+                  {id, c, centroid});
+  }
+}
+
+/// A over the columns it touches only (sets are a small part of a mesh).
+struct UsedColumns {
+  std::vector<int> columns;  ///< columns of A with an entry, ascending
+  std::vector<int> index;    ///< x index -> column of `A` (-1: unused)
+  Eigen::MatrixXd A;
+  Eigen::MatrixXd::ConstColXpr column(int j) const {
+    return A.col(index[static_cast<std::size_t>(j)]);
+  }
+};
+
+UsedColumns used_columns_of(const Constraints& con, int n) {
+  UsedColumns u;
+  u.index.assign(static_cast<std::size_t>(n), -1);
+  for (const auto& t : con.a) u.index[static_cast<std::size_t>(t.col())] = 0;
+  for (int j = 0; j < n; ++j) {
+    if (u.index[static_cast<std::size_t>(j)] < 0) continue;
+    u.index[static_cast<std::size_t>(j)] = static_cast<int>(u.columns.size());
+    u.columns.push_back(j);
+  }
+  u.A = Eigen::MatrixXd::Zero(con.n_rows, static_cast<Eigen::Index>(u.columns.size()));
+  for (const auto& t : con.a) u.A(t.row(), u.index[static_cast<std::size_t>(t.col())]) += t.value();
+  return u;
+}
+
+/// InputError at the first spider or sensor point whose rows of A_c are not independent of the
+/// ones before it.
+[[noreturn]] void throw_dependent(const Eigen::MatrixXd& A_c, const Constraints& con,
+                                  const model::Solid& solid,
+                                  const std::vector<SensorSet>& sensor_sets,
+                                  const std::string& base, int (*rank_of)(const Eigen::MatrixXd&)) {
+  const int n_rows = con.n_rows;
+  int bad = n_rows - 1;
+  for (int r = 1; r <= n_rows; ++r) {
+    if (rank_of(A_c.topRows(r)) < r) {
+      bad = r - 1;
+      break;
+    }
+  }
+  const int owner = con.row_owner[static_cast<std::size_t>(bad)];
+  if (owner >= 0) {
+    const auto k = static_cast<std::size_t>(owner);
+    throw InputError(solid.spiders[k].where, fmt::format("{}.spiders[{}].node_set", base, k),
+                     "a node set whose rigid fit is not already fixed by the other spiders "
+                     "(at least 3 nodes not on one line, not all fixed or rigidly joined)",
+                     fmt::format("\"{}\"", solid.spiders[k].node_set), "join each node set once");
+  }
+  const SensorSet& ss = sensor_sets[static_cast<std::size_t>(-1 - owner)];
+  throw InputError(ss.first->where, fmt::format("sensors[{}].node_set", ss.sensor_index),
+                   "a node set that moves on its own (not fixed, not rigidly joined to a "
+                   "rotor node, not measured by another sensor set of the same motion)",
+                   fmt::format("\"{}\"", ss.set),
+                   "a rigidly joined set moves with its rotor node: put the sensor there");
+}
+
+/// The pivots D among the non-master columns of A (one per row) and A_D^-1.
+struct Pivots {
+  std::vector<int> columns;
+  Eigen::MatrixXd A_D_inv;
+};
+
+Pivots pivot_columns(const Constraints& con, const UsedColumns& used, int n,
+                     const model::Solid& solid, const std::vector<SensorSet>& sensor_sets,
+                     const std::string& base) {
+  Pivots out;
+  const int n_rows = con.n_rows;
+  if (n_rows == 0) return out;
+  std::vector<bool> is_rigid_master(static_cast<std::size_t>(n), false);
+  for (const auto& list : con.rigid_x)
+    for (int d : list) is_rigid_master[static_cast<std::size_t>(d)] = true;
+  std::vector<int> candidates;
+  for (int j : used.columns)
+    if (!is_rigid_master[static_cast<std::size_t>(j)]) candidates.push_back(j);
+  Eigen::MatrixXd A_c(n_rows, static_cast<Eigen::Index>(candidates.size()));
+  for (std::size_t j = 0; j < candidates.size(); ++j)
+    A_c.col(static_cast<Eigen::Index>(j)) = used.column(candidates[j]);
+  auto rank_of = [](const Eigen::MatrixXd& a) -> int {
+    if (a.rows() == 0 || a.cols() == 0) return 0;
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+    qr.setThreshold(1e-9);
+    return static_cast<int>(qr.rank());
+  };
+  if (rank_of(A_c) < n_rows) throw_dependent(A_c, con, solid, sensor_sets, base, rank_of);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A_c);
+  for (int k = 0; k < n_rows; ++k)
+    out.columns.push_back(candidates[static_cast<std::size_t>(qr.colsPermutation().indices()[k])]);
+  Eigen::MatrixXd A_D(n_rows, n_rows);
+  for (int k = 0; k < n_rows; ++k)
+    A_D.col(k) = used.column(out.columns[static_cast<std::size_t>(k)]);
+  out.A_D_inv = A_D.partialPivLu().inverse();
+  return out;
+}
+
+/// The change of variables x = S z, z = [x_F; u]: x_D = A_D^-1 u - A_D^-1 A_F x_F.
+struct Elimination {
+  std::vector<int> position;  ///< x index -> z index (x_F); -1 for a pivot
+  int n_free = 0;
+  Eigen::SparseMatrix<double> transform;
+};
+
+Elimination eliminate(const Constraints& con, const UsedColumns& used, const Pivots& pivots,
+                      int n) {
+  const int n_rows = con.n_rows;
+  Elimination e;
+  e.position.assign(static_cast<std::size_t>(n), -1);
+  {
+    std::vector<bool> pivot(static_cast<std::size_t>(n), false);
+    for (int d : pivots.columns) pivot[static_cast<std::size_t>(d)] = true;
+    int next = 0;
+    for (int j = 0; j < n; ++j)
+      if (!pivot[static_cast<std::size_t>(j)]) e.position[static_cast<std::size_t>(j)] = next++;
+  }
+  const std::vector<int>& position = e.position;
+  e.n_free = n - n_rows;
+  const int n_free = e.n_free;
+  Triplets s_triplets;
+  for (int j = 0; j < n; ++j)
+    if (position[static_cast<std::size_t>(j)] >= 0)
+      s_triplets.emplace_back(j, position[static_cast<std::size_t>(j)], 1.0);
+  if (n_rows > 0) {
+    // x_D = A_D^-1 u - A_D^-1 A_F x_F
+    std::vector<int> others;
+    for (int j : used.columns)
+      if (position[static_cast<std::size_t>(j)] >= 0) others.push_back(j);
+    Eigen::MatrixXd A_F(n_rows, static_cast<Eigen::Index>(others.size()));
+    for (std::size_t j = 0; j < others.size(); ++j)
+      A_F.col(static_cast<Eigen::Index>(j)) = used.column(others[j]);
+    const Eigen::MatrixXd B = pivots.A_D_inv * A_F;
+    for (int i = 0; i < n_rows; ++i) {
+      const int d = pivots.columns[static_cast<std::size_t>(i)];
+      for (int k = 0; k < n_rows; ++k)
+        if (pivots.A_D_inv(i, k) != 0.0)
+          s_triplets.emplace_back(d, n_free + k, pivots.A_D_inv(i, k));
+      for (std::size_t j = 0; j < others.size(); ++j) {
+        const double v = B(i, static_cast<Eigen::Index>(j));
+        if (v != 0.0) s_triplets.emplace_back(d, position[static_cast<std::size_t>(others[j])], -v);
+      }
+    }
+  }
+  e.transform.resize(n, n);
+  e.transform.setFromTriplets(s_triplets.begin(), s_triplets.end());
+  e.transform.makeCompressed();
+  return e;
+}
+
+/// K and M in z (S^T K S, S^T M S, made exactly symmetric) and the DofInfo of each z.
+void project(SpiderSystem& out, const solid::SolidSystem& sys, const Constraints& con,
+             const Elimination& e) {
+  const int n = sys.num_dofs();
+  const Eigen::SparseMatrix<double> St = out.transform.transpose();
+  const Eigen::SparseMatrix<double> KS = sys.K * out.transform;
+  const Eigen::SparseMatrix<double> MS = sys.M * out.transform;
+  Eigen::SparseMatrix<double> Kz = St * KS, Mz = St * MS;
+  // The two triangles of S^T K S are summed in different orders: make them equal.
+  out.K = 0.5 * (Kz + Eigen::SparseMatrix<double>(Kz.transpose()));
+  out.M = 0.5 * (Mz + Eigen::SparseMatrix<double>(Mz.transpose()));
+  out.K.makeCompressed();
+  out.M.makeCompressed();
+
+  out.dofs.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j)
+    if (e.position[static_cast<std::size_t>(j)] >= 0)
+      out.dofs[static_cast<std::size_t>(e.position[static_cast<std::size_t>(j)])] =
+          sys.dofs[static_cast<std::size_t>(j)];
+  for (int k = 0; k < con.n_rows; ++k)
+    out.dofs[static_cast<std::size_t>(e.n_free + k)] = con.row_info[static_cast<std::size_t>(k)];
+}
+
+/// Masters and points: spiders in order, then sensor sets.
+void add_points(SpiderSystem& out, const model::Solid& solid, const fe::DofMap& rotor,
+                const SpiderPoints& sp, const std::vector<SensorSet>& sensor_sets,
+                const Constraints& con, const Elimination& e) {
+  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
+    fe::SuperelementPoint point;
+    point.node = solid.spiders[k].node;
+    out.points.push_back(point);
+    for (int c = 0; c < 6; ++c)
+      out.masters.push_back(
+          solid.spiders[k].kind == model::SpiderKind::Rigid
+              ? e.position[static_cast<std::size_t>(con.rigid_x[k][static_cast<std::size_t>(c)])]
+              : e.n_free + con.first_row[k] + c);
+  }
+  double common_ratio = rotor.node(sp.rotor_node.front()).speed_ratio;
+  for (int node : sp.rotor_node)
+    if (std::abs(rotor.node(node).speed_ratio - common_ratio) > 1e-12) common_ratio = 0.0;
+  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
+    fe::SuperelementPoint point;
+    point.node = solid.name + "/" + sensor_sets[s].set;
+    point.new_node = true;
+    point.position = con.sensor_position[s];
+    point.speed_ratio = common_ratio;
+    point.components = {true, true, true, false, false, false};
+    out.points.push_back(point);
+    for (int c = 0; c < 3; ++c) out.masters.push_back(e.n_free + con.sensor_first_row[s] + c);
+  }
+}
+
 }  // namespace
 
 bool has_joined_solids(const model::Model& model) {
@@ -93,273 +435,33 @@ SpiderSystem spider_system(const model::Model& model, const model::Solid& solid,
   const fe::DofMap rotor = fe::DofMap::build(model);
 
   SpiderSystem out;
-  solid::Mesh mesh = built.mesh;
-  long next_id = 1;
-  for (long id : mesh.node_ids) next_id = std::max(next_id, id + 1);
-
-  // Spider reference nodes and their rigid elements.
-  std::vector<int> reference(solid.spiders.size(), -1);
-  std::vector<int> rotor_node(solid.spiders.size(), -1);
-  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
-    const model::Spider& spider = solid.spiders[k];
-    const std::string key = fmt::format("{}.spiders[{}]", base, k);
-    const std::vector<int>& nodes =
-        set_nodes(mesh, solid.name, spider.node_set, spider.where, key + ".node_set");
-    rotor_node[k] = rotor.find_node(spider.node);
-    if (rotor_node[k] < 0)
-      throw InputError(spider.where, key + ".node",
-                       "a rotor node: \"<shaft>.<k>\" of an existing shaft, or a [[nodes]] name",
-                       fmt::format("\"{}\"", spider.node));
-    reference[k] = mesh.num_nodes();
-    mesh.coords.push_back(rotor.node(rotor_node[k]).position);
-    mesh.node_ids.push_back(next_id++);
-    solid::RigidElement element;
-    element.kind = spider.kind == model::SpiderKind::Rigid ? solid::RigidElement::Kind::Rigid
-                                                           : solid::RigidElement::Kind::Averaging;
-    element.id = static_cast<long>(k + 1);
-    element.reference = reference[k];
-    element.nodes = nodes;
-    element.where = spider.where;
-    mesh.rigid_elements.push_back(std::move(element));
-  }
-
-  // Sensor sets of this solid (one point per set, whatever DOFs its sensors read).
-  std::vector<SensorSet> sensor_sets;
-  for (std::size_t j = 0; j < model.sensors.size(); ++j) {
-    const model::Sensor& s = model.sensors[j];
-    if (s.solid != solid.name) continue;
-    const bool seen = std::any_of(sensor_sets.begin(), sensor_sets.end(),
-                                  [&](const SensorSet& e) { return e.set == s.node_set; });
-    if (seen) continue;
-    (void)set_nodes(mesh, solid.name, s.node_set, s.where, fmt::format("sensors[{}].node_set", j));
-    sensor_sets.push_back({s.node_set, &s, j});
-  }
+  // Spider reference nodes and their rigid elements; the sensor sets of this solid.
+  const SpiderPoints sp = spider_points(solid, built, rotor, base);
+  const std::vector<SensorSet> sensor_sets = sensor_sets_of(model, solid, sp.mesh);
 
   solid::AssemblyOptions options;
   options.threads = 0;
   options.progress = &progress;
-  out.system = solid::assemble(mesh, options);
+  out.system = solid::assemble(sp.mesh, options);
   const solid::SolidSystem& sys = out.system;
   const int n = sys.num_dofs();
   const RowSparse recovery = sys.recovery;
 
-  // Constraint rows u = A x (averaging spiders: 6 rows, sensors: 3 rows) and rigid masters.
-  Triplets a_triplets;
-  int n_rows = 0;
-  std::vector<int> row_owner;            // spider k, or -(1 + sensor set index)
-  std::vector<solid::DofInfo> row_info;  // DofInfo of each u
-  std::vector<std::vector<int>> rigid_x(solid.spiders.size());  // rigid masters (x indices)
-  std::vector<int> first_row(solid.spiders.size(), -1);
-  auto add_row = [&](const Eigen::SparseVector<double>& row, int owner, solid::DofInfo info) {
-    for (Eigen::SparseVector<double>::InnerIterator it(row); it; ++it)
-      if (it.value() != 0.0)
-        a_triplets.emplace_back(n_rows, static_cast<int>(it.index()), it.value());
-    row_owner.push_back(owner);
-    row_info.push_back(info);
-    ++n_rows;
-  };
-  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
-    const int r = reference[k];
-    const std::string key = fmt::format("{}.spiders[{}]", base, k);
-    const Eigen::Vector3d xr = mesh.coords[static_cast<std::size_t>(r)];
-    if (solid.spiders[k].kind == model::SpiderKind::Rigid) {
-      for (int c = 0; c < 6; ++c) {
-        const int d = sys.node_dof(r, c);
-        if (d < 0)
-          throw InputError(solid.spiders[k].where, key + ".node_set",
-                           "a node set that gives the reference point all 6 DOFs (at least 3 "
-                           "nodes not on one line, not all fixed)",
-                           fmt::format("\"{}\", which leaves its {} without stiffness",
-                                       solid.spiders[k].node_set,
-                                       model::kComponentNames[static_cast<std::size_t>(c)]));
-        rigid_x[k].push_back(d);
-      }
-      continue;
-    }
-    first_row[k] = n_rows;
-    for (int c = 0; c < 6; ++c) {
-      const int all = sys.all_dof(r, c);
-      add_row(Eigen::SparseVector<double>(recovery.row(all).transpose()), static_cast<int>(k),
-              {mesh.node_ids[static_cast<std::size_t>(r)], c, xr});
-    }
-  }
-  std::vector<int> sensor_first_row;
-  std::vector<Eigen::Vector3d> sensor_position;
-  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
-    const std::vector<int>& nodes = mesh.node_sets.at(sensor_sets[s].set);
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    std::array<Eigen::SparseVector<double>, 3> rows;
-    for (auto& row : rows) row.resize(n);
-    int counted = 0;
-    for (int node : nodes) {
-      if (sys.all_dof(node, 0) < 0) continue;  // a node of no element: it has no motion
-      centroid += mesh.coords[static_cast<std::size_t>(node)];
-      for (int c = 0; c < 3; ++c)
-        rows[static_cast<std::size_t>(c)] += recovery.row(sys.all_dof(node, c)).transpose();
-      ++counted;
-    }
-    if (counted == 0)
-      throw InputError(sensor_sets[s].first->where,
-                       fmt::format("sensors[{}].node_set", sensor_sets[s].sensor_index),
-                       "a node set with nodes of the solid's elements",
-                       fmt::format("\"{}\", whose nodes belong to no element", sensor_sets[s].set));
-    centroid /= counted;
-    sensor_position.push_back(centroid);
-    sensor_first_row.push_back(n_rows);
-    // Sensor points get ids after the spider reference nodes.
-    const long id = next_id + static_cast<long>(s);
-    for (int c = 0; c < 3; ++c)
-      add_row(rows[static_cast<std::size_t>(c)] / counted, -1 - static_cast<int>(s),
-              {id, c, centroid});
-  }
+  Constraints con;
+  con.rigid_x.resize(solid.spiders.size());
+  con.first_row.assign(solid.spiders.size(), -1);
+  add_spider_rows(con, solid, sp, sys, recovery, base);
+  add_sensor_rows(con, sensor_sets, sp, sys, recovery);
 
   // Change of variables x = S z, z = [x_F; u]: pivots D among the non-master columns of A.
-  std::vector<bool> is_rigid_master(static_cast<std::size_t>(n), false);
-  for (const auto& list : rigid_x)
-    for (int d : list) is_rigid_master[static_cast<std::size_t>(d)] = true;
-  // A over the columns it touches only (sets are a small part of a mesh).
-  std::vector<int> used_columns;  // columns of A with an entry, ascending
-  std::vector<int> used_index(static_cast<std::size_t>(n), -1);
-  {
-    for (const auto& t : a_triplets) used_index[static_cast<std::size_t>(t.col())] = 0;
-    for (int j = 0; j < n; ++j) {
-      if (used_index[static_cast<std::size_t>(j)] < 0) continue;
-      used_index[static_cast<std::size_t>(j)] = static_cast<int>(used_columns.size());
-      used_columns.push_back(j);
-    }
-  }
-  Eigen::MatrixXd A_used =
-      Eigen::MatrixXd::Zero(n_rows, static_cast<Eigen::Index>(used_columns.size()));
-  for (const auto& t : a_triplets)
-    A_used(t.row(), used_index[static_cast<std::size_t>(t.col())]) += t.value();
-  auto column = [&](int j) { return A_used.col(used_index[static_cast<std::size_t>(j)]); };
-  std::vector<int> candidates;
-  for (int j : used_columns)
-    if (!is_rigid_master[static_cast<std::size_t>(j)]) candidates.push_back(j);
-  std::vector<int> pivots;
-  Eigen::MatrixXd A_D_inv;
-  if (n_rows > 0) {
-    Eigen::MatrixXd A_c(n_rows, static_cast<Eigen::Index>(candidates.size()));
-    for (std::size_t j = 0; j < candidates.size(); ++j)
-      A_c.col(static_cast<Eigen::Index>(j)) = column(candidates[j]);
-    auto rank_of = [](const Eigen::MatrixXd& a) -> int {
-      if (a.rows() == 0 || a.cols() == 0) return 0;
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-      qr.setThreshold(1e-9);
-      return static_cast<int>(qr.rank());
-    };
-    if (rank_of(A_c) < n_rows) {
-      // Name the first point whose rows are not independent of the ones before it.
-      int bad = n_rows - 1;
-      for (int r = 1; r <= n_rows; ++r) {
-        if (rank_of(A_c.topRows(r)) < r) {
-          bad = r - 1;
-          break;
-        }
-      }
-      const int owner = row_owner[static_cast<std::size_t>(bad)];
-      if (owner >= 0) {
-        const auto k = static_cast<std::size_t>(owner);
-        throw InputError(solid.spiders[k].where, fmt::format("{}.spiders[{}].node_set", base, k),
-                         "a node set whose rigid fit is not already fixed by the other spiders "
-                         "(at least 3 nodes not on one line, not all fixed or rigidly joined)",
-                         fmt::format("\"{}\"", solid.spiders[k].node_set),
-                         "join each node set once");
-      }
-      const SensorSet& ss = sensor_sets[static_cast<std::size_t>(-1 - owner)];
-      throw InputError(ss.first->where, fmt::format("sensors[{}].node_set", ss.sensor_index),
-                       "a node set that moves on its own (not fixed, not rigidly joined to a "
-                       "rotor node, not measured by another sensor set of the same motion)",
-                       fmt::format("\"{}\"", ss.set),
-                       "a rigidly joined set moves with its rotor node: put the sensor there");
-    }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A_c);
-    for (int k = 0; k < n_rows; ++k)
-      pivots.push_back(candidates[static_cast<std::size_t>(qr.colsPermutation().indices()[k])]);
-    Eigen::MatrixXd A_D(n_rows, n_rows);
-    for (int k = 0; k < n_rows; ++k) A_D.col(k) = column(pivots[static_cast<std::size_t>(k)]);
-    A_D_inv = A_D.partialPivLu().inverse();
-  }
-  std::vector<int> position(static_cast<std::size_t>(n), -1);  // x index -> z index (x_F)
-  {
-    std::vector<bool> pivot(static_cast<std::size_t>(n), false);
-    for (int d : pivots) pivot[static_cast<std::size_t>(d)] = true;
-    int next = 0;
-    for (int j = 0; j < n; ++j)
-      if (!pivot[static_cast<std::size_t>(j)]) position[static_cast<std::size_t>(j)] = next++;
-  }
-  const int n_free = n - n_rows;
-  Triplets s_triplets;
-  for (int j = 0; j < n; ++j)
-    if (position[static_cast<std::size_t>(j)] >= 0)
-      s_triplets.emplace_back(j, position[static_cast<std::size_t>(j)], 1.0);
-  if (n_rows > 0) {
-    // x_D = A_D^-1 u - A_D^-1 A_F x_F
-    std::vector<int> others;
-    for (int j : used_columns)
-      if (position[static_cast<std::size_t>(j)] >= 0) others.push_back(j);
-    Eigen::MatrixXd A_F(n_rows, static_cast<Eigen::Index>(others.size()));
-    for (std::size_t j = 0; j < others.size(); ++j)
-      A_F.col(static_cast<Eigen::Index>(j)) = column(others[j]);
-    const Eigen::MatrixXd B = A_D_inv * A_F;
-    for (int i = 0; i < n_rows; ++i) {
-      const int d = pivots[static_cast<std::size_t>(i)];
-      for (int k = 0; k < n_rows; ++k)
-        if (A_D_inv(i, k) != 0.0) s_triplets.emplace_back(d, n_free + k, A_D_inv(i, k));
-      for (std::size_t j = 0; j < others.size(); ++j) {
-        const double v = B(i, static_cast<Eigen::Index>(j));
-        if (v != 0.0) s_triplets.emplace_back(d, position[static_cast<std::size_t>(others[j])], -v);
-      }
-    }
-  }
-  out.transform.resize(n, n);
-  out.transform.setFromTriplets(s_triplets.begin(), s_triplets.end());
-  out.transform.makeCompressed();
+  const UsedColumns used = used_columns_of(con, n);
+  const Pivots pivots = pivot_columns(con, used, n, solid, sensor_sets, base);
+  Elimination e = eliminate(con, used, pivots, n);
+  out.transform = std::move(e.transform);
+  project(out, sys, con, e);
+  add_points(out, solid, rotor, sp, sensor_sets, con, e);
 
-  const Eigen::SparseMatrix<double> St = out.transform.transpose();
-  const Eigen::SparseMatrix<double> KS = sys.K * out.transform;
-  const Eigen::SparseMatrix<double> MS = sys.M * out.transform;
-  Eigen::SparseMatrix<double> Kz = St * KS, Mz = St * MS;
-  // The two triangles of S^T K S are summed in different orders: make them equal.
-  out.K = 0.5 * (Kz + Eigen::SparseMatrix<double>(Kz.transpose()));
-  out.M = 0.5 * (Mz + Eigen::SparseMatrix<double>(Mz.transpose()));
-  out.K.makeCompressed();
-  out.M.makeCompressed();
-
-  out.dofs.resize(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j)
-    if (position[static_cast<std::size_t>(j)] >= 0)
-      out.dofs[static_cast<std::size_t>(position[static_cast<std::size_t>(j)])] =
-          sys.dofs[static_cast<std::size_t>(j)];
-  for (int k = 0; k < n_rows; ++k)
-    out.dofs[static_cast<std::size_t>(n_free + k)] = row_info[static_cast<std::size_t>(k)];
-
-  // Masters and points: spiders in order, then sensor sets.
-  for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
-    fe::SuperelementPoint point;
-    point.node = solid.spiders[k].node;
-    out.points.push_back(point);
-    for (int c = 0; c < 6; ++c)
-      out.masters.push_back(
-          solid.spiders[k].kind == model::SpiderKind::Rigid
-              ? position[static_cast<std::size_t>(rigid_x[k][static_cast<std::size_t>(c)])]
-              : n_free + first_row[k] + c);
-  }
-  double common_ratio = rotor.node(rotor_node.front()).speed_ratio;
-  for (int node : rotor_node)
-    if (std::abs(rotor.node(node).speed_ratio - common_ratio) > 1e-12) common_ratio = 0.0;
-  for (std::size_t s = 0; s < sensor_sets.size(); ++s) {
-    fe::SuperelementPoint point;
-    point.node = solid.name + "/" + sensor_sets[s].set;
-    point.new_node = true;
-    point.position = sensor_position[s];
-    point.speed_ratio = common_ratio;
-    point.components = {true, true, true, false, false, false};
-    out.points.push_back(point);
-    for (int c = 0; c < 3; ++c) out.masters.push_back(n_free + sensor_first_row[s] + c);
-  }
-
-  const Eigen::Vector3d p = mesh.coords[static_cast<std::size_t>(reference.front())];
+  const Eigen::Vector3d p = sp.mesh.coords[static_cast<std::size_t>(sp.reference.front())];
   const Eigen::MatrixXd R = rigid_modes(out.dofs, p);
   out.rigid_mass = R.transpose() * (out.M * R);
   return out;
