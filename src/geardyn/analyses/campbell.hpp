@@ -84,7 +84,9 @@ std::vector<EngineOrderLine> engine_order_lines(const model::Model& model,
                                                 const fe::LinearSystem& system,
                                                 const CampbellSettings& settings);
 
-/// Optimal assignment maximising the total score (Hungarian method, Kuhn 1955 / Munkres 1957):
+/// Optimal assignment maximising the total score (Hungarian method: H. W. Kuhn, "The Hungarian
+/// method for the assignment problem", 1955; J. Munkres, "Algorithms for the assignment and
+/// transportation problems", 1957):
 /// rows (tracks) to distinct columns (candidates); rows <= columns. Returns the column of each
 /// row. Ties go to the lower column index, so the result is deterministic.
 std::vector<int> best_assignment(const Eigen::MatrixXd& score);

@@ -18,8 +18,8 @@ namespace {
 
 using Complex = std::complex<double>;
 using units::kPi;
-constexpr double kHzPerRadS = 1.0 / (2.0 * kPi);
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+constexpr double kHzPerRadS = 1.0 / units::kTwoPi;
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 // UMFPACK scales each row by the sum of its absolute values before factorising, so its pivot
 // ratio min|U_ii| / max|U_ii| compares pivots of a matrix with unit-size rows. A matrix that is
@@ -604,6 +604,50 @@ void set_grid_status(FrfResult& result) {
       result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
 }
 
+// The frequencies the next pass of the adaptive grid adds: those that would resolve the
+// unresolved peaks and bisect the jumps, inside the range and not within 1e-12 f_max of a
+// sample or of each other.
+std::vector<double> new_frequencies(const std::vector<double>& f,
+                                    const std::vector<std::vector<double>>& amplitude,
+                                    const std::vector<double>& initial,
+                                    const std::map<double, Eigen::VectorXcd>& samples,
+                                    const HarmonicSettings& settings,
+                                    const AdaptiveGridOptions& options) {
+  const double same = 1e-12 * settings.f_max;
+  std::vector<double> wanted;
+  analyse_peaks(f, amplitude, options, &wanted);
+  jump_points(f, amplitude, initial, options, wanted);
+  std::sort(wanted.begin(), wanted.end());
+  std::vector<double> fresh;
+  for (double w : wanted) {
+    if (!(w > settings.f_min && w < settings.f_max)) continue;
+    if (!fresh.empty() && w - fresh.back() <= same) continue;
+    auto it = samples.lower_bound(w);
+    if (it != samples.end() && it->first - w <= same) continue;
+    if (it != samples.begin() && w - std::prev(it)->first <= same) continue;
+    fresh.push_back(w);
+  }
+  return fresh;
+}
+
+// The fewest samples in a band and the largest location error over the peaks with a band.
+void summarize_peaks(const std::vector<FrfPeak>& peaks, bool adaptive, GridSummary& grid) {
+  bool any_band = false;
+  for (const auto& p : peaks) {
+    if (!std::isfinite(p.q_factor)) continue;
+    grid.min_points_in_band =
+        any_band ? std::min(grid.min_points_in_band, p.points_in_band) : p.points_in_band;
+    grid.max_location_error = std::max(grid.max_location_error, p.location_error);
+    any_band = true;
+    // A peak left unresolved without a limit hit: its band is narrower than the grid can
+    // separate (samples closer than 1e-12 f_max are merged).
+    if (adaptive && grid.converged && !p.resolved) {
+      grid.converged = false;
+      grid.limit_hit = "the frequency resolution (1e-12 x frequency_stop)";
+    }
+  }
+}
+
 }  // namespace
 
 FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
@@ -672,21 +716,9 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   grid.adaptive = settings.adaptive;
   if (settings.adaptive) {
     progress.start(fmt::format("{}: refining the frequency grid", analysis_name), 0);
-    const double same = 1e-12 * settings.f_max;
     for (int pass = 0;; ++pass) {
-      std::vector<double> wanted;
-      analyse_peaks(f, amplitude, options, &wanted);
-      jump_points(f, amplitude, initial, options, wanted);
-      std::sort(wanted.begin(), wanted.end());
-      std::vector<double> fresh;
-      for (double w : wanted) {
-        if (!(w > settings.f_min && w < settings.f_max)) continue;
-        if (!fresh.empty() && w - fresh.back() <= same) continue;
-        auto it = samples.lower_bound(w);
-        if (it != samples.end() && it->first - w <= same) continue;
-        if (it != samples.begin() && w - std::prev(it)->first <= same) continue;
-        fresh.push_back(w);
-      }
+      const std::vector<double> fresh =
+          new_frequencies(f, amplitude, initial, samples, settings, options);
       if (fresh.empty()) break;
       if (pass >= options.max_passes) {
         grid.converged = false;
@@ -710,20 +742,7 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   std::stable_sort(result.peaks.begin(), result.peaks.end(),
                    [](const FrfPeak& a, const FrfPeak& b) { return a.sensor < b.sensor; });
   grid.final_points = static_cast<int>(f.size());
-  bool any_band = false;
-  for (const auto& p : result.peaks) {
-    if (!std::isfinite(p.q_factor)) continue;
-    grid.min_points_in_band =
-        any_band ? std::min(grid.min_points_in_band, p.points_in_band) : p.points_in_band;
-    grid.max_location_error = std::max(grid.max_location_error, p.location_error);
-    any_band = true;
-    // A peak left unresolved without a limit hit: its band is narrower than the grid can
-    // separate (samples closer than 1e-12 f_max are merged).
-    if (settings.adaptive && grid.converged && !p.resolved) {
-      grid.converged = false;
-      grid.limit_hit = "the frequency resolution (1e-12 x frequency_stop)";
-    }
-  }
+  summarize_peaks(result.peaks, settings.adaptive, grid);
 
   result.frequencies =
       Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));

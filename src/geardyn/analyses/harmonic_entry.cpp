@@ -80,7 +80,7 @@ std::vector<model::Field> keys() {
   };
 }
 
-constexpr double kHzPerRadS = 1.0 / (2.0 * units::kPi);
+constexpr double kHzPerRadS = 1.0 / units::kTwoPi;
 
 int sensor_index(const FrfResult& r, const std::string& sensor) {
   for (std::size_t s = 0; s < r.sensors.size(); ++s)
@@ -100,7 +100,7 @@ ResponseCurve response_curve(const FrfResult& r, int s) {
   }
   c.x_unit = "Hz";
   c.amplitude_unit = r.amplitude_unit(s);
-  c.per_rad_s = 1.0 / (2.0 * units::kPi);
+  c.per_rad_s = 1.0 / units::kTwoPi;
   return c;
 }
 

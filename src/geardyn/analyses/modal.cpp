@@ -409,6 +409,8 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& /*se
   if (result.complex_requested)
     out.notes.push_back(fmt::format("Complex modes at {:.6g} rpm: {}.", result.speed * kRpmPerRadS,
                                     result.complex_report));
+  // Backward error of a polynomial eigenpair: F. Tisseur, "Backward error and condition of
+  // polynomial eigenvalue problems", Linear Algebra and its Applications, 2000.
   out.notes.push_back(fmt::format(
       "Largest backward error of any mode {:.2e} (column 'residual': ||P(lambda) x|| relative to "
       "the matrix norms, Tisseur 2000); a mode's relative frequency error is at most about its "

@@ -134,7 +134,9 @@ Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& sh
 
 ModeKind mode_kind(const fe::ModeFamilies& families);
 
-/// Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (Allemang & Brown, 1982).
+/// Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (R. J. Allemang, D. L. Brown,
+/// "A correlation coefficient for modal vector analysis", Proc. 1st International Modal Analysis
+/// Conference, 1982).
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 
 /// |lambda|^2 below which a mode counts as rigid-body: 1e-10 max_i K_ii / M_ii.

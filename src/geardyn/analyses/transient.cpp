@@ -14,7 +14,7 @@
 namespace geardyn::analyses {
 namespace {
 
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * units::kPi);
+constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
 constexpr double kMaxSteps = 1e8;
 constexpr int kMinSpectrumSamples = 16;
 constexpr std::size_t kMaxPlotPoints = 4000;
@@ -404,7 +404,7 @@ void add_accuracy_notes(const TransientResult& result, const fe::LinearSystem& s
         "at the highest 1x excitation frequency, {:.4g} Hz, omega h = {:.3g}: the scheme's "
         "relative period (phase) error is about (omega h)^2 / 12 = {:.2g}, the amplitude error "
         "of a forced response of the same order",
-        w_exc / (2 * units::kPi), wh, wh * wh / 12.0));
+        w_exc / units::kTwoPi, wh, wh * wh / 12.0));
     if (w_exc * result.sample_interval > units::kPi / 4)
       notes.push_back(fmt::format(
           "the stored samples (every {} steps, {:.4g} Hz) hold fewer than 8 per period of the "

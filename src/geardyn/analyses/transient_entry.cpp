@@ -112,7 +112,7 @@ AnalysisType transient_analysis() {
     }
     if (q.quantity == "max_response_speed") {
       unit = "rpm";
-      return s.peak_speed * (60.0 / (2.0 * units::kPi));
+      return s.peak_speed * (60.0 / units::kTwoPi);
     }
     if (q.quantity == "rms_response") {
       unit = s.unit;

@@ -14,7 +14,7 @@ namespace {
 
 using Complex = std::complex<double>;
 using units::kPi;
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
@@ -168,6 +168,42 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
   return result;
 }
 
+namespace {
+
+// Table "orbits": per order, speed and orbit node.
+Table orbits_table(const UnbalanceResult& result, const std::vector<double>& rpm) {
+  const std::size_t n_speeds = result.speeds.size();
+  const std::size_t n_orders = result.orders.size();
+  Table orbits;
+  orbits.name = "orbits";
+  orbits.title = "Orbits (semi-axes, inclination of the major axis from e1, whirl vs spin)";
+  std::vector<double> o_rpm, o_order, o_major, o_minor, o_incl;
+  std::vector<std::string> o_node, o_whirl;
+  for (std::size_t o = 0; o < n_orders; ++o)
+    for (std::size_t i = 0; i < n_speeds; ++i)
+      for (std::size_t k = 0; k < result.orbit_nodes.size(); ++k) {
+        const NodeOrbit& no = result.orbits[o][i][k];
+        o_rpm.push_back(rpm[i]);
+        o_order.push_back(result.orders[o]);
+        o_node.push_back(result.orbit_nodes[k]);
+        o_major.push_back(no.orbit.major);
+        o_minor.push_back(no.orbit.minor);
+        o_incl.push_back(no.orbit.inclination * 180.0 / kPi);
+        o_whirl.emplace_back(signal::to_string(no.whirl));
+      }
+  orbits.add("speed_rpm", "rpm", o_rpm);
+  orbits.add("order", "", o_order);
+  orbits.add_text("node", o_node);
+  orbits.add("major_m", "m", o_major);
+  orbits.add("minor_m", "m", o_minor);
+  orbits.add("inclination_deg", "deg", o_incl);
+  orbits.add_text("whirl", o_whirl);
+
+  return orbits;
+}
+
+}  // namespace
+
 AnalysisOutput unbalance_output(const model::Model& /*model*/,
                                 const UnbalanceSettings& /*settings*/,
                                 const UnbalanceResult& result, const Context& context) {
@@ -238,33 +274,8 @@ AnalysisOutput unbalance_output(const model::Model& /*model*/,
                      : any_rotation                  ? "amplitude [rad]"
                                                      : "amplitude [m]";
 
-  Table orbits;
-  orbits.name = "orbits";
-  orbits.title = "Orbits (semi-axes, inclination of the major axis from e1, whirl vs spin)";
-  std::vector<double> o_rpm, o_order, o_major, o_minor, o_incl;
-  std::vector<std::string> o_node, o_whirl;
-  for (std::size_t o = 0; o < n_orders; ++o)
-    for (std::size_t i = 0; i < n_speeds; ++i)
-      for (std::size_t k = 0; k < result.orbit_nodes.size(); ++k) {
-        const NodeOrbit& no = result.orbits[o][i][k];
-        o_rpm.push_back(rpm[i]);
-        o_order.push_back(result.orders[o]);
-        o_node.push_back(result.orbit_nodes[k]);
-        o_major.push_back(no.orbit.major);
-        o_minor.push_back(no.orbit.minor);
-        o_incl.push_back(no.orbit.inclination * 180.0 / kPi);
-        o_whirl.emplace_back(signal::to_string(no.whirl));
-      }
-  orbits.add("speed_rpm", "rpm", o_rpm);
-  orbits.add("order", "", o_order);
-  orbits.add_text("node", o_node);
-  orbits.add("major_m", "m", o_major);
-  orbits.add("minor_m", "m", o_minor);
-  orbits.add("inclination_deg", "deg", o_incl);
-  orbits.add_text("whirl", o_whirl);
-
   out.tables.push_back(std::move(response));
-  out.tables.push_back(std::move(orbits));
+  out.tables.push_back(orbits_table(result, rpm));
   out.plots.push_back(std::move(amp_plot));
   out.plots.push_back(std::move(phase_plot));
 

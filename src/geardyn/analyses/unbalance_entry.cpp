@@ -47,7 +47,7 @@ std::vector<model::Field> keys() {
   };
 }
 
-constexpr double kRpmPerRadS = 60.0 / (2.0 * units::kPi);
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 // The sensor's amplitude over speed as table "response" lists it: order after order, each over
 // the speeds.
@@ -68,7 +68,7 @@ ResponseCurve response_curve(const UnbalanceResult& r, const std::string& sensor
   }
   c.x_unit = "rpm";
   c.amplitude_unit = r.sensors[s].rotational ? "rad" : "m";
-  c.per_rad_s = 60.0 / (2.0 * units::kPi);
+  c.per_rad_s = 60.0 / units::kTwoPi;
   return c;
 }
 
