@@ -93,7 +93,8 @@ void BM_Modal(benchmark::State& state) {
   settings.n_modes = 10;
   settings.speed = 3000 * 2 * std::numbers::pi / 60;
   for (auto _ : state)
-    benchmark::DoNotOptimize(analyses::run_modal(system, settings, null_progress()));
+    benchmark::DoNotOptimize(
+        analyses::run_modal(m, settings, analyses::Context("modal").with_system(&system)));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Modal)->Arg(100)->Arg(1000)->Arg(10000)->Unit(benchmark::kMillisecond)->Complexity();
@@ -105,7 +106,8 @@ void BM_Campbell100(benchmark::State& state) {
   settings.n_modes = 6;
   for (int i = 0; i < 100; ++i) settings.speeds.push_back(i * 100.0 * 2 * std::numbers::pi / 60);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analyses::run_campbell(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(
+        analyses::run_campbell(m, settings, analyses::Context("campbell").with_system(&system)));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Campbell100)
@@ -126,7 +128,8 @@ void BM_Frf10k(benchmark::State& state) {
   settings.adaptive = false;
   settings.input_node = "s." + std::to_string(state.range(0) / 4);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analyses::run_harmonic(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(
+        analyses::run_harmonic(m, settings, analyses::Context("harmonic").with_system(&system)));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Frf10k)
@@ -142,7 +145,8 @@ void BM_Unbalance1k(benchmark::State& state) {
   analyses::UnbalanceSettings settings;
   for (int i = 1; i <= 1000; ++i) settings.speeds.push_back(i * 10.0 * 2 * std::numbers::pi / 60);
   for (auto _ : state)
-    benchmark::DoNotOptimize(analyses::run_unbalance(m, system, settings, null_progress()));
+    benchmark::DoNotOptimize(
+        analyses::run_unbalance(m, settings, analyses::Context("unbalance").with_system(&system)));
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Unbalance1k)

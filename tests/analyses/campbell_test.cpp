@@ -71,12 +71,12 @@ TEST(Campbell, InvalidSettingsThrowInputError) {
   const auto system = assembly::build_system(model);
   analyses::CampbellSettings s;
   s.speeds = {};
-  EXPECT_THROW(run_campbell(model, system, s, null_progress()), InputError);
+  EXPECT_THROW(run_campbell(model, s, Context("campbell").with_system(&system)), InputError);
   s.speeds = {0.0, 10.0, 5.0};
-  EXPECT_THROW(run_campbell(model, system, s, null_progress()), InputError);
+  EXPECT_THROW(run_campbell(model, s, Context("campbell").with_system(&system)), InputError);
   s.speeds = {0.0, 10.0};
   s.mac_threshold = 1.5;
-  EXPECT_THROW(run_campbell(model, system, s, null_progress()), InputError);
+  EXPECT_THROW(run_campbell(model, s, Context("campbell").with_system(&system)), InputError);
 }
 
 }  // namespace

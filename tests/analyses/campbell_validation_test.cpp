@@ -27,7 +27,7 @@ TEST(Campbell, JeffcottCriticalSpeedEqualsNaturalFrequency) {
   analyses::CampbellSettings settings;
   settings.n_modes = 2;
   for (int i = 0; i <= 24; ++i) settings.speeds.push_back(i * 250.0 * 2 * kPi / 60.0);
-  const CampbellResult r = run_campbell(model, system, settings, null_progress());
+  const CampbellResult r = run_campbell(model, settings, Context("campbell").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.lines.size(), 1u);  // EO 1; no shafts, no meshes
   ASSERT_EQ(r.critical_speeds.size(), 2u);
@@ -38,7 +38,8 @@ TEST(Campbell, JeffcottCriticalSpeedEqualsNaturalFrequency) {
     EXPECT_NEAR(cs.damping_ratio, zeta, 1e-10);
     EXPECT_EQ(cs.order, 1.0);
   }
-  const AnalysisOutput out = campbell_output(model, system, r, "campbell");
+  const AnalysisOutput out =
+      campbell_output(model, settings, r, Context("campbell").with_system(&system));
   const Table* critical = nullptr;
   const Table* campbell = nullptr;
   for (const auto& t : out.tables) {
@@ -90,7 +91,7 @@ TEST(Campbell, TrackingKeepsIdentityThroughACrossing) {
   analyses::CampbellSettings settings;
   settings.n_modes = 3;
   for (int i = 0; i <= 20; ++i) settings.speeds.push_back(50.0 * i);  // 0..1000 rad/s
-  const CampbellResult r = run_campbell(model, system, settings, null_progress());
+  const CampbellResult r = run_campbell(model, settings, Context("campbell").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.tracks.size(), 3u);
   EXPECT_EQ(r.ambiguous_points, 0);
@@ -138,7 +139,7 @@ TEST(Campbell, BackwardCriticalSpeedOfAGyroscopicDisk) {
   analyses::CampbellSettings settings;
   settings.n_modes = 3;
   for (int i = 0; i <= 20; ++i) settings.speeds.push_back(50.0 * i);
-  const CampbellResult r = run_campbell(model, system, settings, null_progress());
+  const CampbellResult r = run_campbell(model, settings, Context("campbell").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.critical_speeds.size(), 1u);
   const auto& cs = r.critical_speeds[0];

@@ -26,7 +26,7 @@ TEST(FrequencyResponse, SdofQuantitiesOnAFixedGrid) {
                  analyses::ResponseQuantity::Accelerance}) {
     auto settings = grid(0.0, 600.0, 61, false);
     settings.quantity = q;
-    const FrfResult r = frequency_response(s, load, {0}, settings, null_progress());
+    const FrfResult r = frequency_response(s, load, {0}, settings, Context("harmonic"));
     ASSERT_EQ(r.frequencies.size(), 61);
     EXPECT_EQ(r.frequencies[0], 0.0);
     EXPECT_EQ(r.frequencies[60], 600.0);
@@ -48,7 +48,7 @@ TEST(FrequencyResponse, AdaptiveGridMeetsItsCriteria) {
   const double wn = std::sqrt(k / m);
   const fe::LinearSystem s = sdof(m, k, 2.0 * zeta * std::sqrt(k * m));
   const FrfResult r = frequency_response(s, Eigen::VectorXcd::Ones(1), {0},
-                                         grid(10.0, 3000.0, 40, true), null_progress());
+                                         grid(10.0, 3000.0, 40, true), Context("harmonic"));
   EXPECT_EQ(r.status, Status::Ok) << r.message;
   EXPECT_TRUE(r.grid.converged);
   EXPECT_GT(r.grid.final_points, r.grid.initial_points);
@@ -70,7 +70,7 @@ TEST(FrequencyResponse, PointLimitLeavesTheGridNotConverged) {
   AdaptiveGridOptions options;
   options.max_points = 45;
   const FrfResult r = frequency_response(s, Eigen::VectorXcd::Ones(1), {0},
-                                         grid(0.0, 3000.0, 40, true), null_progress(), options);
+                                         grid(0.0, 3000.0, 40, true), Context("harmonic"), options);
   EXPECT_EQ(r.status, Status::NotConverged);
   EXPECT_FALSE(r.grid.converged);
   EXPECT_NE(r.message.find("max_points = 45"), std::string::npos) << r.message;
@@ -93,17 +93,17 @@ TEST(FrfResult, UnitsOfRotationsAndMoments) {
 TEST(FrequencyResponse, RejectsBadGrids) {
   const fe::LinearSystem s = sdof(1.0, 1.0, 0.1);
   const Eigen::VectorXcd f = Eigen::VectorXcd::Ones(1);
-  EXPECT_THROW(frequency_response(s, f, {0}, grid(5.0, 5.0, 10, false), null_progress()),
+  EXPECT_THROW(frequency_response(s, f, {0}, grid(5.0, 5.0, 10, false), Context("harmonic")),
                InputError);
-  EXPECT_THROW(frequency_response(s, f, {0}, grid(-1.0, 5.0, 10, false), null_progress()),
+  EXPECT_THROW(frequency_response(s, f, {0}, grid(-1.0, 5.0, 10, false), Context("harmonic")),
                InputError);
-  EXPECT_THROW(frequency_response(s, f, {0}, grid(0.0, 5.0, 1, false), null_progress()),
+  EXPECT_THROW(frequency_response(s, f, {0}, grid(0.0, 5.0, 1, false), Context("harmonic")),
                InputError);
   auto log_grid = grid(0.0, 5.0, 10, false);
   log_grid.spacing = analyses::Spacing::Log;
-  EXPECT_THROW(frequency_response(s, f, {0}, log_grid, null_progress()), InputError);
+  EXPECT_THROW(frequency_response(s, f, {0}, log_grid, Context("harmonic")), InputError);
   log_grid.f_min = 0.5;
-  const FrfResult r = frequency_response(s, f, {0}, log_grid, null_progress());
+  const FrfResult r = frequency_response(s, f, {0}, log_grid, Context("harmonic"));
   EXPECT_NEAR(r.frequencies[1] / r.frequencies[0], std::pow(10.0, 1.0 / 9.0), 1e-12);
 }
 
@@ -133,7 +133,7 @@ TEST(RunHarmonic, FrfAndForcedResponseByName) {
   model::Model m = two_dof_model();
   const fe::LinearSystem s = fe::assemble(m);
   const auto& hs = m.analyses[0].settings_of<analyses::HarmonicSettings>();
-  const FrfResult frf = run_harmonic(m, s, hs, null_progress());
+  const FrfResult frf = run_harmonic(m, hs, Context("harmonic").with_system(&s));
   ASSERT_EQ(frf.sensors.size(), 2u);
   EXPECT_EQ(frf.sensors[0].name, "dx");
   EXPECT_EQ(frf.sensors[1].equation, s.dofs.dof(0, model::Component::Uy));
@@ -151,7 +151,7 @@ TEST(RunHarmonic, FrfAndForcedResponseByName) {
   forced.input_node.clear();
   forced.forces = {"fx"};
   forced.quantity = analyses::ResponseQuantity::Mobility;
-  const FrfResult r = run_harmonic(m, s, forced, null_progress());
+  const FrfResult r = run_harmonic(m, forced, Context("harmonic").with_system(&s));
   EXPECT_TRUE(r.forced);
   EXPECT_EQ(r.amplitude_unit(0), "m/s");
   const Eigen::MatrixXcd v = r.response();
@@ -170,8 +170,8 @@ TEST(RunHarmonic, OutputTablesAndPlots) {
   hs.adaptive = true;
   hs.sensors = {"dx"};
   hs.quantity = analyses::ResponseQuantity::Accelerance;
-  const FrfResult r = run_harmonic(m, s, hs, null_progress());
-  const AnalysisOutput out = harmonic_output(m, s, r, "frf");
+  const FrfResult r = run_harmonic(m, hs, Context("harmonic").with_system(&s));
+  const AnalysisOutput out = harmonic_output(m, hs, r, Context("frf").with_system(&s));
   EXPECT_EQ(out.type, "harmonic");
   ASSERT_EQ(out.tables.size(), 2u);
   const Table& frf = out.tables[0];
@@ -187,7 +187,7 @@ TEST(RunHarmonic, OutputTablesAndPlots) {
   ASSERT_EQ(peaks.rows(), 1u);  // the x mode at sqrt(1e5) rad/s
   const double zeta = 50.0 / (2.0 * std::sqrt(1e6 * 10.0));
   EXPECT_NEAR(peaks.column("frequency_hz").numbers[0], std::sqrt(1e5) / (2 * kPi), 0.01);
-  EXPECT_NEAR(peaks.column("damping_ratio_est").numbers[0], zeta, 0.02 * zeta);
+  EXPECT_NEAR(peaks.column("damping_ratio").numbers[0], zeta, 0.02 * zeta);
   ASSERT_EQ(out.plots.size(), 2u);
   EXPECT_TRUE(out.plots[0].y_log);
   EXPECT_FALSE(out.notes.empty());
@@ -198,21 +198,22 @@ TEST(RunHarmonic, InputErrorsNameTheKey) {
   const fe::LinearSystem s = fe::assemble(m);
   auto& hs = m.analyses[0].settings_of<analyses::HarmonicSettings>();
   hs.sensors = {"nope"};
+  const Context context = Context(m, m.analyses[0]).with_system(&s);
   try {
-    run_harmonic(m, s, hs, null_progress());
+    run_harmonic(m, hs, context);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_EQ(e.key_path(), "analyses[0].sensors");
   }
   hs.sensors.clear();
   hs.forces = {"fx"};  // both input_node and forces
-  EXPECT_THROW(run_harmonic(m, s, hs, null_progress()), InputError);
+  EXPECT_THROW(run_harmonic(m, hs, context), InputError);
   hs.forces.clear();
   hs.input_dof = model::Component::Uz;  // constrained
-  EXPECT_THROW(run_harmonic(m, s, hs, null_progress()), InputError);
+  EXPECT_THROW(run_harmonic(m, hs, context), InputError);
   hs.input_dof = model::Component::Ux;
   hs.input_node = "nowhere";
-  EXPECT_THROW(run_harmonic(m, s, hs, null_progress()), InputError);
+  EXPECT_THROW(run_harmonic(m, hs, context), InputError);
 }
 
 TEST(RunHarmonic, UnconstrainedRotorFailsWithAHelpfulMessage) {
@@ -242,7 +243,7 @@ TEST(RunHarmonic, UnconstrainedRotorFailsWithAHelpfulMessage) {
   analyses::HarmonicSettings hs = grid(0.0, 2000.0, 50, false);
   hs.input_node = "s.0";
   try {
-    run_harmonic(m, s, hs, null_progress());
+    run_harmonic(m, hs, Context("harmonic").with_system(&s));
     FAIL() << "expected NumericalError";
   } catch (const NumericalError& err) {
     const std::string what = err.what();
@@ -253,7 +254,7 @@ TEST(RunHarmonic, UnconstrainedRotorFailsWithAHelpfulMessage) {
   }
   // Above zero frequency the free-free rotor has a regular D(w).
   hs.f_min = 1.0;
-  EXPECT_NO_THROW(run_harmonic(m, s, hs, null_progress()));
+  EXPECT_NO_THROW(run_harmonic(m, hs, Context("harmonic").with_system(&s)));
 }
 
 }  // namespace

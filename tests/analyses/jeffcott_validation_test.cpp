@@ -54,7 +54,7 @@ TEST(JeffcottValidation, AmplitudePhaseAndOrbitAtAnalyticPoints) {
   const double wn = std::sqrt(kStiffness / kMass);
   EXPECT_NEAR(wn, 316.227766, 5e-7);
   const std::vector<double> W = {0.3 * wn, wn, 2.0 * wn, 5.0 * wn};
-  const UnbalanceResult r = run_unbalance(m, s, speed_list(W), null_progress());
+  const UnbalanceResult r = run_unbalance(m, speed_list(W), Context("unbalance").with_system(&s));
   ASSERT_EQ(r.orders.size(), 1u);
   for (std::size_t i = 0; i < W.size(); ++i) {
     const Complex x = r.response[0](static_cast<Eigen::Index>(i), 0);
@@ -87,7 +87,7 @@ TEST(JeffcottValidation, PeakFromAFineSpeedList) {
   // 601 speeds 0.002 rad/s apart around the peak (half-power band 12.6 rad/s wide).
   std::vector<double> W;
   for (int k = 0; k <= 600; ++k) W.push_back(315.7 + 0.002 * k);
-  const UnbalanceResult r = run_unbalance(m, s, speed_list(W), null_progress());
+  const UnbalanceResult r = run_unbalance(m, speed_list(W), Context("unbalance").with_system(&s));
   std::vector<double> amp;
   for (std::size_t i = 0; i < W.size(); ++i)
     amp.push_back(std::abs(r.response[0](static_cast<Eigen::Index>(i), 0)));
@@ -113,7 +113,7 @@ TEST(JeffcottValidation, AnisotropicSupportWhirlsBackwardBetweenCriticals) {
   const fe::LinearSystem s = fe::assemble(m);
   const double w1 = std::sqrt(kx / kMass), w2 = std::sqrt(ky / kMass);
   const std::vector<double> W = {0.5 * w1, 0.5 * (w1 + w2), 2.0 * w2};
-  const UnbalanceResult r = run_unbalance(m, s, speed_list(W), null_progress());
+  const UnbalanceResult r = run_unbalance(m, speed_list(W), Context("unbalance").with_system(&s));
   const signal::Whirl expected[] = {signal::Whirl::Forward, signal::Whirl::Backward,
                                     signal::Whirl::Forward};
   for (std::size_t i = 0; i < W.size(); ++i) {
@@ -139,7 +139,7 @@ TEST(JeffcottValidation, ModalDampingReproducesViscousDamping) {
   ASSERT_TRUE(s.has_modal_damping());
   const double wn = std::sqrt(kStiffness / kMass);
   const std::vector<double> W = {0.5 * wn, wn, 2.0 * wn};
-  const UnbalanceResult r = run_unbalance(m, s, speed_list(W), null_progress());
+  const UnbalanceResult r = run_unbalance(m, speed_list(W), Context("unbalance").with_system(&s));
   EXPECT_TRUE(r.modal_damping);
   for (std::size_t i = 0; i < W.size(); ++i) {
     const Complex ref = closed_form_x(W[i]);

@@ -69,9 +69,10 @@ TEST(Modal, ShaftOutputHasShapePlotsAndNormalisedShapes) {
   analyses::ModalSettings settings;
   settings.n_modes = 8;
   settings.speed = 500.0;
-  const ModalResult r = run_modal(system, settings, null_progress());
+  const ModalResult r = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
-  const AnalysisOutput out = modal_output(model, system, r, "modal");
+  const AnalysisOutput out =
+      modal_output(model, settings, r, Context("modal").with_system(&system));
   ASSERT_EQ(out.plots.size(), 1u);
   EXPECT_EQ(out.plots[0].name, "mode_shapes_rotor");
   ASSERT_EQ(out.plots[0].traces.size(), 6u);
@@ -105,21 +106,21 @@ TEST(Modal, ShiftSelectsModesNearAFrequency) {
   analyses::ModalSettings all;
   all.n_modes = 12;
   all.complex_modes = false;
-  const ModalResult every = run_modal(system, all, null_progress());
+  const ModalResult every = run_modal(model, all, Context("modal").with_system(&system));
   ASSERT_EQ(every.status, Status::Ok);
   ASSERT_EQ(every.undamped.size(), 12u);
   // Shift exactly at the 9th undamped frequency: it and its isotropic twin are nearest.
   analyses::ModalSettings near = all;
   near.n_modes = 2;
   near.shift = every.undamped[8].frequency_hz * 2 * kPi;
-  const ModalResult r = run_modal(system, near, null_progress());
+  const ModalResult r = run_modal(model, near, Context("modal").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.undamped.size(), 2u);
   for (const Mode& mode : r.undamped)
     EXPECT_NEAR(mode.frequency_hz, every.undamped[8].frequency_hz,
                 1e-8 * every.undamped[8].frequency_hz);
   // Without complex modes the "modes" table lists the undamped ones.
-  const AnalysisOutput out = modal_output(model, system, every, "m");
+  const AnalysisOutput out = modal_output(model, all, every, Context("m").with_system(&system));
   EXPECT_EQ(table(out, "modes").rows(), 12u);
   EXPECT_EQ(table(out, "modes").column("damping_ratio").numbers[0], 0.0);
 }
@@ -129,10 +130,10 @@ TEST(Modal, InvalidSettingsThrowInputError) {
   const auto system = assembly::build_system(model);
   analyses::ModalSettings bad;
   bad.n_modes = 0;
-  EXPECT_THROW(run_modal(system, bad, null_progress()), InputError);
+  EXPECT_THROW(run_modal(model, bad, Context("modal").with_system(&system)), InputError);
   bad.n_modes = 1;
   bad.shift = -1.0;
-  EXPECT_THROW(run_modal(system, bad, null_progress()), InputError);
+  EXPECT_THROW(run_modal(model, bad, Context("modal").with_system(&system)), InputError);
 }
 
 TEST(Modal, FewerModesThanAskedIsReportedNotHidden) {
@@ -140,10 +141,10 @@ TEST(Modal, FewerModesThanAskedIsReportedNotHidden) {
   const auto system = assembly::build_system(model);
   analyses::ModalSettings settings;
   settings.n_modes = 5;  // the system has two
-  const ModalResult r = run_modal(system, settings, null_progress());
+  const ModalResult r = run_modal(model, settings, Context("modal").with_system(&system));
   EXPECT_EQ(r.status, Status::FewerModes);
   EXPECT_NE(r.message.find("2"), std::string::npos) << r.message;
-  const AnalysisOutput out = modal_output(model, system, r, "m");
+  const AnalysisOutput out = modal_output(model, settings, r, Context("m").with_system(&system));
   EXPECT_EQ(out.status, Status::FewerModes);
   EXPECT_FALSE(out.message.empty());
 }
@@ -190,9 +191,9 @@ TEST(Modal, DenseAndSparseAgreeOnARotorWithARigidBodyMode) {
   settings.n_modes = 10;
   settings.speed = 6000.0 * 2 * kPi / 60.0;
   settings.method = analyses::EigenMethod::Dense;
-  const ModalResult dense = run_modal(system, settings, null_progress());
+  const ModalResult dense = run_modal(model, settings, Context("modal").with_system(&system));
   settings.method = analyses::EigenMethod::Sparse;
-  const ModalResult sparse = run_modal(system, settings, null_progress());
+  const ModalResult sparse = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(dense.status, Status::Ok) << dense.message;
   ASSERT_EQ(sparse.status, Status::Ok) << sparse.message;
   ASSERT_EQ(dense.complex.size(), 10u);

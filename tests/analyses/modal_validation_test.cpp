@@ -43,7 +43,7 @@ TEST(Modal, JeffcottRotorMatchesClosedForm) {
   analyses::ModalSettings settings;
   settings.n_modes = 2;
   settings.speed = 3000.0 * 2.0 * kPi / 60.0;
-  const ModalResult r = run_modal(system, settings, null_progress());
+  const ModalResult r = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.complex.size(), 2u);
   ASSERT_EQ(r.undamped.size(), 2u);
@@ -61,7 +61,8 @@ TEST(Modal, JeffcottRotorMatchesClosedForm) {
     EXPECT_EQ(mode.damping_ratio, 0.0);
   }
 
-  const AnalysisOutput out = modal_output(model, system, r, "modes");
+  const AnalysisOutput out =
+      modal_output(model, settings, r, Context("modes").with_system(&system));
   EXPECT_EQ(out.type, "modal");
   EXPECT_EQ(out.status, Status::Ok);
   const Table& modes = table(out, "modes");
@@ -147,7 +148,7 @@ TEST(Modal, OverhungGyroscopicDiskSplitsForwardUpBackwardDown) {
     analyses::ModalSettings settings;
     settings.n_modes = 4;
     settings.speed = Omega;
-    const ModalResult r = run_modal(system, settings, null_progress());
+    const ModalResult r = run_modal(model, settings, Context("modal").with_system(&system));
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     ASSERT_EQ(r.complex.size(), 4u);
 
@@ -240,7 +241,7 @@ TEST(Modal, FriswellExample591FrequenciesAndWhirlAt4000Rpm) {
   analyses::ModalSettings settings;
   settings.n_modes = 12;
   settings.speed = 4000.0 * 2 * kPi / 60;
-  const ModalResult r = run_modal(system, settings, null_progress());
+  const ModalResult r = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   std::vector<const Mode*> lateral;
   for (const Mode& m : r.complex)

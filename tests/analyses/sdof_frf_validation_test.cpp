@@ -50,8 +50,9 @@ struct ViscousSdof {
 
 TEST(SdofFrfValidation, ReceptanceAndHalfPowerQ) {
   const ViscousSdof sys{1.5, 6e5, 0.02};
-  const FrfResult r = frequency_response(sdof(sys.m, sys.k, sys.c()), Eigen::VectorXcd::Ones(1),
-                                         {0}, grid(0.0, 2.0 * sys.wn(), 60, true), null_progress());
+  const FrfResult r =
+      frequency_response(sdof(sys.m, sys.k, sys.c()), Eigen::VectorXcd::Ones(1), {0},
+                         grid(0.0, 2.0 * sys.wn(), 60, true), Context("harmonic"));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   // Every sample is the exact receptance: a 1x1 solve is a complex division (round-off only).
   for (Eigen::Index i = 0; i < r.frequencies.size(); ++i)
@@ -83,12 +84,12 @@ TEST(SdofFrfValidation, AdaptiveGridCatchesAVerySharpPeak) {
   const ViscousSdof sys{1.0, 777.7 * 777.7, 1e-4};
   const Eigen::VectorXcd load = Eigen::VectorXcd::Ones(1);
   const FrfResult coarse = frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0},
-                                              grid(0.0, 2000.0, 51, false), null_progress());
+                                              grid(0.0, 2000.0, 51, false), Context("harmonic"));
   const double coarse_max = coarse.displacement.cwiseAbs().maxCoeff();
   EXPECT_LT(coarse_max, 0.01 * sys.h_max()) << "the coarse grid should clip the peak";
 
   const FrfResult fine = frequency_response(sdof(sys.m, sys.k, sys.c()), load, {0},
-                                            grid(0.0, 2000.0, 51, true), null_progress());
+                                            grid(0.0, 2000.0, 51, true), Context("harmonic"));
   ASSERT_EQ(fine.status, Status::Ok) << fine.message;
   ASSERT_EQ(fine.peaks.size(), 1u);
   const FrfPeak& p = fine.peaks[0];
@@ -103,7 +104,7 @@ TEST(SdofFrfValidation, HysteresisPeakIsOneOverKEta) {
   const double m = 2.0, k = 5e4, eta = 0.03;
   const double wn = std::sqrt(k / m);
   const FrfResult r = frequency_response(sdof(m, k, 0.0, eta), Eigen::VectorXcd::Ones(1), {0},
-                                         grid(0.1 * wn, 3.0 * wn, 45, true), null_progress());
+                                         grid(0.1 * wn, 3.0 * wn, 45, true), Context("harmonic"));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   for (Eigen::Index i = 0; i < r.frequencies.size(); ++i) {
     const double w = r.frequencies[i];
@@ -138,7 +139,7 @@ TEST(SdofFrfValidation, ModalDampingFrfEqualsDenseSolveOnTheAdaptiveGrid) {
   load[n - 1] = 1.0;
   const double w_max = 1.3 * std::sqrt(eig.eigenvalues()[n - 1]);
   const FrfResult r =
-      frequency_response(s, load, {0, n - 1}, grid(0.0, w_max, 80, true), null_progress());
+      frequency_response(s, load, {0, n - 1}, grid(0.0, w_max, 80, true), Context("harmonic"));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   double worst = 0.0;
   for (Eigen::Index i = 0; i < r.frequencies.size(); ++i) {

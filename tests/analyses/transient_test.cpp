@@ -65,8 +65,8 @@ TEST(TransientAnalysis, JeffcottSteadyAmplitudeAndForwardCircularOrbit) {
   ASSERT_NEAR(closed_form, kReferenceAmplitude, 1e-11);
 
   for (auto integrator : {analyses::Integrator::Newmark, analyses::Integrator::GeneralizedAlpha}) {
-    const TransientResult r =
-        run_transient(model, system, jeffcott_settings(integrator), null_progress());
+    const TransientResult r = run_transient(model, jeffcott_settings(integrator),
+                                            analyses::Context("transient").with_system(&system));
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     EXPECT_EQ(r.integration.factorizations, 1) << "constant speed: factor once";
     ASSERT_EQ(r.orbits.size(), 1u);
@@ -100,7 +100,8 @@ TEST(TransientAnalysis, BackwardSpinGivesBackwardGeometricOrbitButForwardWhirl) 
   const fe::LinearSystem system = fe::assemble(model);
   analyses::TransientSettings s = jeffcott_settings(analyses::Integrator::Newmark);
   s.time_step = 1e-4;
-  const TransientResult r = run_transient(model, system, s, null_progress());
+  const TransientResult r =
+      run_transient(model, s, analyses::Context("transient").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.orbits.size(), 1u);
   EXPECT_EQ(r.orbits[0].whirl, signal::Whirl::Forward);
@@ -138,7 +139,8 @@ TEST(TransientAnalysis, EllipticalOrbitMatchesTheHarmonicSolution) {
     s.integrator = analyses::Integrator::Newmark;
     s.steady_fraction = 0.1;
     s.sensors = {"disk_x", "disk_y"};
-    const TransientResult r = run_transient(model, system, s, null_progress());
+    const TransientResult r =
+        run_transient(model, s, analyses::Context("transient").with_system(&system));
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     ASSERT_EQ(r.orbits.size(), 1u);
     const TransientOrbit& o = r.orbits[0];
@@ -168,7 +170,8 @@ TEST(TransientAnalysis, RunUpTracksTheQuasiStaticResponseAwayFromResonance) {
   s.duration = 30.0;
   s.time_step = 2e-4;
   s.output_every = 10;
-  const TransientResult r = run_transient(model, system, s, null_progress());
+  const TransientResult r =
+      run_transient(model, s, analyses::Context("transient").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   EXPECT_EQ(r.integration.factorizations, 1);
   EXPECT_FALSE(r.integration.linear_time_invariant);
@@ -196,9 +199,11 @@ TEST(TransientAnalysis, OutputHasTablesPlotsAndNotes) {
   s.duration = 0.5;
   s.time_step = 1e-4;
   s.output_every = 2;
-  const TransientResult r = run_transient(model, system, s, null_progress());
+  const TransientResult r =
+      run_transient(model, s, analyses::Context("transient").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok);
-  const AnalysisOutput out = transient_output(model, system, r, "tr");
+  const AnalysisOutput out =
+      transient_output(model, s, r, analyses::Context("tr").with_system(&system));
   EXPECT_EQ(out.name, "tr");
   EXPECT_EQ(out.type, "transient");
   ASSERT_EQ(out.tables.size(), 3u);
@@ -235,7 +240,7 @@ TEST(TransientAnalysis, BadSettingsAreInputErrors) {
     analyses::TransientSettings s = jeffcott_settings(analyses::Integrator::Newmark);
     change(s);
     try {
-      run_transient(model, system, s, null_progress());
+      run_transient(model, s, analyses::Context("transient").with_system(&system));
       ADD_FAILURE() << "no InputError for " << key;
     } catch (const InputError& e) {
       EXPECT_NE(e.key_path().find(key), std::string::npos) << e.what();
@@ -263,12 +268,14 @@ TEST(TransientAnalysis, DivergenceIsReportedNotHidden) {
   analyses::TransientSettings s = jeffcott_settings(analyses::Integrator::Newmark);
   s.time_step = 1.999 * std::sqrt(kMass / 4e8);
   s.duration = 100 * s.time_step;
-  const TransientResult r = run_transient(model, system, s, null_progress());
+  const TransientResult r =
+      run_transient(model, s, analyses::Context("transient").with_system(&system));
   EXPECT_EQ(r.status, Status::Diverged);
   EXPECT_NE(r.message.find("step"), std::string::npos) << r.message;
   EXPECT_EQ(r.spectrum_frequency_hz.size(), 0);
   EXPECT_TRUE(r.orbits.empty());
-  const AnalysisOutput out = transient_output(model, system, r, "tr");
+  const AnalysisOutput out =
+      transient_output(model, s, r, analyses::Context("tr").with_system(&system));
   EXPECT_EQ(out.status, Status::Diverged);
   EXPECT_FALSE(out.message.empty());
 }

@@ -33,7 +33,8 @@ TEST(RunUnbalance, NegativeSpinReportsWhirlRelativeToSpin) {
   model::Model m = jeffcott(10.0, 1e6, 1e6, 100.0, 1e-4);
   m.nodes[0].speed_ratio = -1.0;  // spins about -e3
   const fe::LinearSystem s = fe::assemble(m);
-  const UnbalanceResult r = run_unbalance(m, s, speeds({100.0, 500.0}), null_progress());
+  const UnbalanceResult r =
+      run_unbalance(m, speeds({100.0, 500.0}), Context("unbalance").with_system(&s));
   ASSERT_EQ(r.orders.size(), 1u);
   EXPECT_EQ(r.orders[0], 1.0);
   ASSERT_EQ(r.orbit_nodes.size(), 1u);
@@ -49,8 +50,10 @@ TEST(RunUnbalance, NegativeSpinReportsWhirlRelativeToSpin) {
 TEST(RunUnbalance, TablesAndColumns) {
   model::Model m = jeffcott(10.0, 1e6, 1e6, 100.0, 1e-4);
   const fe::LinearSystem s = fe::assemble(m);
-  const UnbalanceResult r = run_unbalance(m, s, speeds({100.0, 200.0, 300.0}), null_progress());
-  const AnalysisOutput out = unbalance_output(m, s, r, "unb");
+  const UnbalanceResult r =
+      run_unbalance(m, speeds({100.0, 200.0, 300.0}), Context("unbalance").with_system(&s));
+  const AnalysisOutput out =
+      unbalance_output(m, UnbalanceSettings{}, r, Context("unb").with_system(&s));
   ASSERT_EQ(out.tables.size(), 2u);
   const Table& resp = out.tables[0];
   EXPECT_EQ(resp.name, "response");
@@ -81,7 +84,7 @@ TEST(RunUnbalance, UndampedRotorAtItsCriticalSpeedIsReportedSingular) {
   model::Model m = jeffcott(10.0, 1e6, 1e6, 0.0, 1e-4);
   const fe::LinearSystem s = fe::assemble(m);
   try {
-    run_unbalance(m, s, speeds({std::sqrt(1e6 / 10.0)}), null_progress());
+    run_unbalance(m, speeds({std::sqrt(1e6 / 10.0)}), Context("unbalance").with_system(&s));
     FAIL() << "expected NumericalError";
   } catch (const NumericalError& e) {
     EXPECT_NE(std::string(e.what()).find("natural frequency"), std::string::npos) << e.what();
@@ -91,17 +94,18 @@ TEST(RunUnbalance, UndampedRotorAtItsCriticalSpeedIsReportedSingular) {
 TEST(RunUnbalance, InputErrors) {
   model::Model m = jeffcott(10.0, 1e6, 1e6, 100.0, 1e-4);
   const fe::LinearSystem s = fe::assemble(m);
-  EXPECT_THROW(run_unbalance(m, s, speeds({}), null_progress()), InputError);
-  EXPECT_THROW(run_unbalance(m, s, speeds({0.0}), null_progress()), InputError);
+  EXPECT_THROW(run_unbalance(m, speeds({}), Context("unbalance").with_system(&s)), InputError);
+  EXPECT_THROW(run_unbalance(m, speeds({0.0}), Context("unbalance").with_system(&s)), InputError);
   auto bad = speeds({100.0});
   bad.unbalances = {"u9"};
-  EXPECT_THROW(run_unbalance(m, s, bad, null_progress()), InputError);
+  EXPECT_THROW(run_unbalance(m, bad, Context("unbalance").with_system(&s)), InputError);
   bad.unbalances.clear();
   bad.sensors = {"nope"};
-  EXPECT_THROW(run_unbalance(m, s, bad, null_progress()), InputError);
+  EXPECT_THROW(run_unbalance(m, bad, Context("unbalance").with_system(&s)), InputError);
   model::Model none = m;
   none.unbalances.clear();
-  EXPECT_THROW(run_unbalance(none, s, speeds({100.0}), null_progress()), InputError);
+  EXPECT_THROW(run_unbalance(none, speeds({100.0}), Context("unbalance").with_system(&s)),
+               InputError);
 }
 
 }  // namespace

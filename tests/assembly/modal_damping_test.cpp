@@ -27,7 +27,7 @@ TEST(ModalDamping, DefaultRatioReachesEveryMode) {
   EXPECT_EQ(system.modal_coefficients.size(), 2);
   analyses::ModalSettings settings;
   settings.n_modes = 2;
-  const auto r = run_modal(system, settings, null_progress());
+  const auto r = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   for (const auto& mode : r.complex) {
     EXPECT_NEAR(mode.damping_ratio, 0.05, 1e-12);
@@ -57,14 +57,16 @@ TEST(ModalDamping, BandsAndPerModeRatios) {
   analyses::ModalSettings settings;
   settings.n_modes = 2;
   {
-    const auto r = run_modal(assembly::build_system(model), settings, null_progress());
+    const auto system = assembly::build_system(model);
+    const auto r = run_modal(model, settings, Context("modal").with_system(&system));
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     EXPECT_NEAR(r.complex[0].damping_ratio, 0.01, 1e-12);
     EXPECT_NEAR(r.complex[1].damping_ratio, 0.1, 1e-12);
   }
   model.damping.modal_ratios = {0.03};  // overrides the band for the first mode only
   {
-    const auto r = run_modal(assembly::build_system(model), settings, null_progress());
+    const auto system = assembly::build_system(model);
+    const auto r = run_modal(model, settings, Context("modal").with_system(&system));
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     EXPECT_NEAR(r.complex[0].damping_ratio, 0.03, 1e-12);
     EXPECT_NEAR(r.complex[1].damping_ratio, 0.1, 1e-12);
@@ -106,7 +108,7 @@ TEST(ModalDamping, RigidBodyModeGetsNoDamping) {
   // (x = x0 + v t), so the complex modes are 0, 0 and the elastic pair.
   analyses::ModalSettings settings;
   settings.n_modes = 3;
-  const auto r = run_modal(system, settings, null_progress());
+  const auto r = run_modal(model, settings, Context("modal").with_system(&system));
   ASSERT_EQ(r.complex.size(), 3u) << r.message;
   EXPECT_TRUE(r.complex[0].rigid_body);
   EXPECT_TRUE(r.complex[1].rigid_body);

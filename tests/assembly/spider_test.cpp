@@ -252,9 +252,11 @@ dof = "ux"
   analyses::ModalSettings ms;
   ms.n_modes = 12;
   ms.speed = 300.0;
-  const analyses::ModalResult r = analyses::run_modal(s, ms, null_progress());
+  const analyses::ModalResult r =
+      analyses::run_modal(m, ms, analyses::Context("modal").with_system(&s));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
-  const AnalysisOutput out = analyses::modal_output(m, s, r, "modal");
+  const AnalysisOutput out =
+      analyses::modal_output(m, ms, r, analyses::Context("modal").with_system(&s));
   const bool any_plate_mode =
       std::any_of(r.undamped.begin(), r.undamped.end(),
                   [](const analyses::Mode& mode) { return mode.families.body > 0.5; });
@@ -270,7 +272,8 @@ dof = "ux"
   hs.adaptive = false;
   hs.input_node = "s.2";
   hs.input_dof = model::Component::Uz;
-  const analyses::FrfResult frf = analyses::run_harmonic(m, s, hs, null_progress());
+  const analyses::FrfResult frf =
+      analyses::run_harmonic(m, hs, analyses::Context("harmonic").with_system(&s));
   ASSERT_EQ(frf.sensors.size(), 2u);
   EXPECT_EQ(frf.sensors[0].name, "rim_z");
   EXPECT_GT(frf.displacement.col(0).cwiseAbs().maxCoeff(), 0.0);
@@ -300,7 +303,8 @@ dof = "ux"
   ts.speed = 500.0;
   ts.duration = 0.05;
   ts.time_step = 1e-4;
-  const analyses::TransientResult r = analyses::run_transient(m, s, ts, null_progress());
+  const analyses::TransientResult r =
+      analyses::run_transient(m, ts, analyses::Context("transient").with_system(&s));
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_EQ(r.sensor_names.size(), 2u);
   const double hub = r.values.col(1).cwiseAbs().maxCoeff();

@@ -116,10 +116,14 @@ TEST(SpiderValidation, StiffPlateSpinsLikeTheRigidDisk) {
   analyses::ModalSettings s;
   s.speed = 6000.0;
   s.n_modes = 8;
-  const auto disk = analyses::run_modal(assembly::build_system(parse(spider_rotor(rigid_disk()))),
-                                        s, null_progress());
-  const auto plate = analyses::run_modal(
-      assembly::build_system(parse(spider_rotor(spider_plate("stiff", 4)))), s, null_progress());
+  const model::Model disk_model = parse(spider_rotor(rigid_disk()));
+  const model::Model plate_model = parse(spider_rotor(spider_plate("stiff", 4)));
+  const auto disk_system = assembly::build_system(disk_model);
+  const auto plate_system = assembly::build_system(plate_model);
+  const auto disk =
+      analyses::run_modal(disk_model, s, analyses::Context("modal").with_system(&disk_system));
+  const auto plate =
+      analyses::run_modal(plate_model, s, analyses::Context("modal").with_system(&plate_system));
   ASSERT_EQ(disk.status, Status::Ok) << disk.message;
   ASSERT_EQ(plate.status, Status::Ok) << plate.message;
   ASSERT_GE(plate.complex.size(), 8u);

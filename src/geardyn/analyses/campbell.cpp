@@ -6,17 +6,17 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "geardyn/assembly/system_pencil.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 
 namespace geardyn::analyses {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 /// Eigenvalues closer than this (relative) count as one repeated eigenvalue when tracking.
 constexpr double kRepeatedTolerance = 1e-6;
@@ -123,186 +123,229 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score) {
   return assignment;
 }
 
-CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& system,
-                            const CampbellSettings& settings, Progress& progress) {
-  const SourceLocation where{model.source_file, 0, 0};
+namespace {
+
+void validate(const CampbellSettings& settings, const fe::LinearSystem& system,
+              const Context& context) {
   if (settings.speeds.empty())
-    throw InputError(where, "campbell.speeds", "at least one speed", "an empty list");
+    throw context.error("speed_rpm", "at least one speed", "an empty list");
   for (std::size_t i = 0; i < settings.speeds.size(); ++i) {
     const double s = settings.speeds[i];
     if (!std::isfinite(s) || s < 0.0)
-      throw InputError(where, fmt::format("campbell.speeds[{}]", i), "a finite speed >= 0",
-                       fmt::format("{}", s));
+      throw context.error(fmt::format("speed_rpm[{}]", i), "a finite speed >= 0",
+                          fmt::format("{}", s * kRpmPerRadS));
     if (i > 0 && !(s > settings.speeds[i - 1]))
-      throw InputError(where, fmt::format("campbell.speeds[{}]", i), "strictly increasing speeds",
-                       fmt::format("{} after {}", s, settings.speeds[i - 1]));
+      throw context.error(
+          fmt::format("speed_rpm[{}]", i), "strictly increasing speeds",
+          fmt::format("{} after {}", s * kRpmPerRadS, settings.speeds[i - 1] * kRpmPerRadS));
   }
   if (settings.n_modes < 1)
-    throw InputError(where, "campbell.n_modes", "at least 1", fmt::format("{}", settings.n_modes));
+    throw context.error("n_modes", "at least 1", fmt::format("{}", settings.n_modes));
   if (!(settings.mac_threshold >= 0.0 && settings.mac_threshold <= 1.0))
-    throw InputError(where, "campbell.mac_threshold", "a value in [0, 1]",
-                     fmt::format("{}", settings.mac_threshold));
+    throw context.error("mac_threshold", "a value in [0, 1]",
+                        fmt::format("{}", settings.mac_threshold));
   for (double eo : settings.engine_orders)
     if (!(std::isfinite(eo) && eo > 0.0))
-      throw InputError(where, "campbell.engine_orders", "orders > 0", fmt::format("{}", eo));
+      throw context.error("engine_orders", "orders > 0", fmt::format("{}", eo));
   if (system.size() == 0)
-    throw InputError(where, "model", "at least one unconstrained DOF", "a system without DOFs");
+    throw InputError(context.where(), "model", "at least one unconstrained DOF",
+                     "a system without DOFs");
+}
 
-  const auto start = std::chrono::steady_clock::now();
-  CampbellResult result;
-  result.speeds = settings.speeds;
-  result.lines = engine_order_lines(model, system, settings);
-  const std::size_t n_speeds = settings.speeds.size();
-  const int n_tracks = settings.n_modes;
-  // Spare modes give the tracking room when a mode climbs out of the computed window.
-  const int n_candidates = settings.n_modes + std::max(2, settings.n_modes / 2);
-  result.candidates_per_speed = n_candidates;
+// The elastic modes computed at one speed, and how the solve went.
+struct SpeedSolve {
+  std::vector<Mode> candidates;  // every elastic mode computed, in the solver's order
+  Status status = Status::Ok;    // FewerModes counts as Ok while the tracks are covered
+  std::string message;
+};
 
-  std::vector<Eigen::VectorXcd> reference;        // last assigned shape of each track
-  std::vector<std::complex<double>> reference_l;  // and its eigenvalue
-  std::vector<bool> has_reference;
-  std::vector<bool> reference_fresh;  // the reference is from the previous speed
-  std::vector<Mode> previous;         // every elastic mode computed at the previous speed
-  Eigen::VectorXd start_vector;
-  Status status = Status::Ok;
-  std::string first_problem;
-  int problem_speeds = 0;
-  std::vector<std::string> methods;
+// Tracks modes from speed to speed: the tracking state and the solver's memory.
+class Tracker {
+ public:
+  Tracker(const fe::LinearSystem& system, const CampbellSettings& settings, CampbellResult& result)
+      : system_(system), settings_(settings), result_(result) {
+    n_tracks_ = settings.n_modes;
+    // Spare modes give the tracking room when a mode climbs out of the computed window.
+    n_candidates_ = settings.n_modes + std::max(2, settings.n_modes / 2);
+    result_.candidates_per_speed = n_candidates_;
+  }
 
+  // Solves at speeds[i] and extends every track by one point.
+  SpeedSolve step(std::size_t i);
+  const std::vector<std::string>& methods() const { return methods_; }
+
+ private:
+  SpeedSolve solve(double speed);
+  Eigen::MatrixXd score(const std::vector<Mode>& candidates, bool first) const;
+  std::vector<int> assign(const Eigen::MatrixXd& score, int n_cand, bool first) const;
+  void record(std::size_t i, double speed, const std::vector<Mode>& candidates,
+              const std::vector<int>& assigned, const Eigen::MatrixXd& score, bool first);
+
+  const fe::LinearSystem& system_;
+  const CampbellSettings& settings_;
+  CampbellResult& result_;
+  int n_tracks_ = 0;
+  int n_candidates_ = 0;
+  std::vector<Eigen::VectorXcd> reference_;        // last assigned shape of each track
+  std::vector<std::complex<double>> reference_l_;  // and its eigenvalue
+  std::vector<bool> has_reference_;
+  std::vector<bool> reference_fresh_;  // the reference is from the previous speed
+  std::vector<Mode> previous_;         // every elastic mode computed at the previous speed
+  Eigen::VectorXd start_vector_;
+  std::vector<std::string> methods_;
   // Rigid-body roots (lambda = 0, e.g. free torsion: a double root per rigid-body motion) have
   // no frequency to track; they are solved for, counted and left out of the tracking, and the
   // request grows by their number so that n_candidates elastic modes remain.
-  int rigid_roots = 0;
-  progress.start("campbell", n_speeds);
-  for (std::size_t i = 0; i < n_speeds; ++i) {
-    const double speed = settings.speeds[i];
-    const eig::QuadraticPencil pencil = assembly::pencil_at(system, speed);
-    const double rigid = rigid_body_limit(system, speed);
-    eig::QuadraticEigenOptions qo;
-    qo.method = to_eig_method(settings.method);
-    qo.start = start_vector;
-    eig::QuadraticEigenResult cx;
-    int found_rigid = 0;
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      qo.n_modes = n_candidates + rigid_roots;
-      cx = eig::solve_quadratic(pencil, qo);
-      result.total_operations += cx.operations;
-      found_rigid = 0;
-      for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
-        if (std::norm(cx.eigenvalues[j]) <= rigid) ++found_rigid;
-      if (found_rigid <= rigid_roots) break;
-      rigid_roots = found_rigid;  // one more solve with room for the rigid-body roots
-    }
-    result.rigid_body_roots = std::max(result.rigid_body_roots, found_rigid);
-    const std::string method(eig::to_string(cx.method_used));
-    if (std::find(methods.begin(), methods.end(), method) == methods.end())
-      methods.push_back(method);
-    // The spares are optional: fewer modes only matters below the number of tracks.
-    Status s = cx.status;
-    if (s == Status::FewerModes && cx.converged - found_rigid >= n_tracks) s = Status::Ok;
-    if (s != Status::Ok) {
-      ++problem_speeds;
-      status = worse(status, s);
-      if (first_problem.empty())
-        first_problem = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, cx.message);
-    }
-    if (cx.method_used == eig::Method::Sparse) start_vector = eig::start_vector(cx);
+  int rigid_roots_ = 0;
+};
 
-    std::vector<Mode> candidates;
-    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
-      if (std::norm(cx.eigenvalues[j]) <= rigid) continue;
-      candidates.push_back(describe_mode(system, cx.eigenvalues[j], cx.eigenvectors.col(j),
-                                         cx.residuals[j], speed, rigid));
-      result.max_residual = std::max(result.max_residual, cx.residuals[j]);
-    }
-
-    if (result.tracks.empty()) {
-      result.tracks.assign(static_cast<std::size_t>(n_tracks), std::vector<TrackPoint>(n_speeds));
-      reference.assign(static_cast<std::size_t>(n_tracks), Eigen::VectorXcd());
-      reference_l.assign(static_cast<std::size_t>(n_tracks), {0.0, 0.0});
-      has_reference.assign(static_cast<std::size_t>(n_tracks), false);
-      reference_fresh.assign(static_cast<std::size_t>(n_tracks), false);
-    }
-    // Score of every (track, candidate) pair.
-    const int n_cand = static_cast<int>(candidates.size());
-    Eigen::MatrixXd score = Eigen::MatrixXd::Zero(n_tracks, n_cand);
-    const bool first =
-        std::none_of(has_reference.begin(), has_reference.end(), [](bool b) { return b; });
-    if (!first) {
-      for (int t = 0; t < n_tracks; ++t) {
-        const auto ut = static_cast<std::size_t>(t);
-        if (!has_reference[ut]) continue;
-        // A track whose previous eigenvalue is repeated (e.g. the two whirl directions of an
-        // isotropic rotor at rest) owns only the subspace of that eigenvalue, since any basis of
-        // it is as good as the solver's; score candidates against the whole subspace, spanned by
-        // every mode computed at the previous speed with that eigenvalue, tracked or spare.
-        std::vector<const Eigen::VectorXcd*> group;
-        if (reference_fresh[ut]) {
-          for (const Mode& p : previous)
-            if (std::abs(p.eigenvalue - reference_l[ut]) <=
-                kRepeatedTolerance * std::max(std::abs(reference_l[ut]), 1e-300))
-              group.push_back(&p.shape);
-        }
-        if (group.size() > 1) {
-          Eigen::MatrixXcd basis(reference[ut].size(), static_cast<Eigen::Index>(group.size()));
-          for (std::size_t g = 0; g < group.size(); ++g)
-            basis.col(static_cast<Eigen::Index>(g)) = *group[g];
-          const Eigen::HouseholderQR<Eigen::MatrixXcd> qr(basis);
-          const Eigen::MatrixXcd Q =
-              qr.householderQ() * Eigen::MatrixXcd::Identity(basis.rows(), basis.cols());
-          for (int c = 0; c < n_cand; ++c)
-            score(t, c) = subspace_mac(Q, candidates[static_cast<std::size_t>(c)].shape);
-        } else {
-          for (int c = 0; c < n_cand; ++c)
-            score(t, c) = mac(reference[ut], candidates[static_cast<std::size_t>(c)].shape);
-        }
-      }
-    }
-    // Assignment: at the first speed the lowest modes start the tracks in order of frequency.
-    std::vector<int> assigned(static_cast<std::size_t>(n_tracks), -1);
-    if (first) {
-      for (int t = 0; t < n_tracks && t < n_cand; ++t) assigned[static_cast<std::size_t>(t)] = t;
-    } else if (n_cand >= n_tracks) {
-      assigned = best_assignment(score);
-    } else if (n_cand > 0) {
-      const std::vector<int> by_candidate = best_assignment(score.transpose());
-      for (int c = 0; c < n_cand; ++c)
-        assigned[static_cast<std::size_t>(by_candidate[static_cast<std::size_t>(c)])] = c;
-    }
-    for (int t = 0; t < n_tracks; ++t) {
-      const auto ut = static_cast<std::size_t>(t);
-      TrackPoint& pt = result.tracks[ut][i];
-      pt.speed = speed;
-      const int c = assigned[ut];
-      reference_fresh[ut] = c >= 0;
-      if (c < 0) {
-        pt.ambiguous = true;
-        ++result.ambiguous_points;
-        continue;
-      }
-      const Mode& m = candidates[static_cast<std::size_t>(c)];
-      pt.eigenvalue = m.eigenvalue;
-      pt.frequency_hz = m.frequency_hz;
-      pt.damped_frequency_hz = m.damped_frequency_hz;
-      pt.damping_ratio = m.damping_ratio;
-      pt.whirl = m.whirl;
-      pt.kind = m.kind;
-      pt.residual = m.residual;
-      pt.mac = first || !has_reference[ut] ? 1.0 : score(t, c);
-      pt.ambiguous = pt.mac < settings.mac_threshold;
-      if (pt.ambiguous) ++result.ambiguous_points;
-      reference[ut] = m.shape;
-      reference_l[ut] = m.eigenvalue;
-      has_reference[ut] = true;
-    }
-    previous = std::move(candidates);
-    progress.update(i + 1);
+SpeedSolve Tracker::solve(double speed) {
+  const eig::QuadraticPencil pencil = assembly::pencil_at(system_, speed);
+  const double rigid = rigid_body_limit(system_, speed);
+  eig::QuadraticEigenOptions qo;
+  qo.method = to_eig_method(settings_.method);
+  qo.start = start_vector_;
+  eig::QuadraticEigenResult cx;
+  int found_rigid = 0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    qo.n_modes = n_candidates_ + rigid_roots_;
+    cx = eig::solve_quadratic(pencil, qo);
+    result_.total_operations += cx.operations;
+    found_rigid = 0;
+    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
+      if (std::norm(cx.eigenvalues[j]) <= rigid) ++found_rigid;
+    if (found_rigid <= rigid_roots_) break;
+    rigid_roots_ = found_rigid;  // one more solve with room for the rigid-body roots
   }
-  progress.finish();
+  result_.rigid_body_roots = std::max(result_.rigid_body_roots, found_rigid);
+  const std::string method(eig::to_string(cx.method_used));
+  if (std::find(methods_.begin(), methods_.end(), method) == methods_.end())
+    methods_.push_back(method);
+  SpeedSolve out;
+  // The spares are optional: fewer modes only matters below the number of tracks.
+  out.status = cx.status;
+  if (out.status == Status::FewerModes && cx.converged - found_rigid >= n_tracks_)
+    out.status = Status::Ok;
+  out.message = cx.message;
+  if (cx.method_used == eig::Method::Sparse) start_vector_ = eig::start_vector(cx);
 
-  // Critical speeds: sign changes of g(Omega) = f(Omega) - order Omega / 2pi between speeds,
-  // located by linear interpolation. Real roots (no oscillation) and rigid-body modes have no
-  // resonance and are skipped.
+  for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
+    if (std::norm(cx.eigenvalues[j]) <= rigid) continue;
+    out.candidates.push_back(describe_mode(system_, cx.eigenvalues[j], cx.eigenvectors.col(j),
+                                           cx.residuals[j], speed, rigid));
+    result_.max_residual = std::max(result_.max_residual, cx.residuals[j]);
+  }
+  return out;
+}
+
+// Score of every (track, candidate) pair: the MAC with the track's last shape.
+Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates, bool first) const {
+  const int n_cand = static_cast<int>(candidates.size());
+  Eigen::MatrixXd score = Eigen::MatrixXd::Zero(n_tracks_, n_cand);
+  if (first) return score;
+  for (int t = 0; t < n_tracks_; ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    if (!has_reference_[ut]) continue;
+    // A track whose previous eigenvalue is repeated (e.g. the two whirl directions of an
+    // isotropic rotor at rest) owns only the subspace of that eigenvalue, since any basis of
+    // it is as good as the solver's; score candidates against the whole subspace, spanned by
+    // every mode computed at the previous speed with that eigenvalue, tracked or spare.
+    std::vector<const Eigen::VectorXcd*> group;
+    if (reference_fresh_[ut]) {
+      for (const Mode& p : previous_)
+        if (std::abs(p.eigenvalue - reference_l_[ut]) <=
+            kRepeatedTolerance * std::max(std::abs(reference_l_[ut]), 1e-300))
+          group.push_back(&p.shape);
+    }
+    if (group.size() > 1) {
+      Eigen::MatrixXcd basis(reference_[ut].size(), static_cast<Eigen::Index>(group.size()));
+      for (std::size_t g = 0; g < group.size(); ++g)
+        basis.col(static_cast<Eigen::Index>(g)) = *group[g];
+      const Eigen::HouseholderQR<Eigen::MatrixXcd> qr(basis);
+      const Eigen::MatrixXcd Q =
+          qr.householderQ() * Eigen::MatrixXcd::Identity(basis.rows(), basis.cols());
+      for (int c = 0; c < n_cand; ++c)
+        score(t, c) = subspace_mac(Q, candidates[static_cast<std::size_t>(c)].shape);
+    } else {
+      for (int c = 0; c < n_cand; ++c)
+        score(t, c) = mac(reference_[ut], candidates[static_cast<std::size_t>(c)].shape);
+    }
+  }
+  return score;
+}
+
+// The candidate of each track (-1: none). At the first speed the lowest modes start the tracks
+// in order of frequency.
+std::vector<int> Tracker::assign(const Eigen::MatrixXd& score, int n_cand, bool first) const {
+  std::vector<int> assigned(static_cast<std::size_t>(n_tracks_), -1);
+  if (first) {
+    for (int t = 0; t < n_tracks_ && t < n_cand; ++t) assigned[static_cast<std::size_t>(t)] = t;
+  } else if (n_cand >= n_tracks_) {
+    assigned = best_assignment(score);
+  } else if (n_cand > 0) {
+    const std::vector<int> by_candidate = best_assignment(score.transpose());
+    for (int c = 0; c < n_cand; ++c)
+      assigned[static_cast<std::size_t>(by_candidate[static_cast<std::size_t>(c)])] = c;
+  }
+  return assigned;
+}
+
+void Tracker::record(std::size_t i, double speed, const std::vector<Mode>& candidates,
+                     const std::vector<int>& assigned, const Eigen::MatrixXd& score, bool first) {
+  for (int t = 0; t < n_tracks_; ++t) {
+    const auto ut = static_cast<std::size_t>(t);
+    TrackPoint& pt = result_.tracks[ut][i];
+    pt.speed = speed;
+    const int c = assigned[ut];
+    reference_fresh_[ut] = c >= 0;
+    if (c < 0) {
+      pt.ambiguous = true;
+      ++result_.ambiguous_points;
+      continue;
+    }
+    const Mode& m = candidates[static_cast<std::size_t>(c)];
+    pt.eigenvalue = m.eigenvalue;
+    pt.frequency_hz = m.frequency_hz;
+    pt.damped_frequency_hz = m.damped_frequency_hz;
+    pt.damping_ratio = m.damping_ratio;
+    pt.whirl = m.whirl;
+    pt.kind = m.kind;
+    pt.residual = m.residual;
+    pt.mac = first || !has_reference_[ut] ? 1.0 : score(t, c);
+    pt.ambiguous = pt.mac < settings_.mac_threshold;
+    if (pt.ambiguous) ++result_.ambiguous_points;
+    reference_[ut] = m.shape;
+    reference_l_[ut] = m.eigenvalue;
+    has_reference_[ut] = true;
+  }
+}
+
+SpeedSolve Tracker::step(std::size_t i) {
+  const double speed = settings_.speeds[i];
+  SpeedSolve solved = solve(speed);
+  if (result_.tracks.empty()) {
+    const auto n = static_cast<std::size_t>(n_tracks_);
+    result_.tracks.assign(n, std::vector<TrackPoint>(settings_.speeds.size()));
+    reference_.assign(n, Eigen::VectorXcd());
+    reference_l_.assign(n, {0.0, 0.0});
+    has_reference_.assign(n, false);
+    reference_fresh_.assign(n, false);
+  }
+  const bool first =
+      std::none_of(has_reference_.begin(), has_reference_.end(), [](bool b) { return b; });
+  const Eigen::MatrixXd s = score(solved.candidates, first);
+  const std::vector<int> assigned = assign(s, static_cast<int>(solved.candidates.size()), first);
+  record(i, speed, solved.candidates, assigned, s, first);
+  previous_ = std::move(solved.candidates);
+  solved.candidates.clear();
+  return solved;
+}
+
+// Critical speeds: sign changes of g(Omega) = f(Omega) - order Omega / 2pi between speeds,
+// located by linear interpolation. Real roots (no oscillation) and rigid-body modes have no
+// resonance and are skipped. Ordered by speed.
+std::vector<CriticalSpeed> find_critical_speeds(const CampbellResult& result) {
+  std::vector<CriticalSpeed> found;
   for (std::size_t t = 0; t < result.tracks.size(); ++t) {
     const auto& track = result.tracks[t];
     for (const auto& line : result.lines) {
@@ -320,7 +363,7 @@ CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& s
         cs.damping_ratio = a.damping_ratio + w * (b.damping_ratio - a.damping_ratio);
         cs.whirl = w <= 0.5 ? a.whirl : b.whirl;
         cs.ambiguous = a.ambiguous || b.ambiguous;
-        result.critical_speeds.push_back(cs);
+        found.push_back(cs);
       };
       if (!track.empty() && oscillates(track[0]) && track[0].speed > 0.0 && g(track[0]) == 0.0)
         record(track[0], track[0], 0.0);
@@ -335,11 +378,45 @@ CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& s
       }
     }
   }
-  std::stable_sort(
-      result.critical_speeds.begin(), result.critical_speeds.end(),
-      [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.speed < b.speed; });
+  std::stable_sort(found.begin(), found.end(), [](const CriticalSpeed& a, const CriticalSpeed& b) {
+    return a.speed < b.speed;
+  });
+  return found;
+}
 
-  for (const auto& m : methods) result.method += (result.method.empty() ? "" : ", ") + m;
+}  // namespace
+
+CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
+                            const Context& context) {
+  const fe::LinearSystem& system = context.system();
+  validate(settings, system, context);
+  Progress& progress = context.progress();
+
+  const auto start = std::chrono::steady_clock::now();
+  CampbellResult result;
+  result.speeds = settings.speeds;
+  result.lines = engine_order_lines(model, system, settings);
+  const std::size_t n_speeds = settings.speeds.size();
+  Tracker tracker(system, settings, result);
+  Status status = Status::Ok;
+  std::string first_problem;
+  int problem_speeds = 0;
+  progress.start("campbell", n_speeds);
+  for (std::size_t i = 0; i < n_speeds; ++i) {
+    const SpeedSolve solved = tracker.step(i);
+    if (solved.status != Status::Ok) {
+      ++problem_speeds;
+      status = worse(status, solved.status);
+      if (first_problem.empty())
+        first_problem =
+            fmt::format("at {:.6g} rpm: {}", settings.speeds[i] * kRpmPerRadS, solved.message);
+    }
+    progress.update(i + 1);
+  }
+  progress.finish();
+
+  result.critical_speeds = find_critical_speeds(result);
+  for (const auto& m : tracker.methods()) result.method += (result.method.empty() ? "" : ", ") + m;
   result.status = status;
   if (status != Status::Ok)
     result.message = fmt::format("eigen-solve trouble at {} of {} speeds; first {}", problem_speeds,
@@ -349,109 +426,108 @@ CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& s
   return result;
 }
 
+double instability_onset_speed(const CampbellResult& result) {
+  double onset = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& track : result.tracks) {
+    for (std::size_t i = 0; i < track.size(); ++i) {
+      const TrackPoint& b = track[i];
+      if (!(b.damping_ratio < 0.0)) continue;
+      double speed = b.speed;
+      if (i > 0 && track[i - 1].damping_ratio >= 0.0) {
+        const TrackPoint& a = track[i - 1];
+        speed =
+            a.speed + a.damping_ratio / (a.damping_ratio - b.damping_ratio) * (b.speed - a.speed);
+      }
+      if (std::isnan(onset) || speed < onset) onset = speed;
+      break;
+    }
+  }
+  return onset;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Output
 
-AnalysisOutput campbell_output(const model::Model& /*model*/, const fe::LinearSystem& /*system*/,
-                               const CampbellResult& result, const std::string& analysis_name) {
-  AnalysisOutput out;
-  out.name = analysis_name;
-  out.type = "campbell";
-  out.status = result.status;
-  out.message = result.message;
-  out.run_time_s = result.run_time_s;
+namespace {
 
-  {
-    Table t;
-    t.name = "campbell";
-    t.title = "Tracked complex modes versus speed";
-    std::vector<double> rpm, mode, f, fd, zeta, macs, amb, res;
-    std::vector<std::string> whirl, kind;
-    for (std::size_t i = 0; i < result.speeds.size(); ++i) {
-      for (std::size_t k = 0; k < result.tracks.size(); ++k) {
-        const TrackPoint& p = result.tracks[k][i];
-        rpm.push_back(result.speeds[i] * kRpmPerRadS);
-        mode.push_back(static_cast<double>(k + 1));
-        f.push_back(p.frequency_hz);
-        fd.push_back(p.damped_frequency_hz);
-        zeta.push_back(p.damping_ratio);
-        whirl.emplace_back(to_string(p.whirl));
-        kind.emplace_back(to_string(p.kind));
-        macs.push_back(p.mac);
-        amb.push_back(p.ambiguous ? 1.0 : 0.0);
-        res.push_back(p.residual);
-      }
+Table campbell_table(const CampbellResult& result) {
+  Table t;
+  t.name = "campbell";
+  t.title = "Tracked complex modes versus speed";
+  std::vector<double> rpm, mode, f, fd, zeta, macs, amb, res;
+  std::vector<std::string> whirl, kind;
+  for (std::size_t i = 0; i < result.speeds.size(); ++i) {
+    for (std::size_t k = 0; k < result.tracks.size(); ++k) {
+      const TrackPoint& p = result.tracks[k][i];
+      rpm.push_back(result.speeds[i] * kRpmPerRadS);
+      mode.push_back(static_cast<double>(k + 1));
+      f.push_back(p.frequency_hz);
+      fd.push_back(p.damped_frequency_hz);
+      zeta.push_back(p.damping_ratio);
+      whirl.emplace_back(to_string(p.whirl));
+      kind.emplace_back(to_string(p.kind));
+      macs.push_back(p.mac);
+      amb.push_back(p.ambiguous ? 1.0 : 0.0);
+      res.push_back(p.residual);
     }
-    t.add("speed_rpm", "rpm", rpm);
-    t.add("mode", "", mode);
-    t.add("frequency_hz", "Hz", f);
-    t.add("damping_ratio", "", zeta);
-    t.add_text("whirl", whirl);
-    t.add("mac", "", macs);
-    t.add("ambiguous", "", amb);
-    t.add("damped_frequency_hz", "Hz", fd);
-    t.add_text("kind", kind);
-    t.add("residual", "", res);
-    out.tables.push_back(std::move(t));
   }
-  {
-    Table t;
-    t.name = "critical_speeds";
-    t.title = "Critical speeds: tracked modes meeting engine-order lines";
-    std::vector<double> mode, order, rpm, f, zeta, amb;
-    std::vector<std::string> whirl, line;
-    for (const auto& c : result.critical_speeds) {
-      mode.push_back(c.mode);
-      order.push_back(c.order);
-      rpm.push_back(c.speed * kRpmPerRadS);
-      f.push_back(c.frequency_hz);
-      whirl.emplace_back(to_string(c.whirl));
-      zeta.push_back(c.damping_ratio);
-      line.push_back(c.line);
-      amb.push_back(c.ambiguous ? 1.0 : 0.0);
-    }
-    t.add("mode", "", mode);
-    t.add("order", "", order);
-    t.add("speed_rpm", "rpm", rpm);
-    t.add("frequency_hz", "Hz", f);
-    t.add_text("whirl", whirl);
-    t.add("damping_ratio", "", zeta);
-    t.add_text("line", line);
-    t.add("ambiguous", "", amb);
-    out.tables.push_back(std::move(t));
-  }
-  {
-    Table t;
-    t.name = "engine_orders";
-    t.title = "Engine-order lines (orders per revolution of the reference shaft)";
-    std::vector<std::string> label;
-    std::vector<double> order;
-    for (const auto& l : result.lines) {
-      label.push_back(l.label);
-      order.push_back(l.order);
-    }
-    t.add_text("line", label);
-    t.add("order", "", order);
-    out.tables.push_back(std::move(t));
-  }
+  t.add("speed_rpm", "rpm", rpm);
+  t.add("mode", "", mode);
+  t.add("frequency_hz", "Hz", f);
+  t.add("damping_ratio", "", zeta);
+  t.add_text("whirl", whirl);
+  t.add("mac", "", macs);
+  t.add("ambiguous", "", amb);
+  t.add("damped_frequency_hz", "Hz", fd);
+  t.add_text("kind", kind);
+  t.add("residual", "", res);
+  return t;
+}
 
-  // Plots.
-  const double rpm_min = result.speeds.empty() ? 0.0 : result.speeds.front() * kRpmPerRadS;
-  const double rpm_max = result.speeds.empty() ? 0.0 : result.speeds.back() * kRpmPerRadS;
-  double f_max = 0.0;
-  for (const auto& track : result.tracks)
-    for (const auto& p : track)
-      if (std::isfinite(p.frequency_hz)) f_max = std::max(f_max, p.frequency_hz);
-  Plot campbell;
-  campbell.name = "campbell";
-  campbell.title = "Campbell diagram";
-  campbell.x_label = "speed [rpm]";
-  campbell.y_label = "natural frequency |lambda|/2pi [Hz]";
-  Plot damping;
-  damping.name = "campbell_damping";
-  damping.title = "Damping ratio versus speed";
-  damping.x_label = "speed [rpm]";
-  damping.y_label = "damping ratio [-]";
+Table critical_speeds_table(const CampbellResult& result) {
+  Table t;
+  t.name = "critical_speeds";
+  t.title = "Critical speeds: tracked modes meeting engine-order lines";
+  std::vector<double> mode, order, rpm, f, zeta, amb;
+  std::vector<std::string> whirl, line;
+  for (const auto& c : result.critical_speeds) {
+    mode.push_back(c.mode);
+    order.push_back(c.order);
+    rpm.push_back(c.speed * kRpmPerRadS);
+    f.push_back(c.frequency_hz);
+    whirl.emplace_back(to_string(c.whirl));
+    zeta.push_back(c.damping_ratio);
+    line.push_back(c.line);
+    amb.push_back(c.ambiguous ? 1.0 : 0.0);
+  }
+  t.add("mode", "", mode);
+  t.add("order", "", order);
+  t.add("speed_rpm", "rpm", rpm);
+  t.add("frequency_hz", "Hz", f);
+  t.add_text("whirl", whirl);
+  t.add("damping_ratio", "", zeta);
+  t.add_text("line", line);
+  t.add("ambiguous", "", amb);
+  return t;
+}
+
+Table engine_orders_table(const CampbellResult& result) {
+  Table t;
+  t.name = "engine_orders";
+  t.title = "Engine-order lines (orders per revolution of the reference shaft)";
+  std::vector<std::string> label;
+  std::vector<double> order;
+  for (const auto& l : result.lines) {
+    label.push_back(l.label);
+    order.push_back(l.order);
+  }
+  t.add_text("line", label);
+  t.add("order", "", order);
+  return t;
+}
+
+// One trace per track in the Campbell diagram (frequency) and the damping plot.
+void add_track_traces(const CampbellResult& result, Plot& campbell, Plot& damping) {
   for (std::size_t k = 0; k < result.tracks.size(); ++k) {
     const auto& track = result.tracks[k];
     const TrackPoint* last = nullptr;
@@ -479,8 +555,17 @@ AnalysisOutput campbell_output(const model::Model& /*model*/, const fe::LinearSy
     campbell.traces.push_back(std::move(tf));
     damping.traces.push_back(std::move(tz));
   }
-  // Engine-order lines up to a little above the highest mode, so steep mesh orders do not
-  // squash the modes into the bottom of the plot.
+}
+
+// Dashed engine-order lines up to a little above the highest mode, so steep mesh orders do not
+// squash the modes into the bottom of the plot, and markers at the critical speeds.
+void add_order_traces(const CampbellResult& result, Plot& campbell) {
+  const double rpm_min = result.speeds.empty() ? 0.0 : result.speeds.front() * kRpmPerRadS;
+  const double rpm_max = result.speeds.empty() ? 0.0 : result.speeds.back() * kRpmPerRadS;
+  double f_max = 0.0;
+  for (const auto& track : result.tracks)
+    for (const auto& p : track)
+      if (std::isfinite(p.frequency_hz)) f_max = std::max(f_max, p.frequency_hz);
   const double y_top = f_max > 0.0 ? 1.2 * f_max : 1.0;
   for (const auto& l : result.lines) {
     Trace tr;
@@ -504,10 +589,11 @@ AnalysisOutput campbell_output(const model::Model& /*model*/, const fe::LinearSy
     }
     campbell.traces.push_back(std::move(tr));
   }
-  out.plots.push_back(std::move(campbell));
-  out.plots.push_back(std::move(damping));
+}
 
-  out.notes.push_back(fmt::format(
+std::vector<std::string> campbell_notes(const CampbellResult& result) {
+  std::vector<std::string> notes;
+  notes.push_back(fmt::format(
       "{} speeds, {} tracked modes ({} elastic modes computed per speed{}), method {}; largest "
       "backward error {:.2e}.",
       result.speeds.size(), result.tracks.size(), result.candidates_per_speed,
@@ -516,14 +602,46 @@ AnalysisOutput campbell_output(const model::Model& /*model*/, const fe::LinearSy
                         result.rigid_body_roots)
           : std::string(),
       result.method, result.max_residual));
-  out.notes.push_back(fmt::format(
+  notes.push_back(fmt::format(
       "Modes are tracked by shape (MAC, optimal one-to-one assignment), not by frequency order; "
       "{} of {} points have a MAC below the threshold and are flagged ambiguous (veering, or a "
       "mode leaving the computed window): refine the speed steps there.",
       result.ambiguous_points, result.speeds.size() * result.tracks.size()));
-  out.notes.push_back(
+  notes.push_back(
       "Critical speeds: linear interpolation of f(Omega) - order Omega / 2pi between speeds; "
       "their accuracy is that of the speed grid. Frequencies are |lambda|/2pi.");
+  return notes;
+}
+
+}  // namespace
+
+AnalysisOutput campbell_output(const model::Model& /*model*/, const CampbellSettings& /*settings*/,
+                               const CampbellResult& result, const Context& context) {
+  AnalysisOutput out;
+  out.name = context.name();
+  out.type = "campbell";
+  out.status = result.status;
+  out.message = result.message;
+  out.run_time_s = result.run_time_s;
+  out.tables.push_back(campbell_table(result));
+  out.tables.push_back(critical_speeds_table(result));
+  out.tables.push_back(engine_orders_table(result));
+
+  Plot campbell;
+  campbell.name = "campbell";
+  campbell.title = "Campbell diagram";
+  campbell.x_label = "speed [rpm]";
+  campbell.y_label = "natural frequency |lambda|/2pi [Hz]";
+  Plot damping;
+  damping.name = "campbell_damping";
+  damping.title = "Damping ratio versus speed";
+  damping.x_label = "speed [rpm]";
+  damping.y_label = "damping ratio [-]";
+  add_track_traces(result, campbell, damping);
+  add_order_traces(result, campbell);
+  out.plots.push_back(std::move(campbell));
+  out.plots.push_back(std::move(damping));
+  out.notes = campbell_notes(result);
   return out;
 }
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/modal.hpp"
-#include "geardyn/core/progress.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -84,19 +84,27 @@ std::vector<EngineOrderLine> engine_order_lines(const model::Model& model,
                                                 const fe::LinearSystem& system,
                                                 const CampbellSettings& settings);
 
-/// Optimal assignment maximising the total score (Hungarian method, Kuhn 1955 / Munkres 1957):
+/// Optimal assignment maximising the total score (Hungarian method: H. W. Kuhn, "The Hungarian
+/// method for the assignment problem", 1955; J. Munkres, "Algorithms for the assignment and
+/// transportation problems", 1957):
 /// rows (tracks) to distinct columns (candidates); rows <= columns. Returns the column of each
 /// row. Ties go to the lower column index, so the result is deterministic.
 std::vector<int> best_assignment(const Eigen::MatrixXd& score);
 
-/// Runs the sweep. Throws InputError for invalid settings (no speeds, speeds not strictly
-/// increasing or negative, n_modes < 1, threshold outside [0, 1], non-positive orders).
-CampbellResult run_campbell(const model::Model& model, const fe::LinearSystem& system,
-                            const CampbellSettings& settings, Progress& progress);
+/// Runs the sweep on the context's linear system. Throws InputError (located by the context)
+/// for invalid settings (no speeds, speeds not strictly increasing or negative, n_modes < 1,
+/// threshold outside [0, 1], non-positive orders).
+CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
+                            const Context& context);
 
 /// Tables "campbell", "critical_speeds", "engine_orders"; plots "campbell" (frequency vs speed
 /// with dashed engine-order lines and critical-speed markers) and "campbell_damping".
-AnalysisOutput campbell_output(const model::Model& model, const fe::LinearSystem& system,
-                               const CampbellResult& result, const std::string& analysis_name);
+AnalysisOutput campbell_output(const model::Model& model, const CampbellSettings& settings,
+                               const CampbellResult& result, const Context& context);
+
+/// The lowest speed [rad/s] at which a tracked mode's damping ratio turns negative (linear
+/// interpolation between the speeds either side; the first speed when a mode is unstable
+/// there), NaN when every tracked mode stays stable over the speeds.
+double instability_onset_speed(const CampbellResult& result);
 
 }  // namespace geardyn::analyses

@@ -1,10 +1,15 @@
 // The `type = "campbell"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 #include "geardyn/analyses/campbell.hpp"
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -51,6 +56,37 @@ std::vector<model::Field> keys() {
   };
 }
 
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const CampbellResult& r = result_of<CampbellResult>(o);
+  if (q.quantity == "natural_frequency") {
+    unit = "Hz";
+    return nth_mode(r.tracks, q.mode).front().frequency_hz;
+  }
+  if (q.quantity == "critical_speed") {
+    unit = "rpm";
+    std::vector<double> speeds;
+    for (const auto& c : r.critical_speeds) speeds.push_back(c.speed * kRpmPerRadS);
+    std::sort(speeds.begin(), speeds.end());
+    const auto row = static_cast<std::size_t>(q.mode - 1);
+    // None in range: NaN, not an error.
+    return row < speeds.size() ? speeds[row] : std::numeric_limits<double>::quiet_NaN();
+  }
+  if (q.quantity == "min_damping_ratio") {
+    unit.clear();
+    double lowest = std::numeric_limits<double>::quiet_NaN();
+    for (const auto& p : nth_mode(r.tracks, q.mode))
+      if (std::isfinite(p.damping_ratio) && !(p.damping_ratio >= lowest)) lowest = p.damping_ratio;
+    return lowest;
+  }
+  if (q.quantity == "instability_onset_speed") {
+    unit = "rpm";
+    return instability_onset_speed(r) * kRpmPerRadS;
+  }
+  unknown_scalar("campbell", q.quantity);
+}
+
 }  // namespace
 
 AnalysisType campbell_analysis() {
@@ -69,8 +105,8 @@ AnalysisType campbell_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<CampbellSettings>();
-    CampbellResult r = run_campbell(m, c.system(), s, c.progress());
-    AnalysisOutput out = campbell_output(m, c.system(), r, a.name);
+    CampbellResult r = run_campbell(m, s, c);
+    AnalysisOutput out = campbell_output(m, s, r, c);
     return outcome(std::move(out), std::move(r));
   };
   type.scalars = {
@@ -78,8 +114,21 @@ AnalysisType campbell_analysis() {
        "Hz",
        "Undamped natural frequency of mode `mode` at the first speed.",
        {"mode"}},
-      {"critical_speed", "rpm", "Critical speed of mode `mode` on engine order 1.", {"mode"}}};
-  type.scalar = scalar_from_tables;
+      {"critical_speed",
+       "rpm",
+       "The `mode`-th lowest critical speed (any tracked mode on any engine-order line; NaN "
+       "when fewer are in range).",
+       {"mode"}},
+      {"min_damping_ratio",
+       "",
+       "Smallest damping ratio of tracked mode `mode` over the speeds.",
+       {"mode"}},
+      {"instability_onset_speed",
+       "rpm",
+       "Lowest speed at which a tracked mode's damping ratio turns negative (NaN: stable "
+       "throughout).",
+       {}}};
+  type.scalar = scalar;
   return type;
 }
 

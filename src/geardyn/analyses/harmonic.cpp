@@ -6,20 +6,20 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <stdexcept>
 
-#include "geardyn/analyses/settings_location.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/peak_table.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/signal/half_power.hpp"
 
 namespace geardyn::analyses {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
-constexpr double kHzPerRadS = 1.0 / (2.0 * kPi);
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+using units::kPi;
+constexpr double kHzPerRadS = 1.0 / units::kTwoPi;
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 // UMFPACK scales each row by the sum of its absolute values before factorising, so its pivot
 // ratio min|U_ii| / max|U_ii| compares pivots of a matrix with unit-size rows. A matrix that is
@@ -445,9 +445,9 @@ std::string unit_slug(const std::string& unit) {
   return out;
 }
 
-void validate_grid(const HarmonicSettings& s, const SourceLocation& where, const std::string& key) {
+void validate_grid(const HarmonicSettings& s, const Context& context) {
   auto fail = [&](const std::string& field, const std::string& expected, double found) {
-    throw InputError(where, key + "." + field, expected, fmt::format("{}", found));
+    throw context.error(field, expected, fmt::format("{}", found));
   };
   if (!std::isfinite(s.f_min) || s.f_min < 0.0)
     fail("frequency_start_hz", "a finite value >= 0", s.f_min * kHzPerRadS);
@@ -604,13 +604,58 @@ void set_grid_status(FrfResult& result) {
       result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
 }
 
+// The frequencies the next pass of the adaptive grid adds: those that would resolve the
+// unresolved peaks and bisect the jumps, inside the range and not within 1e-12 f_max of a
+// sample or of each other.
+std::vector<double> new_frequencies(const std::vector<double>& f,
+                                    const std::vector<std::vector<double>>& amplitude,
+                                    const std::vector<double>& initial,
+                                    const std::map<double, Eigen::VectorXcd>& samples,
+                                    const HarmonicSettings& settings,
+                                    const AdaptiveGridOptions& options) {
+  const double same = 1e-12 * settings.f_max;
+  std::vector<double> wanted;
+  analyse_peaks(f, amplitude, options, &wanted);
+  jump_points(f, amplitude, initial, options, wanted);
+  std::sort(wanted.begin(), wanted.end());
+  std::vector<double> fresh;
+  for (double w : wanted) {
+    if (!(w > settings.f_min && w < settings.f_max)) continue;
+    if (!fresh.empty() && w - fresh.back() <= same) continue;
+    auto it = samples.lower_bound(w);
+    if (it != samples.end() && it->first - w <= same) continue;
+    if (it != samples.begin() && w - std::prev(it)->first <= same) continue;
+    fresh.push_back(w);
+  }
+  return fresh;
+}
+
+// The fewest samples in a band and the largest location error over the peaks with a band.
+void summarize_peaks(const std::vector<FrfPeak>& peaks, bool adaptive, GridSummary& grid) {
+  bool any_band = false;
+  for (const auto& p : peaks) {
+    if (!std::isfinite(p.q_factor)) continue;
+    grid.min_points_in_band =
+        any_band ? std::min(grid.min_points_in_band, p.points_in_band) : p.points_in_band;
+    grid.max_location_error = std::max(grid.max_location_error, p.location_error);
+    any_band = true;
+    // A peak left unresolved without a limit hit: its band is narrower than the grid can
+    // separate (samples closer than 1e-12 f_max are merged).
+    if (adaptive && grid.converged && !p.resolved) {
+      grid.converged = false;
+      grid.limit_hit = "the frequency resolution (1e-12 x frequency_stop)";
+    }
+  }
+}
+
 }  // namespace
 
 FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
                              const std::vector<int>& outputs, const HarmonicSettings& settings,
-                             Progress& progress, const AdaptiveGridOptions& options,
-                             const std::string& analysis_name) {
-  validate_grid(settings, SourceLocation{}, analysis_name);
+                             const Context& context, const AdaptiveGridOptions& options) {
+  validate_grid(settings, context);
+  const std::string& analysis_name = context.name();
+  Progress& progress = context.progress();
   const int n = static_cast<int>(system.M.rows());
   if (load.size() != n)
     throw std::invalid_argument(
@@ -671,21 +716,9 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   grid.adaptive = settings.adaptive;
   if (settings.adaptive) {
     progress.start(fmt::format("{}: refining the frequency grid", analysis_name), 0);
-    const double same = 1e-12 * settings.f_max;
     for (int pass = 0;; ++pass) {
-      std::vector<double> wanted;
-      analyse_peaks(f, amplitude, options, &wanted);
-      jump_points(f, amplitude, initial, options, wanted);
-      std::sort(wanted.begin(), wanted.end());
-      std::vector<double> fresh;
-      for (double w : wanted) {
-        if (!(w > settings.f_min && w < settings.f_max)) continue;
-        if (!fresh.empty() && w - fresh.back() <= same) continue;
-        auto it = samples.lower_bound(w);
-        if (it != samples.end() && it->first - w <= same) continue;
-        if (it != samples.begin() && w - std::prev(it)->first <= same) continue;
-        fresh.push_back(w);
-      }
+      const std::vector<double> fresh =
+          new_frequencies(f, amplitude, initial, samples, settings, options);
       if (fresh.empty()) break;
       if (pass >= options.max_passes) {
         grid.converged = false;
@@ -709,20 +742,7 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   std::stable_sort(result.peaks.begin(), result.peaks.end(),
                    [](const FrfPeak& a, const FrfPeak& b) { return a.sensor < b.sensor; });
   grid.final_points = static_cast<int>(f.size());
-  bool any_band = false;
-  for (const auto& p : result.peaks) {
-    if (!std::isfinite(p.q_factor)) continue;
-    grid.min_points_in_band =
-        any_band ? std::min(grid.min_points_in_band, p.points_in_band) : p.points_in_band;
-    grid.max_location_error = std::max(grid.max_location_error, p.location_error);
-    any_band = true;
-    // A peak left unresolved without a limit hit: its band is narrower than the grid can
-    // separate (samples closer than 1e-12 f_max are merged).
-    if (settings.adaptive && grid.converged && !p.resolved) {
-      grid.converged = false;
-      grid.limit_hit = "the frequency resolution (1e-12 x frequency_stop)";
-    }
-  }
+  summarize_peaks(result.peaks, settings.adaptive, grid);
 
   result.frequencies =
       Eigen::Map<const Eigen::VectorXd>(f.data(), static_cast<Eigen::Index>(f.size()));
@@ -734,72 +754,92 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   return result;
 }
 
-FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system,
-                       const HarmonicSettings& settings, Progress& progress,
-                       const AdaptiveGridOptions& options) {
-  std::string name, key;
-  const SourceLocation where = analysis_location(model, &settings, "harmonic", name, key);
-  validate_grid(settings, where, key);
+namespace {
+
+// The equation of DOF `c` of node `node`; `fail(expected, found, hint)` makes the error.
+template <class Fail>
+int equation_of(const fe::DofMap& dofs, const std::string& node, model::Component c,
+                const Fail& fail) {
+  const int index = dofs.find_node(node);
+  if (index < 0) throw fail("the name of a node", "'" + node + "'", "");
+  const int eq = dofs.dof(index, c);
+  if (eq < 0)
+    throw fail("an unconstrained DOF",
+               fmt::format("{}.{} (constrained)", node,
+                           model::kComponentNames[static_cast<std::size_t>(c)]),
+               "a constrained DOF neither moves nor takes load");
+  return eq;
+}
+
+// The load of the unit input or of the named forces; sets the input fields of `header`.
+Eigen::VectorXcd harmonic_load(const model::Model& model, const fe::LinearSystem& system,
+                               const HarmonicSettings& settings, const Context& context,
+                               FrfResult& header) {
   const fe::DofMap& dofs = system.dofs;
-
-  auto equation = [&](const std::string& node, model::Component c, const std::string& field,
-                      const SourceLocation& at) {
-    const int index = dofs.find_node(node);
-    if (index < 0) throw InputError(at, field, "the name of a node", "'" + node + "'");
-    const int eq = dofs.dof(index, c);
-    if (eq < 0)
-      throw InputError(at, field, "an unconstrained DOF",
-                       fmt::format("{}.{} (constrained)", node,
-                                   model::kComponentNames[static_cast<std::size_t>(c)]),
-                       "a constrained DOF neither moves nor takes load");
-    return std::pair<int, int>{index, eq};
-  };
-
-  const bool has_input = !settings.input_node.empty();
-  const bool has_forces = !settings.forces.empty();
-  if (has_input == has_forces)
-    throw InputError(where, key, "either input_node (FRF) or forces (forced response)",
-                     has_input ? "both" : "neither");
-
   Eigen::VectorXcd load = Eigen::VectorXcd::Zero(system.M.rows());
-  FrfResult header;
-  if (has_input) {
-    const auto [node, eq] =
-        equation(settings.input_node, settings.input_dof, key + ".input_node", where);
-    (void)eq;
-    load = system.unit_load(node, settings.input_dof).cast<Complex>();
+  if (!settings.input_node.empty()) {
+    equation_of(dofs, settings.input_node, settings.input_dof,
+                [&](std::string expected, std::string found, std::string hint) {
+                  return context.error("input_node", std::move(expected), std::move(found),
+                                       std::move(hint));
+                });
+    load =
+        system.unit_load(dofs.find_node(settings.input_node), settings.input_dof).cast<Complex>();
     header.input = settings.input_node + "." +
                    model::kComponentNames[static_cast<std::size_t>(settings.input_dof)];
     header.input_rotational = is_rotation(settings.input_dof);
-  } else {
-    for (const auto& force_name : settings.forces) {
-      auto it = std::find_if(model.forces.begin(), model.forces.end(),
-                             [&](const model::HarmonicForce& h) { return h.name == force_name; });
-      if (it == model.forces.end())
-        throw InputError(where, key + ".forces", "the name of a harmonic force",
-                         "'" + force_name + "'");
-      const auto [node, eq] = equation(
-          it->node, it->dof, fmt::format("forces[{}].node", it - model.forces.begin()), it->where);
-      (void)eq;
-      load +=
-          std::polar(it->amplitude, it->phase) * system.unit_load(node, it->dof).cast<Complex>();
-      header.input += (header.input.empty() ? "" : ", ") + force_name;
-    }
-    header.forced = true;
+    return load;
   }
+  for (const auto& force_name : settings.forces) {
+    auto it = std::find_if(model.forces.begin(), model.forces.end(),
+                           [&](const model::HarmonicForce& h) { return h.name == force_name; });
+    if (it == model.forces.end())
+      throw context.error("forces", "the name of a harmonic force", "'" + force_name + "'");
+    // A force's node is checked where the force is defined.
+    equation_of(
+        dofs, it->node, it->dof, [&](std::string expected, std::string found, std::string hint) {
+          return InputError(it->where, fmt::format("forces[{}].node", it - model.forces.begin()),
+                            std::move(expected), std::move(found), std::move(hint));
+        });
+    load += std::polar(it->amplitude, it->phase) *
+            system.unit_load(dofs.find_node(it->node), it->dof).cast<Complex>();
+    header.input += (header.input.empty() ? "" : ", ") + force_name;
+  }
+  header.forced = true;
+  return load;
+}
+
+}  // namespace
+
+FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
+                       const Context& context, const AdaptiveGridOptions& options) {
+  validate_grid(settings, context);
+  const fe::LinearSystem& system = context.system();
+  const bool has_input = !settings.input_node.empty();
+  const bool has_forces = !settings.forces.empty();
+  if (has_input == has_forces)
+    throw InputError(context.where(), context.key_path(),
+                     "either input_node (FRF) or forces (forced response)",
+                     has_input ? "both" : "neither");
+
+  FrfResult header;
+  const Eigen::VectorXcd load = harmonic_load(model, system, settings, context, header);
 
   const std::vector<const model::Sensor*> sensors =
-      select_sensors(model, settings.sensors, where, key);
+      select_sensors(model, settings.sensors, context);
   if (sensors.empty())
-    throw InputError(where, key + ".sensors", "at least one sensor", "none",
-                     "add [[sensors]] to the model");
+    throw context.error("sensors", "at least one sensor", "none", "add [[sensors]] to the model");
   std::vector<int> outputs;
   for (const auto* s : sensors)
-    outputs.push_back(equation(s->node, s->dof,
-                               fmt::format("sensors[{}].node", s - model.sensors.data()), s->where)
-                          .second);
+    // A sensor's node is checked where the sensor is defined.
+    outputs.push_back(equation_of(
+        system.dofs, s->node, s->dof,
+        [&](std::string expected, std::string found, std::string hint) {
+          return InputError(s->where, fmt::format("sensors[{}].node", s - model.sensors.data()),
+                            std::move(expected), std::move(found), std::move(hint));
+        }));
 
-  FrfResult result = frequency_response(system, load, outputs, settings, progress, options, name);
+  FrfResult result = frequency_response(system, load, outputs, settings, context, options);
   result.forced = header.forced;
   result.input = header.input;
   result.input_rotational = header.input_rotational;
@@ -811,50 +851,48 @@ FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system
   return result;
 }
 
-AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem& system,
-                               const FrfResult& result, const std::string& analysis_name) {
-  (void)model;
-  AnalysisOutput out;
-  out.name = analysis_name;
-  out.type = "harmonic";
-  out.status = result.status;
-  out.message = result.message;
+namespace {
 
-  const std::size_t m = result.sensors.size();
+const char* quantity_name(ResponseQuantity q) {
+  return q == ResponseQuantity::Receptance ? "receptance"
+         : q == ResponseQuantity::Mobility ? "mobility"
+                                           : "accelerance";
+}
+
+// What the curves are: "receptance for a unit force at n.ux", "forced response (velocity) to f1".
+std::string response_description(const FrfResult& result) {
+  return result.forced
+             ? fmt::format("forced response ({}) to {}",
+                           result.quantity == ResponseQuantity::Receptance ? "displacement"
+                           : result.quantity == ResponseQuantity::Mobility ? "velocity"
+                                                                           : "acceleration",
+                           result.input)
+             : fmt::format("{} for a unit {} at {}", quantity_name(result.quantity),
+                           result.input_rotational ? "moment" : "force", result.input);
+}
+
+// Table "frf" and the amplitude and phase plots, one column pair and trace per sensor.
+void add_response(const FrfResult& result, const std::string& what, Table& frf, Plot& amp_plot,
+                  Plot& phase_plot) {
   const Eigen::MatrixXcd response = result.response();
   std::vector<double> f_hz(static_cast<std::size_t>(result.frequencies.size()));
   for (std::size_t i = 0; i < f_hz.size(); ++i)
     f_hz[i] = result.frequencies[static_cast<Eigen::Index>(i)] * kHzPerRadS;
-
-  const char* quantity_name = result.quantity == ResponseQuantity::Receptance ? "receptance"
-                              : result.quantity == ResponseQuantity::Mobility ? "mobility"
-                                                                              : "accelerance";
-  const std::string what =
-      result.forced ? fmt::format("forced response ({}) to {}",
-                                  result.quantity == ResponseQuantity::Receptance ? "displacement"
-                                  : result.quantity == ResponseQuantity::Mobility ? "velocity"
-                                                                                  : "acceleration",
-                                  result.input)
-                    : fmt::format("{} for a unit {} at {}", quantity_name,
-                                  result.input_rotational ? "moment" : "force", result.input);
-  Table frf;
   frf.name = "frf";
   frf.title = fmt::format("Frequency response: {} at {:.6g} rpm", what, result.speed * kRpmPerRadS);
   frf.add("frequency_hz", "Hz", f_hz);
 
-  Plot amp_plot;
   amp_plot.name = "amplitude";
   amp_plot.title = fmt::format("Amplitude: {}", what);
   amp_plot.x_label = "frequency [Hz]";
   amp_plot.y_log = true;
-  Plot phase_plot;
   phase_plot.name = "phase";
   phase_plot.title = fmt::format("Phase: {}", what);
   phase_plot.x_label = "frequency [Hz]";
   phase_plot.y_label = "phase [deg]";
 
   std::vector<std::string> units;
-  for (std::size_t s = 0; s < m; ++s) {
+  for (std::size_t s = 0; s < result.sensors.size(); ++s) {
     const std::string unit = result.amplitude_unit(static_cast<int>(s));
     if (std::find(units.begin(), units.end(), unit) == units.end()) units.push_back(unit);
     std::vector<double> amp(f_hz.size()), phase(f_hz.size());
@@ -880,51 +918,47 @@ AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem
   std::string unit_list;
   for (const auto& u : units) unit_list += (unit_list.empty() ? "" : ", ") + u;
   amp_plot.y_label = fmt::format("amplitude [{}]", unit_list);
+}
 
-  Table peaks;
-  peaks.name = "peaks";
-  peaks.title = "Resonance peaks (half-power bandwidth, Q = f_r / (f2 - f1))";
-  std::vector<std::string> p_sensor, p_unit, p_resolved;
-  std::vector<double> p_f, p_a, p_q, p_zeta, p_f1, p_f2, p_n;
+// Table "peaks" (core/peak_table.hpp); markers of the peaks on the amplitude plot.
+Table peaks_table(const FrfResult& result, Plot& amp_plot) {
+  std::vector<PeakRow> rows;
   Trace markers;
   markers.name = "peaks";
   markers.mode = Trace::Mode::Markers;
+  const std::string curve =
+      result.forced ? std::string(result.quantity == ResponseQuantity::Receptance ? "displacement"
+                                  : result.quantity == ResponseQuantity::Mobility ? "velocity"
+                                                                                  : "acceleration")
+                    : std::string(quantity_name(result.quantity));
   for (const auto& p : result.peaks) {
     const auto s = static_cast<std::size_t>(p.sensor);
-    p_sensor.push_back(result.sensors[s].name);
-    p_unit.push_back(result.amplitude_unit(p.sensor));
-    p_f.push_back(p.frequency * kHzPerRadS);
-    p_a.push_back(p.amplitude);
-    p_q.push_back(p.q_factor);
-    p_zeta.push_back(p.damping_ratio());
-    p_f1.push_back(p.f1 * kHzPerRadS);
-    p_f2.push_back(p.f2 * kHzPerRadS);
-    p_n.push_back(p.points_in_band);
-    p_resolved.emplace_back(p.resolved ? "yes" : "no");
+    PeakRow row;
+    row.sensor = result.sensors[s].name;
+    row.curve = curve;
+    row.location = p.frequency * kHzPerRadS;
+    row.amplitude = p.amplitude;
+    row.amplitude_unit = result.amplitude_unit(p.sensor);
+    row.half_power_low = p.f1 * kHzPerRadS;
+    row.half_power_high = p.f2 * kHzPerRadS;
+    row.q_factor = p.q_factor;
+    row.points_in_band = p.points_in_band;
+    row.resolved = p.resolved;
+    rows.push_back(std::move(row));
     markers.x.push_back(p.frequency * kHzPerRadS);
     markers.y.push_back(p.amplitude);
     markers.hover.push_back(fmt::format("{}: {:.6g} Hz, Q = {:.4g}", result.sensors[s].name,
                                         p.frequency * kHzPerRadS, p.q_factor));
   }
-  peaks.add_text("sensor", p_sensor);
-  peaks.add("frequency_hz", "Hz", p_f);
-  peaks.add("amplitude", "", p_a);
-  peaks.add_text("unit", p_unit);
-  peaks.add("q_factor", "", p_q);
-  peaks.add("damping_ratio_est", "", p_zeta);
-  peaks.add("f1_hz", "Hz", p_f1);
-  peaks.add("f2_hz", "Hz", p_f2);
-  peaks.add("points_in_band", "", p_n);
-  peaks.add_text("resolved", p_resolved);
   if (!markers.x.empty()) amp_plot.traces.push_back(std::move(markers));
+  return peak_table("peaks", "Resonance peaks (half-power bandwidth, Q = f_r / (f2 - f1))",
+                    frequency_axis(), rows);
+}
 
-  out.tables.push_back(std::move(frf));
-  out.tables.push_back(std::move(peaks));
-  out.plots.push_back(std::move(amp_plot));
-  out.plots.push_back(std::move(phase_plot));
-
+std::vector<std::string> harmonic_notes(const FrfResult& result, const fe::LinearSystem& system) {
+  std::vector<std::string> notes;
   const GridSummary& g = result.grid;
-  out.notes.push_back(fmt::format(
+  notes.push_back(fmt::format(
       "Direct solution of D(w) = K - w^2 M + i w (C + W G) + i K_loss{} at W = {:.6g} rpm with a "
       "sparse complex LU (UMFPACK) per frequency; phase is arg of the response (x = Re(X "
       "e^(iwt))).",
@@ -942,22 +976,44 @@ AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem
                   "bandwidth from the sampled peak (refined by a parabola through them)",
                   g.required_points_in_band, g.min_points_in_band, 100.0 * g.max_location_error)
             : std::string("no resonance with a complete half-power band in range");
-    out.notes.push_back(
+    notes.push_back(
         fmt::format("Adaptive frequency grid: {} initial points refined in {} "
                     "passes to {} points{}; {}.",
                     g.initial_points, g.passes, g.final_points,
                     g.converged ? "" : " (stopped at " + g.limit_hit + ")", peaks_note));
   } else {
-    out.notes.push_back(fmt::format(
+    notes.push_back(fmt::format(
         "Fixed frequency grid of {} points (adaptive = false): a resonance narrower than the "
         "grid spacing may be missed or clipped; Q values need >= 5 samples per half-power band "
         "(fewest here: {}).",
         g.final_points, g.min_points_in_band));
   }
-  out.notes.push_back(
+  notes.push_back(
       "Q = f_r / (f2 - f1) from the -3 dB crossings interpolated linearly between samples; "
-      "damping_ratio_est = 1/(2Q) holds for an isolated, lightly damped mode. Peaks whose band "
-      "runs out of the range or into a higher peak have no Q (NaN).");
+      "damping_ratio = 1/(2Q) holds for an isolated, lightly damped mode. Peaks whose band "
+      "runs out of the range or into a higher peak, or that the grid did not resolve, have no Q "
+      "(NaN); their half-power points are still listed.");
+  return notes;
+}
+
+}  // namespace
+
+AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSettings& /*settings*/,
+                               const FrfResult& result, const Context& context) {
+  AnalysisOutput out;
+  out.name = context.name();
+  out.type = "harmonic";
+  out.status = result.status;
+  out.message = result.message;
+  Table frf;
+  Plot amp_plot, phase_plot;
+  add_response(result, response_description(result), frf, amp_plot, phase_plot);
+  Table peaks = peaks_table(result, amp_plot);
+  out.tables.push_back(std::move(frf));
+  out.tables.push_back(std::move(peaks));
+  out.plots.push_back(std::move(amp_plot));
+  out.plots.push_back(std::move(phase_plot));
+  out.notes = harmonic_notes(result, context.system());
   return out;
 }
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -165,23 +165,22 @@ struct FrfResult {
 
 /// Matrix-level response: `load` (length n) applied, responses at the equations `outputs`,
 /// grid, speed and quantity from `settings` (input/forces/sensors fields are not used). Throws
-/// InputError for a bad grid, NumericalError (naming `analysis_name`) for a singular D(w).
-/// Sensor names are "eq<k>".
+/// InputError (located by the context) for a bad grid, NumericalError (naming the context's
+/// analysis) for a singular D(w). Progress goes to the context's. Sensor names are "eq<k>".
 FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::VectorXcd& load,
                              const std::vector<int>& outputs, const HarmonicSettings& settings,
-                             Progress& progress, const AdaptiveGridOptions& options = {},
-                             const std::string& analysis_name = "harmonic");
+                             const Context& context, const AdaptiveGridOptions& options = {});
 
-/// The harmonic analysis of DESIGN 4.1: resolves input node / forces and sensors by name
-/// (InputError when unknown or constrained) and runs frequency_response.
-FrfResult run_harmonic(const model::Model& model, const fe::LinearSystem& system,
-                       const HarmonicSettings& settings, Progress& progress,
-                       const AdaptiveGridOptions& options = {});
+/// The harmonic analysis of DESIGN 4.1 on the context's linear system: resolves input node /
+/// forces and sensors by name (InputError when unknown or constrained) and runs
+/// frequency_response.
+FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
+                       const Context& context, const AdaptiveGridOptions& options = {});
 
 /// Tables "frf" (frequency_hz, per sensor <sensor>_amplitude_<unit>, <sensor>_phase_deg) and
-/// "peaks" (sensor, frequency_hz, amplitude, unit, q_factor, damping_ratio_est, f1_hz, f2_hz,
-/// points_in_band), amplitude (log) and phase plots, notes on the grid refinement.
-AnalysisOutput harmonic_output(const model::Model& model, const fe::LinearSystem& system,
-                               const FrfResult& result, const std::string& analysis_name);
+/// "peaks" (the resonance-peak table of core/peak_table.hpp, curve = the response quantity),
+/// amplitude (log) and phase plots, notes on the grid refinement.
+AnalysisOutput harmonic_output(const model::Model& model, const HarmonicSettings& settings,
+                               const FrfResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

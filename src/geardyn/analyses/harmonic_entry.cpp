@@ -1,10 +1,15 @@
 // The `type = "harmonic"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/harmonic.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -75,6 +80,46 @@ std::vector<model::Field> keys() {
   };
 }
 
+constexpr double kHzPerRadS = 1.0 / units::kTwoPi;
+
+int sensor_index(const FrfResult& r, const std::string& sensor) {
+  for (std::size_t s = 0; s < r.sensors.size(); ++s)
+    if (r.sensors[s].name == sensor) return static_cast<int>(s);
+  throw std::runtime_error(fmt::format("no amplitude column for sensor '{}'", sensor));
+}
+
+// The sensor's amplitude curve as table "frf" lists it.
+ResponseCurve response_curve(const FrfResult& r, int s) {
+  ResponseCurve c;
+  const Eigen::MatrixXcd response = r.response();
+  c.groups.emplace_back();
+  for (Eigen::Index i = 0; i < r.frequencies.size(); ++i) {
+    c.x.push_back(r.frequencies[i] * kHzPerRadS);
+    c.amplitude.push_back(std::abs(response(i, s)));
+    c.groups.back().push_back(static_cast<std::size_t>(i));
+  }
+  c.x_unit = "Hz";
+  c.amplitude_unit = r.amplitude_unit(s);
+  c.per_rad_s = 1.0 / units::kTwoPi;
+  return c;
+}
+
+double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
+  const FrfResult& r = result_of<FrfResult>(o);
+  const int s = sensor_index(r, q.sensor);
+  if (q.quantity == "peak_damping_ratio") {
+    // As the peak table reports it: only for a resolved band.
+    const FrfPeak* highest = nullptr;
+    for (const auto& p : r.peaks)
+      if (p.sensor == s && (highest == nullptr || p.amplitude > highest->amplitude)) highest = &p;
+    unit.clear();
+    if (highest == nullptr || !highest->resolved || !(highest->q_factor > 0.0))
+      return std::numeric_limits<double>::quiet_NaN();
+    return highest->damping_ratio();
+  }
+  return response_scalar(response_curve(r, s), q, unit);
+}
+
 }  // namespace
 
 AnalysisType harmonic_analysis() {
@@ -93,15 +138,20 @@ AnalysisType harmonic_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<HarmonicSettings>();
-    FrfResult r = run_harmonic(m, c.system(), s, c.progress());
-    AnalysisOutput out = harmonic_output(m, c.system(), r, a.name);
+    FrfResult r = run_harmonic(m, s, c);
+    AnalysisOutput out = harmonic_output(m, s, r, c);
     return outcome(std::move(out), std::move(r));
   };
   type.scalars = {
       {"peak_amplitude", "", "Largest response amplitude at `sensor`.", {"sensor"}},
       {"peak_location", "Hz", "Frequency of that peak.", {"sensor"}},
-      {"amplitude_at", "", "Amplitude at `sensor` at frequency `at_hz`.", {"sensor", "at_hz"}}};
-  type.scalar = scalar_from_tables;
+      {"amplitude_at", "", "Amplitude at `sensor` at frequency `at_hz`.", {"sensor", "at_hz"}},
+      {"peak_damping_ratio",
+       "",
+       "Damping ratio 1/(2Q) from the half-power band of the highest resonance peak at "
+       "`sensor` (NaN when its band is not resolved).",
+       {"sensor"}}};
+  type.scalar = scalar;
   return type;
 }
 

@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
+#include <limits>
 
 #include "geardyn/assembly/system_pencil.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 
@@ -16,7 +17,7 @@ namespace geardyn::analyses {
 
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
+using units::kTwoPi;
 constexpr double kRpmPerRadS = 60.0 / kTwoPi;
 constexpr int kPlottedModes = 6;
 
@@ -131,17 +132,26 @@ double ModalResult::max_residual() const {
   return r;
 }
 
-ModalResult run_modal(const fe::LinearSystem& system, const ModalSettings& settings,
-                      Progress& progress) {
+double log_decrement(double damping_ratio) {
+  if (!(damping_ratio < 1.0)) return std::numeric_limits<double>::quiet_NaN();
+  return kTwoPi * damping_ratio / std::sqrt(1.0 - damping_ratio * damping_ratio);
+}
+
+ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settings,
+                      const Context& context) {
   if (settings.n_modes < 1)
-    throw InputError({}, "modal.n_modes", "at least 1", fmt::format("{}", settings.n_modes));
+    throw context.error("n_modes", "at least 1", fmt::format("{}", settings.n_modes));
   if (!std::isfinite(settings.speed))
-    throw InputError({}, "modal.speed", "a finite speed", fmt::format("{}", settings.speed));
+    throw context.error("speed_rpm", "a finite speed",
+                        fmt::format("{}", settings.speed * kRpmPerRadS));
   if (!(std::isfinite(settings.shift) && settings.shift >= 0.0))
-    throw InputError({}, "modal.shift", "a finite frequency >= 0",
-                     fmt::format("{}", settings.shift));
+    throw context.error("shift_hz", "a finite frequency >= 0",
+                        fmt::format("{}", settings.shift / kTwoPi));
+  const fe::LinearSystem& system = context.system();
   if (system.size() == 0)
-    throw InputError({}, "model", "at least one unconstrained DOF", "a system without DOFs");
+    throw InputError(context.where(), "model", "at least one unconstrained DOF",
+                     "a system without DOFs");
+  Progress& progress = context.progress();
 
   const auto start = std::chrono::steady_clock::now();
   ModalResult result;
@@ -201,8 +211,10 @@ namespace {
 
 // Relative amplitude of each sensor in each mode: |phi at the sensor| divided by the largest
 // amplitude of the same kind (translation or rotation, whose units differ) anywhere in the
-// mode. It answers "which modes carry this DOF" (e.g. the swing of a driven gear, as in Wang
-// et al. 2020, Table 3). A constrained sensor DOF reads 0.
+// mode. It answers "which modes carry this DOF" (e.g. the swing of a driven gear, as in J. Hong,
+// L. Jiang, X. Xu, Y. Ma, "High cycle fatigue failure with radial cracks in gears of
+// aero-engines", Chinese Journal of Aeronautics, 2020, Table 3). A constrained sensor DOF
+// reads 0.
 void add_sensor_columns(Table& t, const model::Model& model, const fe::LinearSystem& system,
                         const std::vector<Mode>& modes) {
   const auto& dofs = system.dofs;
@@ -374,10 +386,11 @@ std::vector<Plot> shape_plots(const model::Model& model, const fe::LinearSystem&
 
 }  // namespace
 
-AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& system,
-                            const ModalResult& result, const std::string& analysis_name) {
+AnalysisOutput modal_output(const model::Model& model, const ModalSettings& /*settings*/,
+                            const ModalResult& result, const Context& context) {
+  const fe::LinearSystem& system = context.system();
   AnalysisOutput out;
-  out.name = analysis_name;
+  out.name = context.name();
   out.type = "modal";
   out.status = result.status;
   out.message = result.message;
@@ -396,6 +409,8 @@ AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& s
   if (result.complex_requested)
     out.notes.push_back(fmt::format("Complex modes at {:.6g} rpm: {}.", result.speed * kRpmPerRadS,
                                     result.complex_report));
+  // Backward error of a polynomial eigenpair: F. Tisseur, "Backward error and condition of
+  // polynomial eigenvalue problems", Linear Algebra and its Applications, 2000.
   out.notes.push_back(fmt::format(
       "Largest backward error of any mode {:.2e} (column 'residual': ||P(lambda) x|| relative to "
       "the matrix norms, Tisseur 2000); a mode's relative frequency error is at most about its "

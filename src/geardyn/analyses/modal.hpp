@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/eig/eigen_options.hpp"
@@ -97,17 +97,22 @@ struct ModalResult {
   double max_residual() const;
 };
 
-/// Runs the modal analysis. Throws InputError for invalid settings (n_modes < 1, negative or
-/// non-finite speed / shift); numerical trouble is returned in status / message.
-/// settings.shift > 0 [rad/s] asks for the modes nearest that frequency (sigma = shift^2 for
-/// the undamped problem, target i shift for the complex one); 0 asks for the lowest modes.
-ModalResult run_modal(const fe::LinearSystem& system, const ModalSettings& settings,
-                      Progress& progress);
+/// Runs the modal analysis on the context's linear system. Throws InputError (located by the
+/// context) for invalid settings (n_modes < 1, non-finite speed, negative or non-finite shift);
+/// numerical trouble is returned in status / message. settings.shift > 0 [rad/s] asks for the
+/// modes nearest that frequency (sigma = shift^2 for the undamped problem, target i shift for
+/// the complex one); 0 asks for the lowest modes.
+ModalResult run_modal(const model::Model& model, const ModalSettings& settings,
+                      const Context& context);
 
 /// Tables "modes", "undamped_modes", "mode_shapes", mode-shape plots along each shaft and notes
 /// on how far to trust the result.
-AnalysisOutput modal_output(const model::Model& model, const fe::LinearSystem& system,
-                            const ModalResult& result, const std::string& analysis_name);
+AnalysisOutput modal_output(const model::Model& model, const ModalSettings& settings,
+                            const ModalResult& result, const Context& context);
+
+/// Logarithmic decrement ln(x_k / x_{k+1}) of successive peaks of a free decay with damping
+/// ratio zeta: 2 pi zeta / sqrt(1 - zeta^2) (NaN for zeta >= 1: no oscillation).
+double log_decrement(double damping_ratio);
 
 // ---------------------------------------------------------------------------------------------
 // Pieces shared with the Campbell analysis.
@@ -129,7 +134,9 @@ Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& sh
 
 ModeKind mode_kind(const fe::ModeFamilies& families);
 
-/// Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (Allemang & Brown, 1982).
+/// Modal assurance criterion |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (R. J. Allemang, D. L. Brown,
+/// "A correlation coefficient for modal vector analysis", Proc. 1st International Modal Analysis
+/// Conference, 1982).
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 
 /// |lambda|^2 below which a mode counts as rigid-body: 1e-10 max_i K_ii / M_ii.

@@ -4,7 +4,7 @@
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -49,13 +49,33 @@ AnalysisType modal_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<ModalSettings>();
-    ModalResult r = run_modal(c.system(), s, c.progress());
-    AnalysisOutput out = modal_output(m, c.system(), r, a.name);
+    ModalResult r = run_modal(m, s, c);
+    AnalysisOutput out = modal_output(m, s, r, c);
     return outcome(std::move(out), std::move(r));
   };
   type.scalars = {
-      {"natural_frequency", "Hz", "Undamped natural frequency of mode `mode`.", {"mode"}}};
-  type.scalar = scalar_from_tables;
+      {"natural_frequency", "Hz", "Undamped natural frequency of mode `mode`.", {"mode"}},
+      {"damping_ratio",
+       "",
+       "Damping ratio -Re(lambda) / |lambda| of mode `mode` (0 for undamped modes).",
+       {"mode"}},
+      {"log_decrement",
+       "",
+       "Logarithmic decrement 2 pi zeta / sqrt(1 - zeta^2) of mode `mode` (NaN when "
+       "overdamped).",
+       {"mode"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) {
+    // The modes the "modes" table lists: complex when computed, else undamped.
+    const Mode& mode = nth_mode(result_of<ModalResult>(o).primary(), q.mode);
+    if (q.quantity == "natural_frequency") {
+      unit = "Hz";
+      return mode.frequency_hz;
+    }
+    unit.clear();
+    if (q.quantity == "damping_ratio") return mode.damping_ratio;
+    if (q.quantity == "log_decrement") return log_decrement(mode.damping_ratio);
+    unknown_scalar("modal", q.quantity);
+  };
   return type;
 }
 

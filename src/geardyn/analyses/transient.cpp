@@ -4,39 +4,30 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <stdexcept>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/signal/spectrum.hpp"
 #include "geardyn/transient/linear_rotor_system.hpp"
 
 namespace geardyn::analyses {
 namespace {
 
-constexpr double kRadPerSToRpm = 60.0 / (2.0 * std::numbers::pi);
+constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
 constexpr double kMaxSteps = 1e8;
 constexpr int kMinSpectrumSamples = 16;
 constexpr std::size_t kMaxPlotPoints = 4000;
 
-// Where the settings came from, for error messages: the analysis that holds this very object.
-struct Origin {
-  SourceLocation where;
-  std::string key;  // "analyses.<name>" or "transient"
-};
-
-Origin find_origin(const model::Model& model, const TransientSettings& settings) {
-  for (const auto& a : model.analyses)
-    if (a.settings_as<TransientSettings>() == &settings) return {a.where, "analyses." + a.name};
-  return {SourceLocation{model.source_file, 0, 0}, "transient"};
-}
+std::string unit_suffix(bool rotational) { return rotational ? "rad" : "m"; }
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
 }
 
-void validate(const model::Model& model, const TransientSettings& s, const Origin& o) {
+void validate(const model::Model& model, const TransientSettings& s, const Context& context) {
   auto fail = [&](const std::string& key, const std::string& expected, const std::string& found) {
-    throw InputError(o.where, o.key + "." + key, expected, found);
+    throw context.error(key, expected, found);
   };
   if (!(s.duration > 0.0) || !std::isfinite(s.duration))
     fail("duration", "a positive duration [s]", fmt::format("{}", s.duration));
@@ -49,9 +40,9 @@ void validate(const model::Model& model, const TransientSettings& s, const Origi
     fail("time_step", fmt::format("at most {:.0e} steps over the duration", kMaxSteps),
          fmt::format("{:.3g} steps", s.duration / s.time_step));
   if (!(s.speed >= 0.0) || !std::isfinite(s.speed))
-    fail("speed", "a speed >= 0 [rad/s]", fmt::format("{}", s.speed));
+    fail("speed_rpm", "a speed >= 0 [rpm]", fmt::format("{}", s.speed * kRadPerSToRpm));
   if (!std::isnan(s.speed_end) && (!(s.speed_end >= 0.0) || !std::isfinite(s.speed_end)))
-    fail("speed_end", "a speed >= 0 [rad/s]", fmt::format("{}", s.speed_end));
+    fail("speed_end_rpm", "a speed >= 0 [rpm]", fmt::format("{}", s.speed_end * kRadPerSToRpm));
   if (!(s.rho_infinity >= 0.0 && s.rho_infinity <= 1.0))
     fail("rho_infinity", "a value in [0, 1]", fmt::format("{}", s.rho_infinity));
   if (!(s.steady_fraction > 0.0 && s.steady_fraction <= 1.0))
@@ -105,19 +96,13 @@ TransientOrbit estimate_orbit(const Eigen::Ref<const Eigen::VectorXd>& x,
 
 }  // namespace
 
-TransientResult run_transient(const model::Model& model, const fe::LinearSystem& system,
-                              const TransientSettings& settings, Progress& progress) {
-  const Origin origin = find_origin(model, settings);
-  validate(model, settings, origin);
+namespace {
 
-  TransientResult result;
-  result.settings = settings;
-  // ceil, forgiving the rounding of duration / time_step (0.3 / 1e-4 = 2999.9999999999995).
-  result.steps = std::max(
-      1, static_cast<int>(std::ceil(settings.duration / settings.time_step * (1.0 - 1e-9))));
-  result.sample_interval = settings.time_step * settings.output_every;
-
-  // Sensors.
+// The selected sensors, in model order (sets the sensor fields of `result`).
+std::vector<const model::Sensor*> select_transient_sensors(const model::Model& model,
+                                                           const fe::LinearSystem& system,
+                                                           const TransientSettings& settings,
+                                                           TransientResult& result) {
   std::vector<const model::Sensor*> selected;
   for (const auto& sensor : model.sensors) {
     if (!settings.sensors.empty() && std::find(settings.sensors.begin(), settings.sensors.end(),
@@ -132,7 +117,13 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
     result.sensor_rotational.push_back(is_rotation(sensor.dof));
     result.sensor_equations.push_back(system.dofs.dof(node, sensor.dof));
   }
+  return selected;
+}
 
+// Integrates from rest and stores every output_every-th sample of the sensors.
+void integrate_record(const model::Model& model, const fe::LinearSystem& system,
+                      const TransientSettings& settings, Progress& progress,
+                      TransientResult& result) {
   const transient::SpeedProfile profile =
       std::isnan(settings.speed_end)
           ? transient::SpeedProfile::constant(settings.speed)
@@ -173,6 +164,71 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
   result.values =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
           samples.data(), rows, static_cast<Eigen::Index>(n_sensors));
+}
+
+// Hann amplitude spectra of the steady part of every sensor.
+void steady_spectra(TransientResult& result, Eigen::Index steady_rows) {
+  const std::size_t n_sensors = result.sensor_names.size();
+  if (steady_rows < kMinSpectrumSamples || n_sensors == 0) return;
+  const double fs = 1.0 / result.sample_interval;
+  for (std::size_t s = 0; s < n_sensors; ++s) {
+    const Eigen::VectorXd x = result.values.col(static_cast<Eigen::Index>(s)).tail(steady_rows);
+    const auto spectrum = signal::amplitude_spectrum(x, fs, signal::Window::Hann);
+    if (s == 0) {
+      result.spectrum_frequency_hz = spectrum.frequency_hz;
+      result.spectrum_resolution_hz = spectrum.resolution_hz;
+      result.spectrum_amplitude.resize(spectrum.amplitude.size(),
+                                       static_cast<Eigen::Index>(n_sensors));
+    }
+    result.spectrum_amplitude.col(static_cast<Eigen::Index>(s)) = spectrum.amplitude;
+  }
+}
+
+// Orbits: nodes with both a ux and a uy sensor (the first of each, in sensor order).
+void steady_orbits(const fe::LinearSystem& system,
+                   const std::vector<const model::Sensor*>& selected, TransientResult& result,
+                   Eigen::Index steady_rows) {
+  if (steady_rows < 3) return;
+  std::vector<std::string> done;
+  for (std::size_t ix = 0; ix < selected.size(); ++ix) {
+    const model::Sensor& sx = *selected[ix];
+    if (sx.dof != model::Component::Ux ||
+        std::find(done.begin(), done.end(), sx.node) != done.end())
+      continue;
+    int iy = -1;
+    for (std::size_t j = 0; j < selected.size() && iy < 0; ++j)
+      if (selected[j]->node == sx.node && selected[j]->dof == model::Component::Uy)
+        iy = static_cast<int>(j);
+    if (iy < 0) continue;
+    done.push_back(sx.node);
+    TransientOrbit orbit =
+        estimate_orbit(result.values.col(static_cast<Eigen::Index>(ix)).tail(steady_rows),
+                       result.values.col(iy).tail(steady_rows));
+    orbit.node = sx.node;
+    orbit.sensor_x = static_cast<int>(ix);
+    orbit.sensor_y = iy;
+    orbit.speed_ratio = system.dofs.node(system.dofs.node_index(sx.node)).speed_ratio;
+    if (orbit.speed_ratio < 0.0) orbit.whirl = signal::reversed(orbit.whirl);
+    result.orbits.push_back(orbit);
+  }
+}
+
+}  // namespace
+
+TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
+                              const Context& context) {
+  validate(model, settings, context);
+  const fe::LinearSystem& system = context.system();
+
+  TransientResult result;
+  result.settings = settings;
+  // ceil, forgiving the rounding of duration / time_step (0.3 / 1e-4 = 2999.9999999999995).
+  result.steps = std::max(
+      1, static_cast<int>(std::ceil(settings.duration / settings.time_step * (1.0 - 1e-9))));
+  result.sample_interval = settings.time_step * settings.output_every;
+  const std::vector<const model::Sensor*> selected =
+      select_transient_sensors(model, system, settings, result);
+  integrate_record(model, system, settings, context.progress(), result);
 
   result.status = result.integration.status;
   if (result.status != Status::Ok) {
@@ -187,48 +243,10 @@ TransientResult run_transient(const model::Model& model, const fe::LinearSystem&
       std::lower_bound(result.time.begin(), result.time.end(), start - 1e-9 * settings.time_step);
   result.steady_first = static_cast<int>(first - result.time.begin());
   result.steady_start = result.time[static_cast<std::size_t>(result.steady_first)];
-  const Eigen::Index steady_rows = rows - result.steady_first;
-
-  if (steady_rows >= kMinSpectrumSamples && n_sensors > 0) {
-    const double fs = 1.0 / result.sample_interval;
-    for (std::size_t s = 0; s < n_sensors; ++s) {
-      const Eigen::VectorXd x = result.values.col(static_cast<Eigen::Index>(s)).tail(steady_rows);
-      const auto spectrum = signal::amplitude_spectrum(x, fs, signal::Window::Hann);
-      if (s == 0) {
-        result.spectrum_frequency_hz = spectrum.frequency_hz;
-        result.spectrum_resolution_hz = spectrum.resolution_hz;
-        result.spectrum_amplitude.resize(spectrum.amplitude.size(),
-                                         static_cast<Eigen::Index>(n_sensors));
-      }
-      result.spectrum_amplitude.col(static_cast<Eigen::Index>(s)) = spectrum.amplitude;
-    }
-  }
-
-  // Orbits: nodes with both a ux and a uy sensor (the first of each, in sensor order).
-  if (steady_rows >= 3) {
-    std::vector<std::string> done;
-    for (std::size_t ix = 0; ix < selected.size(); ++ix) {
-      const model::Sensor& sx = *selected[ix];
-      if (sx.dof != model::Component::Ux ||
-          std::find(done.begin(), done.end(), sx.node) != done.end())
-        continue;
-      int iy = -1;
-      for (std::size_t j = 0; j < selected.size() && iy < 0; ++j)
-        if (selected[j]->node == sx.node && selected[j]->dof == model::Component::Uy)
-          iy = static_cast<int>(j);
-      if (iy < 0) continue;
-      done.push_back(sx.node);
-      TransientOrbit orbit =
-          estimate_orbit(result.values.col(static_cast<Eigen::Index>(ix)).tail(steady_rows),
-                         result.values.col(iy).tail(steady_rows));
-      orbit.node = sx.node;
-      orbit.sensor_x = static_cast<int>(ix);
-      orbit.sensor_y = iy;
-      orbit.speed_ratio = system.dofs.node(system.dofs.node_index(sx.node)).speed_ratio;
-      if (orbit.speed_ratio < 0.0) orbit.whirl = signal::reversed(orbit.whirl);
-      result.orbits.push_back(orbit);
-    }
-  }
+  const Eigen::Index steady_rows =
+      static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
+  steady_spectra(result, steady_rows);
+  steady_orbits(system, selected, result, steady_rows);
   return result;
 }
 
@@ -261,21 +279,13 @@ void envelope(const std::vector<double>& x, const Eigen::Ref<const Eigen::Vector
   }
 }
 
-std::string unit_suffix(bool rotational) { return rotational ? "rad" : "m"; }
-
 }  // namespace
 
-AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearSystem& system,
-                                const TransientResult& result, const std::string& analysis_name) {
-  AnalysisOutput out;
-  out.name = analysis_name;
-  out.type = "transient";
-  out.status = result.status;
-  out.message = result.message;
-  const auto& s = result.settings;
-  const std::size_t n_sensors = result.sensor_names.size();
+namespace {
 
-  // Time histories.
+// Table "time_history" and one plot per unit.
+void add_time_histories(const TransientResult& result, AnalysisOutput& out) {
+  const std::size_t n_sensors = result.sensor_names.size();
   Table history;
   history.name = "time_history";
   history.title = "Sensor time histories";
@@ -307,129 +317,171 @@ AnalysisOutput transient_output(const model::Model& /*model*/, const fe::LinearS
     }
     if (!plot.traces.empty()) out.plots.push_back(std::move(plot));
   }
+}
 
-  // Spectra of the steady part.
-  if (result.spectrum_frequency_hz.size() > 0) {
-    Table spectrum;
-    spectrum.name = "spectrum";
-    spectrum.title = fmt::format(
-        "Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s", result.steady_start);
-    const Eigen::VectorXd& f = result.spectrum_frequency_hz;
-    const std::vector<double> fv(f.data(), f.data() + f.size());
-    spectrum.add("frequency_hz", "Hz", fv);
-    Plot plot;
-    plot.name = "spectrum";
-    plot.title = "Amplitude spectra of the steady part (0-peak)";
-    plot.x_label = "frequency [Hz]";
-    plot.y_label = "amplitude (0-peak) [m or rad]";
-    plot.y_log = true;
-    for (std::size_t i = 0; i < n_sensors; ++i) {
-      const Eigen::VectorXd col = result.spectrum_amplitude.col(static_cast<Eigen::Index>(i));
-      spectrum.add(result.sensor_names[i] + "_" + unit_suffix(result.sensor_rotational[i]),
-                   unit_suffix(result.sensor_rotational[i]),
-                   std::vector<double>(col.data(), col.data() + col.size()));
-      Trace trace;
-      trace.name = result.sensor_names[i];
-      envelope(fv, col, trace.x, trace.y);
-      plot.traces.push_back(std::move(trace));
-    }
-    out.tables.push_back(std::move(spectrum));
-    out.plots.push_back(std::move(plot));
+// Table and plot "spectrum" of the steady part (when computed).
+void add_spectra(const TransientResult& result, AnalysisOutput& out) {
+  if (result.spectrum_frequency_hz.size() == 0) return;
+  Table spectrum;
+  spectrum.name = "spectrum";
+  spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s",
+                               result.steady_start);
+  const Eigen::VectorXd& f = result.spectrum_frequency_hz;
+  const std::vector<double> fv(f.data(), f.data() + f.size());
+  spectrum.add("frequency_hz", "Hz", fv);
+  Plot plot;
+  plot.name = "spectrum";
+  plot.title = "Amplitude spectra of the steady part (0-peak)";
+  plot.x_label = "frequency [Hz]";
+  plot.y_label = "amplitude (0-peak) [m or rad]";
+  plot.y_log = true;
+  for (std::size_t i = 0; i < result.sensor_names.size(); ++i) {
+    const Eigen::VectorXd col = result.spectrum_amplitude.col(static_cast<Eigen::Index>(i));
+    spectrum.add(result.sensor_names[i] + "_" + unit_suffix(result.sensor_rotational[i]),
+                 unit_suffix(result.sensor_rotational[i]),
+                 std::vector<double>(col.data(), col.data() + col.size()));
+    Trace trace;
+    trace.name = result.sensor_names[i];
+    envelope(fv, col, trace.x, trace.y);
+    plot.traces.push_back(std::move(trace));
   }
+  out.tables.push_back(std::move(spectrum));
+  out.plots.push_back(std::move(plot));
+}
 
-  // Orbits.
-  if (!result.orbits.empty()) {
-    Table orbits;
-    orbits.name = "orbits";
-    orbits.title = "Orbits over the steady part (node frame e1, e2)";
-    std::vector<std::string> nodes, whirl;
-    std::vector<double> major, minor;
-    Plot plot;
-    plot.name = "orbits";
-    plot.title = "Orbits over the steady part";
-    plot.x_label = "x (e1) [m]";
-    plot.y_label = "y (e2) [m]";
-    plot.equal_aspect = true;
-    const Eigen::Index steady_rows =
-        static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
-    for (const auto& o : result.orbits) {
-      nodes.push_back(o.node);
-      major.push_back(o.major);
-      minor.push_back(o.minor);
-      whirl.emplace_back(signal::to_string(o.whirl));
-      Trace trace;
-      trace.name = o.node;
-      const Eigen::Index stride =
-          std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
-      for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows;
-           k += stride) {
-        trace.x.push_back(result.values(k, o.sensor_x));
-        trace.y.push_back(result.values(k, o.sensor_y));
-      }
-      plot.traces.push_back(std::move(trace));
+// Table and plot "orbits" (when any node has both lateral sensors).
+void add_orbits(const TransientResult& result, AnalysisOutput& out) {
+  if (result.orbits.empty()) return;
+  Table orbits;
+  orbits.name = "orbits";
+  orbits.title = "Orbits over the steady part (node frame e1, e2)";
+  std::vector<std::string> nodes, whirl;
+  std::vector<double> major, minor;
+  Plot plot;
+  plot.name = "orbits";
+  plot.title = "Orbits over the steady part";
+  plot.x_label = "x (e1) [m]";
+  plot.y_label = "y (e2) [m]";
+  plot.equal_aspect = true;
+  const Eigen::Index steady_rows =
+      static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
+  for (const auto& o : result.orbits) {
+    nodes.push_back(o.node);
+    major.push_back(o.major);
+    minor.push_back(o.minor);
+    whirl.emplace_back(signal::to_string(o.whirl));
+    Trace trace;
+    trace.name = o.node;
+    const Eigen::Index stride =
+        std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
+    for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows; k += stride) {
+      trace.x.push_back(result.values(k, o.sensor_x));
+      trace.y.push_back(result.values(k, o.sensor_y));
     }
-    orbits.add_text("node", nodes);
-    orbits.add("major_m", "m", major);
-    orbits.add("minor_m", "m", minor);
-    orbits.add_text("whirl", whirl);
-    out.tables.push_back(std::move(orbits));
-    out.plots.push_back(std::move(plot));
+    plot.traces.push_back(std::move(trace));
   }
+  orbits.add_text("node", nodes);
+  orbits.add("major_m", "m", major);
+  orbits.add("minor_m", "m", minor);
+  orbits.add_text("whirl", whirl);
+  out.tables.push_back(std::move(orbits));
+  out.plots.push_back(std::move(plot));
+}
+
+// How far to trust the record of a finished run: the time step against the 1x excitation, the
+// spectra's resolution, run-up smearing, what the orbits are.
+void add_accuracy_notes(const TransientResult& result, const fe::LinearSystem& system,
+                        std::vector<std::string>& notes) {
+  const auto& s = result.settings;
+  const double w_max = std::isnan(s.speed_end) ? s.speed : std::max(s.speed, s.speed_end);
+  double ratio_max = 0.0;
+  for (const auto& node : system.dofs.nodes())
+    ratio_max = std::max(ratio_max, std::abs(node.speed_ratio));
+  const double w_exc = w_max * std::max(ratio_max, 1.0);
+  if (w_exc > 0.0) {
+    const double wh = w_exc * s.time_step;
+    notes.push_back(fmt::format(
+        "at the highest 1x excitation frequency, {:.4g} Hz, omega h = {:.3g}: the scheme's "
+        "relative period (phase) error is about (omega h)^2 / 12 = {:.2g}, the amplitude error "
+        "of a forced response of the same order",
+        w_exc / units::kTwoPi, wh, wh * wh / 12.0));
+    if (w_exc * result.sample_interval > units::kPi / 4)
+      notes.push_back(fmt::format(
+          "the stored samples (every {} steps, {:.4g} Hz) hold fewer than 8 per period of the "
+          "1x excitation: lower output_every for usable spectra and orbits",
+          s.output_every, 1.0 / result.sample_interval));
+  }
+  if (result.spectrum_frequency_hz.size() > 0)
+    notes.push_back(fmt::format(
+        "steady part t = {:.6g} .. {:.6g} s ({} samples); spectra: Hann window, resolution "
+        "{:.4g} Hz, 0-peak amplitude with coherent-gain correction; a component between two "
+        "bins reads up to {:.1f} % low",
+        result.steady_start, result.time.back(),
+        static_cast<long>(result.time.size()) - result.steady_first, result.spectrum_resolution_hz,
+        100 * signal::max_scalloping_loss(signal::Window::Hann)));
+  else
+    notes.push_back(fmt::format("the steady part holds fewer than {} samples: no spectra",
+                                kMinSpectrumSamples));
+  if (!std::isnan(s.speed_end) && s.speed_end != s.speed)
+    notes.push_back(
+        "run-up: the speed changes over the 'steady' part, so its spectra are smeared over the "
+        "speeds it spans and its orbits are not steady");
+  if (!result.orbits.empty())
+    notes.push_back(
+        "orbits: major/minor are the largest/smallest distances from the orbit's centre (middle "
+        "of its bounding box) over the steady part, the semi-axes for a single-frequency "
+        "orbit; whirl relative to the spin");
+}
+
+}  // namespace
+
+AnalysisOutput transient_output(const model::Model& /*model*/,
+                                const TransientSettings& /*settings*/,
+                                const TransientResult& result, const Context& context) {
+  const fe::LinearSystem& system = context.system();
+  AnalysisOutput out;
+  out.name = context.name();
+  out.type = "transient";
+  out.status = result.status;
+  out.message = result.message;
+  add_time_histories(result, out);
+  add_spectra(result, out);
+  add_orbits(result, out);
 
   // How far to trust it.
   out.notes.push_back("integration: " + result.integration.brief_report());
   if (result.integration.steps_taken > 0 && !result.integration.solver.empty())
     out.notes.push_back("iteration matrix factorised with " + result.integration.solver);
-  if (result.status == Status::Ok) {
-    const double w_max = std::isnan(s.speed_end) ? s.speed : std::max(s.speed, s.speed_end);
-    double ratio_max = 0.0;
-    for (const auto& node : system.dofs.nodes())
-      ratio_max = std::max(ratio_max, std::abs(node.speed_ratio));
-    const double w_exc = w_max * std::max(ratio_max, 1.0);
-    if (w_exc > 0.0) {
-      const double wh = w_exc * s.time_step;
-      out.notes.push_back(fmt::format(
-          "at the highest 1x excitation frequency, {:.4g} Hz, omega h = {:.3g}: the scheme's "
-          "relative period (phase) error is about (omega h)^2 / 12 = {:.2g}, the amplitude error "
-          "of a forced response of the same order",
-          w_exc / (2 * std::numbers::pi), wh, wh * wh / 12.0));
-      if (w_exc * result.sample_interval > std::numbers::pi / 4)
-        out.notes.push_back(fmt::format(
-            "the stored samples (every {} steps, {:.4g} Hz) hold fewer than 8 per period of the "
-            "1x excitation: lower output_every for usable spectra and orbits",
-            s.output_every, 1.0 / result.sample_interval));
-    }
-    if (result.spectrum_frequency_hz.size() > 0)
-      out.notes.push_back(fmt::format(
-          "steady part t = {:.6g} .. {:.6g} s ({} samples); spectra: Hann window, resolution "
-          "{:.4g} Hz, 0-peak amplitude with coherent-gain correction; a component between two "
-          "bins reads up to {:.1f} % low",
-          result.steady_start, result.time.back(),
-          static_cast<long>(result.time.size()) - result.steady_first,
-          result.spectrum_resolution_hz, 100 * signal::max_scalloping_loss(signal::Window::Hann)));
-    else
-      out.notes.push_back(fmt::format("the steady part holds fewer than {} samples: no spectra",
-                                      kMinSpectrumSamples));
-    if (!std::isnan(s.speed_end) && s.speed_end != s.speed)
-      out.notes.push_back(
-          "run-up: the speed changes over the 'steady' part, so its spectra are smeared over the "
-          "speeds it spans and its orbits are not steady");
-    if (!result.orbits.empty())
-      out.notes.push_back(
-          "orbits: major/minor are the largest/smallest distances from the orbit's centre (middle "
-          "of its bounding box) over the steady part, the semi-axes for a single-frequency "
-          "orbit; whirl relative to the spin");
-  }
+  if (result.status == Status::Ok) add_accuracy_notes(result, system, out.notes);
   if (system.K_loss.nonZeros() > 0 && system.K_loss.norm() > 0.0)
     out.notes.push_back(
         "the model's hysteretic (structural) loss factors have no time-domain equivalent and are "
         "not in this run: only viscous, Rayleigh and modal damping act; give Rayleigh or modal "
         "damping for a transient comparable with the harmonic analyses");
-  for (std::size_t i = 0; i < n_sensors; ++i)
+  for (std::size_t i = 0; i < result.sensor_names.size(); ++i)
     if (result.sensor_equations[i] < 0)
       out.notes.push_back("sensor '" + result.sensor_names[i] +
                           "' measures a constrained DOF and reads 0");
   return out;
+}
+
+TransientSensorSummary summarize_sensor(const TransientResult& result, const std::string& sensor) {
+  std::size_t s = 0;
+  while (s < result.sensor_names.size() && result.sensor_names[s] != sensor) ++s;
+  if (s == result.sensor_names.size())
+    throw std::runtime_error(fmt::format("sensor '{}' is not recorded by this analysis", sensor));
+  if (result.status != Status::Ok || result.time.empty())
+    throw std::runtime_error("the time integration did not finish: " + result.message);
+  TransientSensorSummary summary;
+  summary.unit = unit_suffix(result.sensor_rotational[s]);
+  const auto col = result.values.col(static_cast<Eigen::Index>(s));
+  Eigen::Index at = 0;
+  summary.peak = col.cwiseAbs().maxCoeff(&at);
+  summary.peak_speed = result.speed[static_cast<std::size_t>(at)];
+  summary.peak_time = result.time[static_cast<std::size_t>(at)];
+  const Eigen::Index steady_rows = col.size() - result.steady_first;
+  summary.steady_rms = std::sqrt(col.tail(steady_rows).squaredNorm() / steady_rows);
+  return summary;
 }
 
 }  // namespace geardyn::analyses

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -85,15 +85,28 @@ struct TransientResult {
 /// above the number of steps, negative speeds, unknown unbalance or sensor names, more than 1e8
 /// steps), builds the rotor system and integrates it. Numerical failures (divergence, singular
 /// mass matrix) come back as a non-Ok status with the samples up to the failure and no spectra
-/// or orbits. Reports progress per step.
-TransientResult run_transient(const model::Model& model, const fe::LinearSystem& system,
-                              const TransientSettings& settings, Progress& progress);
+/// or orbits. Runs on the context's linear system and reports progress per step to its progress.
+TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
+                              const Context& context);
 
 /// Tables "time_history" (time_s, speed_rpm, per sensor <name>_m or <name>_rad), "spectrum"
 /// (frequency_hz, per sensor <name>_m or <name>_rad: 0-peak amplitude) and "orbits" (node,
 /// major_m, minor_m, whirl); plots of the time histories (one per unit), the orbits (equal
 /// aspect) and the spectra (log amplitude); notes on accuracy and the integrator's work.
-AnalysisOutput transient_output(const model::Model& model, const fe::LinearSystem& system,
-                                const TransientResult& result, const std::string& analysis_name);
+AnalysisOutput transient_output(const model::Model& model, const TransientSettings& settings,
+                                const TransientResult& result, const Context& context);
+
+/// What a sweep reads of one sensor's record.
+struct TransientSensorSummary {
+  std::string unit;         ///< "m" or "rad"
+  double peak = 0.0;        ///< largest |x(t)| over the whole record (start-up included)
+  double peak_time = 0.0;   ///< [s] of that sample (the first of equal ones)
+  double peak_speed = 0.0;  ///< reference speed at that sample [rad/s]
+  double steady_rms = 0.0;  ///< sqrt(mean x^2) over the steady part
+};
+
+/// The summary of sensor `sensor`; std::runtime_error when the run did not record it or the
+/// integration stopped early.
+TransientSensorSummary summarize_sensor(const TransientResult& result, const std::string& sensor);
 
 }  // namespace geardyn::analyses

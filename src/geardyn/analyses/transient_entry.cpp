@@ -3,8 +3,9 @@
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
 #include "geardyn/analyses/transient.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -92,9 +93,32 @@ AnalysisType transient_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<TransientSettings>();
-    TransientResult r = run_transient(m, c.system(), s, c.progress());
-    AnalysisOutput out = transient_output(m, c.system(), r, a.name);
+    TransientResult r = run_transient(m, s, c);
+    AnalysisOutput out = transient_output(m, s, r, c);
     return outcome(std::move(out), std::move(r));
+  };
+  type.scalars = {
+      {"max_response", "", "Largest |x(t)| of `sensor` over the record.", {"sensor"}},
+      {"max_response_speed",
+       "rpm",
+       "Reference speed at that largest |x(t)| (in a run-up: where it passes resonance).",
+       {"sensor"}},
+      {"rms_response", "", "RMS of `sensor` over the steady part of the record.", {"sensor"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) {
+    const TransientSensorSummary s = summarize_sensor(result_of<TransientResult>(o), q.sensor);
+    if (q.quantity == "max_response") {
+      unit = s.unit;
+      return s.peak;
+    }
+    if (q.quantity == "max_response_speed") {
+      unit = "rpm";
+      return s.peak_speed * (60.0 / units::kTwoPi);
+    }
+    if (q.quantity == "rms_response") {
+      unit = s.unit;
+      return s.steady_rms;
+    }
+    unknown_scalar("transient", q.quantity);
   };
   return type;
 }

@@ -4,18 +4,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "geardyn/analyses/harmonic.hpp"
-#include "geardyn/analyses/settings_location.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::analyses {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+using units::kPi;
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
@@ -32,20 +31,19 @@ double UnbalanceResult::phase_lag_deg(std::complex<double> x) {
   return lag;
 }
 
-UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem& system,
-                              const UnbalanceSettings& settings, Progress& progress) {
-  std::string name, key;
-  const SourceLocation where = analysis_location(model, &settings, "unbalance", name, key);
-  const fe::DofMap& dofs = system.dofs;
+namespace {
 
-  if (settings.speeds.empty())
-    throw InputError(where, key + ".speed_rpm", "at least one speed", "none");
+// The selected unbalances (all when none are named).
+std::vector<const model::Unbalance*> select_unbalances(const model::Model& model,
+                                                       const UnbalanceSettings& settings,
+                                                       const Context& context) {
+  if (settings.speeds.empty()) throw context.error("speed_rpm", "at least one speed", "none");
   for (double w : settings.speeds)
     if (!std::isfinite(w) || w <= 0.0)
-      throw InputError(where, key + ".speed_rpm",
-                       "speeds > 0 (reverse rotation: negative "
-                       "speed ratios)",
-                       fmt::format("{}", w * kRpmPerRadS));
+      throw context.error("speed_rpm",
+                          "speeds > 0 (reverse rotation: negative "
+                          "speed ratios)",
+                          fmt::format("{}", w * kRpmPerRadS));
 
   std::vector<const model::Unbalance*> unbalances;
   for (const auto& u : model.unbalances)
@@ -56,18 +54,17 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   for (const auto& u_name : settings.unbalances)
     if (std::none_of(model.unbalances.begin(), model.unbalances.end(),
                      [&](const model::Unbalance& u) { return u.name == u_name; }))
-      throw InputError(where, key + ".unbalances", "the name of an unbalance", "'" + u_name + "'");
+      throw context.error("unbalances", "the name of an unbalance", "'" + u_name + "'");
   if (unbalances.empty())
-    throw InputError(where, key + ".unbalances", "at least one unbalance", "none",
-                     "add [[unbalances]] to the model");
+    throw context.error("unbalances", "at least one unbalance", "none",
+                        "add [[unbalances]] to the model");
+  return unbalances;
+}
 
-  UnbalanceResult result;
-  result.speeds = settings.speeds;
-  result.modal_damping = system.has_modal_damping();
-
-  // Sensors.
-  const std::vector<const model::Sensor*> sensors =
-      select_sensors(model, settings.sensors, where, key);
+// The equation of each sensor (sets result.sensors).
+std::vector<int> sensor_equations(const model::Model& model, const fe::DofMap& dofs,
+                                  const std::vector<const model::Sensor*>& sensors,
+                                  UnbalanceResult& result) {
   std::vector<int> sensor_eq;
   for (const auto* s : sensors) {
     const int node = dofs.find_node(s->node);
@@ -84,6 +81,25 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
     sensor_eq.push_back(eq);
     result.sensors.push_back({s->name, eq, is_rotation(s->dof)});
   }
+  return sensor_eq;
+}
+
+}  // namespace
+
+UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings& settings,
+                              const Context& context) {
+  const fe::LinearSystem& system = context.system();
+  const fe::DofMap& dofs = system.dofs;
+  const std::vector<const model::Unbalance*> unbalances =
+      select_unbalances(model, settings, context);
+
+  UnbalanceResult result;
+  result.speeds = settings.speeds;
+  result.modal_damping = system.has_modal_damping();
+
+  const std::vector<const model::Sensor*> sensors =
+      select_sensors(model, settings.sensors, context);
+  const std::vector<int> sensor_eq = sensor_equations(model, dofs, sensors, result);
 
   // Orbit nodes: both lateral sensors present, or carrying unbalance; in node order.
   std::vector<int> orbit_nodes;
@@ -106,10 +122,10 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   for (const auto* u : unbalances) selected.push_back(u->name);
   result.orders = fe::unbalance_orders(model, system, selected);
   if (result.orders.empty())
-    throw InputError(where, key + ".unbalances", "unbalance on a spinning node",
-                     "only nodes with speed ratio 0",
-                     "set spin_of for the node, or put the "
-                     "unbalance on a shaft node");
+    throw context.error("unbalances", "unbalance on a spinning node",
+                        "only nodes with speed ratio 0",
+                        "set spin_of for the node, or put the "
+                        "unbalance on a shaft node");
 
   const std::size_t n_speeds = result.speeds.size();
   const std::size_t n_orders = result.orders.size();
@@ -119,6 +135,8 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   result.orbits.assign(n_orders, std::vector<std::vector<NodeOrbit>>(
                                      n_speeds, std::vector<NodeOrbit>(orbit_nodes.size())));
 
+  const std::string& name = context.name();
+  Progress& progress = context.progress();
   DynamicStiffness D(system, result.speeds.front(), name);
   progress.start(fmt::format("{}: {} speeds x {} order(s)", name, n_speeds, n_orders), n_speeds);
   for (std::size_t i = 0; i < n_speeds; ++i) {
@@ -150,12 +168,47 @@ UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem&
   return result;
 }
 
-AnalysisOutput unbalance_output(const model::Model& model, const fe::LinearSystem& system,
-                                const UnbalanceResult& result, const std::string& analysis_name) {
-  (void)model;
-  (void)system;
+namespace {
+
+// Table "orbits": per order, speed and orbit node.
+Table orbits_table(const UnbalanceResult& result, const std::vector<double>& rpm) {
+  const std::size_t n_speeds = result.speeds.size();
+  const std::size_t n_orders = result.orders.size();
+  Table orbits;
+  orbits.name = "orbits";
+  orbits.title = "Orbits (semi-axes, inclination of the major axis from e1, whirl vs spin)";
+  std::vector<double> o_rpm, o_order, o_major, o_minor, o_incl;
+  std::vector<std::string> o_node, o_whirl;
+  for (std::size_t o = 0; o < n_orders; ++o)
+    for (std::size_t i = 0; i < n_speeds; ++i)
+      for (std::size_t k = 0; k < result.orbit_nodes.size(); ++k) {
+        const NodeOrbit& no = result.orbits[o][i][k];
+        o_rpm.push_back(rpm[i]);
+        o_order.push_back(result.orders[o]);
+        o_node.push_back(result.orbit_nodes[k]);
+        o_major.push_back(no.orbit.major);
+        o_minor.push_back(no.orbit.minor);
+        o_incl.push_back(no.orbit.inclination * 180.0 / kPi);
+        o_whirl.emplace_back(signal::to_string(no.whirl));
+      }
+  orbits.add("speed_rpm", "rpm", o_rpm);
+  orbits.add("order", "", o_order);
+  orbits.add_text("node", o_node);
+  orbits.add("major_m", "m", o_major);
+  orbits.add("minor_m", "m", o_minor);
+  orbits.add("inclination_deg", "deg", o_incl);
+  orbits.add_text("whirl", o_whirl);
+
+  return orbits;
+}
+
+}  // namespace
+
+AnalysisOutput unbalance_output(const model::Model& /*model*/,
+                                const UnbalanceSettings& /*settings*/,
+                                const UnbalanceResult& result, const Context& context) {
   AnalysisOutput out;
-  out.name = analysis_name;
+  out.name = context.name();
   out.type = "unbalance";
   out.status = result.status;
   out.message = result.message;
@@ -221,33 +274,8 @@ AnalysisOutput unbalance_output(const model::Model& model, const fe::LinearSyste
                      : any_rotation                  ? "amplitude [rad]"
                                                      : "amplitude [m]";
 
-  Table orbits;
-  orbits.name = "orbits";
-  orbits.title = "Orbits (semi-axes, inclination of the major axis from e1, whirl vs spin)";
-  std::vector<double> o_rpm, o_order, o_major, o_minor, o_incl;
-  std::vector<std::string> o_node, o_whirl;
-  for (std::size_t o = 0; o < n_orders; ++o)
-    for (std::size_t i = 0; i < n_speeds; ++i)
-      for (std::size_t k = 0; k < result.orbit_nodes.size(); ++k) {
-        const NodeOrbit& no = result.orbits[o][i][k];
-        o_rpm.push_back(rpm[i]);
-        o_order.push_back(result.orders[o]);
-        o_node.push_back(result.orbit_nodes[k]);
-        o_major.push_back(no.orbit.major);
-        o_minor.push_back(no.orbit.minor);
-        o_incl.push_back(no.orbit.inclination * 180.0 / kPi);
-        o_whirl.emplace_back(signal::to_string(no.whirl));
-      }
-  orbits.add("speed_rpm", "rpm", o_rpm);
-  orbits.add("order", "", o_order);
-  orbits.add_text("node", o_node);
-  orbits.add("major_m", "m", o_major);
-  orbits.add("minor_m", "m", o_minor);
-  orbits.add("inclination_deg", "deg", o_incl);
-  orbits.add_text("whirl", o_whirl);
-
   out.tables.push_back(std::move(response));
-  out.tables.push_back(std::move(orbits));
+  out.tables.push_back(orbits_table(result, rpm));
   out.plots.push_back(std::move(amp_plot));
   out.plots.push_back(std::move(phase_plot));
 

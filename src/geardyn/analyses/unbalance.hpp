@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/harmonic.hpp"
-#include "geardyn/core/progress.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -56,18 +56,18 @@ struct UnbalanceResult {
   static double phase_lag_deg(std::complex<double> x);
 };
 
-/// Runs the unbalance response. Orbits are given for every node that has both a ux and a uy
-/// sensor among the selected sensors and for every node carrying a selected unbalance.
-/// Sensors are optional (empty list and no model sensors: orbits only). Throws InputError for
-/// unknown names, constrained sensor DOFs, no unbalance (on a spinning node) or a speed <= 0;
-/// NumericalError (naming speed and frequency) when D is singular.
-UnbalanceResult run_unbalance(const model::Model& model, const fe::LinearSystem& system,
-                              const UnbalanceSettings& settings, Progress& progress);
+/// Runs the unbalance response on the context's linear system. Orbits are given for every node that
+/// has both a ux and a uy sensor among the selected sensors and for every node carrying a selected
+/// unbalance. Sensors are optional (empty list and no model sensors: orbits only). Throws
+/// InputError for unknown names, constrained sensor DOFs, no unbalance (on a spinning node) or a
+/// speed <= 0; NumericalError (naming speed and frequency) when D is singular.
+UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings& settings,
+                              const Context& context);
 
 /// Tables "response" (speed_rpm, order, per sensor <sensor>_amplitude_m|rad and
 /// <sensor>_phase_deg) and "orbits" (speed_rpm, order, node, major_m, minor_m,
 /// inclination_deg, whirl); plots of amplitude (log) and phase lag versus speed.
-AnalysisOutput unbalance_output(const model::Model& model, const fe::LinearSystem& system,
-                                const UnbalanceResult& result, const std::string& analysis_name);
+AnalysisOutput unbalance_output(const model::Model& model, const UnbalanceSettings& settings,
+                                const UnbalanceResult& result, const Context& context);
 
 }  // namespace geardyn::analyses

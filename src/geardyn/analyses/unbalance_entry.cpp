@@ -1,10 +1,14 @@
 // The `type = "unbalance"` analysis in the registry: its model-file keys and their rules, its
 // checks, how it runs and what it offers to sweeps.
+#include <cmath>
+#include <stdexcept>
+
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
 #include "geardyn/analyses/unbalance.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -43,6 +47,31 @@ std::vector<model::Field> keys() {
   };
 }
 
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
+
+// The sensor's amplitude over speed as table "response" lists it: order after order, each over
+// the speeds.
+ResponseCurve response_curve(const UnbalanceResult& r, const std::string& sensor) {
+  std::size_t s = 0;
+  while (s < r.sensors.size() && r.sensors[s].name != sensor) ++s;
+  if (s == r.sensors.size())
+    throw std::runtime_error(fmt::format("no amplitude column for sensor '{}'", sensor));
+  ResponseCurve c;
+  for (std::size_t o = 0; o < r.orders.size(); ++o) {
+    c.groups.emplace_back();
+    for (std::size_t i = 0; i < r.speeds.size(); ++i) {
+      c.groups.back().push_back(c.x.size());
+      c.x.push_back(r.speeds[i] * kRpmPerRadS);
+      c.amplitude.push_back(
+          std::abs(r.response[o](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s))));
+    }
+  }
+  c.x_unit = "rpm";
+  c.amplitude_unit = r.sensors[s].rotational ? "rad" : "m";
+  c.per_rad_s = 60.0 / units::kTwoPi;
+  return c;
+}
+
 }  // namespace
 
 AnalysisType unbalance_analysis() {
@@ -59,15 +88,17 @@ AnalysisType unbalance_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<UnbalanceSettings>();
-    UnbalanceResult r = run_unbalance(m, c.system(), s, c.progress());
-    AnalysisOutput out = unbalance_output(m, c.system(), r, a.name);
+    UnbalanceResult r = run_unbalance(m, s, c);
+    AnalysisOutput out = unbalance_output(m, s, r, c);
     return outcome(std::move(out), std::move(r));
   };
   type.scalars = {
       {"peak_amplitude", "", "Largest response amplitude at `sensor`.", {"sensor"}},
       {"peak_location", "rpm", "Speed of that peak.", {"sensor"}},
       {"amplitude_at", "", "Amplitude at `sensor` at speed `at_rpm`.", {"sensor", "at_rpm"}}};
-  type.scalar = scalar_from_tables;
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) {
+    return response_scalar(response_curve(result_of<UnbalanceResult>(o), q.sensor), q, unit);
+  };
   return type;
 }
 
