@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/reduce/craig_bampton.hpp"
 #include "geardyn/response/cyclic_forced_response.hpp"
@@ -18,7 +18,7 @@
 namespace {
 
 using namespace geardyn;
-constexpr double kPi = std::numbers::pi;
+constexpr double kPi = units::kPi;
 constexpr int kSectors = 24;
 
 struct ReducedSectorCase {
