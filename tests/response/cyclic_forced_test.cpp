@@ -1,4 +1,4 @@
-// Forced response of a cyclic sector to engine-order tooth forces (forced/cyclic_forced_response)
+// Forced response of a cyclic sector to engine-order tooth forces (response/cyclic_forced_response)
 // checked against independent computations on the same mesh:
 //   (1) the full 360 deg wheel (cyclic::replicate + solid::assemble) driven by the physical
 //       tooth forces on all N teeth, eq. (1) of cyclic_forced_response.hpp, solved by a sparse

@@ -1,4 +1,4 @@
-// Mesh-order forced response of a geared rotor (forced/rotor_mesh_response): the modal-reduced
+// Mesh-order forced response of a geared rotor (response/rotor_mesh_response): the modal-reduced
 // solver against the direct sparse solve on the same model, its convergence as modes are added,
 // and the load vector of the mesh force.
 //

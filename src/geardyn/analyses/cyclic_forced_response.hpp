@@ -45,7 +45,7 @@ namespace geardyn::analyses {
 
 /// Forced response of a cyclic solid to the engine-order harmonics of its tooth force, over the
 /// speed of that solid, by modal summation per (nodal diameter, engine order) (DESIGN 4.3-4.4;
-/// forced/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
+/// response/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
 /// as mesh_harmonics does) or are given as force_amplitude.
 struct CyclicForcedResponseSettings : model::SettingsOf<CyclicForcedResponseSettings> {
   std::string solid;

@@ -25,7 +25,7 @@
 namespace geardyn::analyses {
 
 /// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
-/// over speed (forced/rotor_mesh_response.hpp, modal method).
+/// over speed (response/rotor_mesh_response.hpp, modal method).
 struct GearForcedResponseSettings : model::SettingsOf<GearForcedResponseSettings> {
   std::string gear_mesh;                ///< [[gear_meshes]] name (empty: the only one)
   std::string pair;                     ///< [[gear_pairs]] entry (empty: force_amplitude)
