@@ -58,6 +58,61 @@ std::vector<long> ids_of(const solid::Mesh& mesh, const std::vector<int>& nodes)
   return out;
 }
 
+/// The contact law per pair: k_n given or from the contact stiffness per area, k_t given or by
+/// Mindlin's ratio of the two materials (notes into d.notes).
+damper::ContactLaw contact_law(const Context& context, const assembly::SolidComponent& c,
+                               const DamperRingResponseSettings& s, DamperSetup& d,
+                               const solid::Material& gear_material,
+                               const solid::Material& ring_material) {
+  const solid::Mesh& mesh = c.mesh;
+  const int n_pairs = static_cast<int>(d.pairing.pairs.size());
+  damper::ContactLaw law;
+  law.tangential_directions = s.contact_directions;
+  law.inclination = s.ring_inclination;
+  law.friction_coefficient = s.friction_coefficient;
+  if (!std::isnan(s.normal_stiffness)) {
+    law.normal_stiffness = s.normal_stiffness;
+  } else {
+    double r_c = 0.0, z_lo = 1e300, z_hi = -1e300;
+    for (const auto& p : d.pairing.pairs) r_c += std::hypot(p.position.x(), p.position.y());
+    r_c /= n_pairs;
+    for (int n : mesh.node_sets.at(s.ring_contact_set)) {
+      z_lo = std::min(z_lo, mesh.coords[static_cast<std::size_t>(n)].z());
+      z_hi = std::max(z_hi, mesh.coords[static_cast<std::size_t>(n)].z());
+    }
+    const double area = units::kTwoPi * r_c * (z_hi - z_lo) / c.sectors;
+    if (!(area > 0.0))
+      throw context.error("contact_stiffness",
+                          "a contact face with an axial width (its area sets k_n per pair)",
+                          fmt::format("a face of width {} m", z_hi - z_lo),
+                          "give normal_stiffness per pair instead");
+    law.normal_stiffness = s.contact_stiffness * area / n_pairs;
+    d.notes.push_back(fmt::format(
+        "Normal contact stiffness from contact_stiffness {:.4g} N/m^3 x the contact face of a "
+        "sector, 2 pi r_c w / N = {:.4g} m^2 (r_c {:.5g} m, w {:.4g} m), shared by {} pairs: "
+        "k_n = {:.4g} N/m per pair.",
+        s.contact_stiffness, area, r_c, z_hi - z_lo, n_pairs, law.normal_stiffness));
+  }
+  if (!std::isnan(s.tangential_stiffness)) {
+    law.tangential_stiffness = s.tangential_stiffness;
+  } else {
+    const double ratio =
+        damper::mindlin_ratio(gear_material.E, gear_material.nu, ring_material.E, ring_material.nu);
+    law.tangential_stiffness = ratio * law.normal_stiffness;
+    d.notes.push_back(fmt::format(
+        "Tangential contact stiffness by Mindlin's ratio of the gear ({}) and ring ({}) "
+        "materials: k_t = {:.4f} k_n = {:.4g} N/m per pair.",
+        gear_material.name, ring_material.name, ratio, law.tangential_stiffness));
+  }
+  if (!(law.tangential_stiffness > 0.0))
+    throw context.error(
+        "tangential_stiffness",
+        "a positive tangential stiffness (k_t > 0: the elastic stick of the contact)",
+        fmt::format("{} N/m", law.tangential_stiffness),
+        "give tangential_stiffness, or a positive normal stiffness");
+  return law;
+}
+
 DamperSetup damper_setup(const Context& context, const assembly::SolidComponent& c,
                          const DamperRingResponseSettings& s) {
   DamperSetup d;
@@ -135,51 +190,7 @@ DamperSetup damper_setup(const Context& context, const assembly::SolidComponent&
                         "friction_coefficient = 0 and a massless ring",
                         "give the ring its density and the contact its friction coefficient");
 
-  // The contact law.
-  damper::ContactLaw& law = d.law;
-  law.tangential_directions = s.contact_directions;
-  law.inclination = s.ring_inclination;
-  law.friction_coefficient = s.friction_coefficient;
-  if (!std::isnan(s.normal_stiffness)) {
-    law.normal_stiffness = s.normal_stiffness;
-  } else {
-    double r_c = 0.0, z_lo = 1e300, z_hi = -1e300;
-    for (const auto& p : d.pairing.pairs) r_c += std::hypot(p.position.x(), p.position.y());
-    r_c /= n_pairs;
-    for (int n : mesh.node_sets.at(s.ring_contact_set)) {
-      z_lo = std::min(z_lo, mesh.coords[static_cast<std::size_t>(n)].z());
-      z_hi = std::max(z_hi, mesh.coords[static_cast<std::size_t>(n)].z());
-    }
-    const double area = units::kTwoPi * r_c * (z_hi - z_lo) / c.sectors;
-    if (!(area > 0.0))
-      throw context.error("contact_stiffness",
-                          "a contact face with an axial width (its area sets k_n per pair)",
-                          fmt::format("a face of width {} m", z_hi - z_lo),
-                          "give normal_stiffness per pair instead");
-    law.normal_stiffness = s.contact_stiffness * area / n_pairs;
-    d.notes.push_back(fmt::format(
-        "Normal contact stiffness from contact_stiffness {:.4g} N/m^3 x the contact face of a "
-        "sector, 2 pi r_c w / N = {:.4g} m^2 (r_c {:.5g} m, w {:.4g} m), shared by {} pairs: "
-        "k_n = {:.4g} N/m per pair.",
-        s.contact_stiffness, area, r_c, z_hi - z_lo, n_pairs, law.normal_stiffness));
-  }
-  if (!std::isnan(s.tangential_stiffness)) {
-    law.tangential_stiffness = s.tangential_stiffness;
-  } else {
-    const double ratio = damper::mindlin_ratio(gear_material->E, gear_material->nu, ring_material.E,
-                                               ring_material.nu);
-    law.tangential_stiffness = ratio * law.normal_stiffness;
-    d.notes.push_back(fmt::format(
-        "Tangential contact stiffness by Mindlin's ratio of the gear ({}) and ring ({}) "
-        "materials: k_t = {:.4f} k_n = {:.4g} N/m per pair.",
-        gear_material->name, ring_material.name, ratio, law.tangential_stiffness));
-  }
-  if (!(law.tangential_stiffness > 0.0))
-    throw context.error(
-        "tangential_stiffness",
-        "a positive tangential stiffness (k_t > 0: the elastic stick of the contact)",
-        fmt::format("{} N/m", law.tangential_stiffness),
-        "give tangential_stiffness, or a positive normal stiffness");
+  d.law = contact_law(context, c, s, d, *gear_material, ring_material);
   return d;
 }
 
