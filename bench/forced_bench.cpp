@@ -1,5 +1,5 @@
 // Cyclic forced response of a Craig-Bampton-reduced gear sector over 1000 speeds: the per-speed
-// modal sum of forced/cyclic_forced_response (setup: mesh, reduction and modes, done once outside
+// modal sum of response/cyclic_forced_response (setup: mesh, reduction and modes, done once outside
 // the timed loop). Sector: annular steel disk r = 0.05 .. 0.15 m, t = 0.02 m, N = 24, hex8 with
 // 4 x 4 x 2 cells, clamped at the inner radius; masters = both interfaces + the tooth node + a
 // sensor node, 20 fixed-interface modes; 30 modes of nodal diameter 3, engine order 21 = N - h.
@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/reduce/craig_bampton.hpp"
 #include "geardyn/response/cyclic_forced_response.hpp"
@@ -18,7 +18,7 @@
 namespace {
 
 using namespace geardyn;
-constexpr double kPi = std::numbers::pi;
+constexpr double kPi = units::kPi;
 constexpr int kSectors = 24;
 
 struct ReducedSectorCase {

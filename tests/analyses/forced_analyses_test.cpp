@@ -1,5 +1,6 @@
-// The forced responses wired to the model file (forcedan/forced_analyses.hpp) against the library
-// calls they stand for: what the model file says must reach response::* unchanged.
+// The forced responses wired to the model file (analyses/cyclic_forced_response.hpp,
+// gear_forced_response.hpp, damper_ring_response.hpp) against the library calls they stand for:
+// what the model file says must reach response::* unchanged; and the scalars they offer.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -10,19 +11,21 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "geardyn/analyses/cyclic_forced_response.hpp"
+#include "geardyn/analyses/damper_ring_response.hpp"
 #include "geardyn/analyses/gear_forced_response.hpp"
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/analyses/registry.hpp"
 #include "geardyn/analyses/tooth_force.hpp"
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/reduce/craig_bampton.hpp"
@@ -34,8 +37,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using Complex = std::complex<double>;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kTwoPi = units::kTwoPi;
+constexpr double kDeg = units::kRadPerDegree;
 
 // ---------------------------------------------------------------------------------------------
 // cyclic_forced_response
@@ -118,6 +121,19 @@ Eigen::VectorXcd table_response(const AnalysisOutput& out, const std::string& se
   return {};
 }
 
+/// Runs the cyclic forced response `a` of `m` on the prebuilt `solid` (as the runner does).
+AnalysisOutput run_cyclic(const model::Model& m, const model::Analysis& a,
+                          const assembly::SolidComponent& solid) {
+  assembly::SolidComponents solids;
+  solids.emplace("gear", solid);
+  analyses::Context context(m, a);
+  context.with_solids(&solids);
+  const auto& s = a.settings_of<analyses::CyclicForcedResponseSettings>();
+  const analyses::CyclicForcedResponseResult r =
+      analyses::run_cyclic_forced_response(m, s, context);
+  return analyses::cyclic_forced_response_output(m, s, r, context);
+}
+
 struct CyclicCase {
   model::Model model;
   assembly::SolidComponent solid;
@@ -135,7 +151,7 @@ CyclicCase cyclic_case(const std::string& reduction) {
           std::move(solid), excitation_id, tip_id};
 }
 
-/// The tooth load of order k on the excitation node, as the header of forced_analyses.hpp
+/// The tooth load of order k on the excitation node, as the header of cyclic_forced_response.hpp
 /// states it: tangential -e_theta, radial -e_r, axial +z, from the pair's tooth-force harmonic.
 std::vector<response::ToothLoad> tooth_loads(const CyclicCase& c, int k) {
   const analyses::PairModel pm = analyses::build_pair_model(c.model, 0);
@@ -185,9 +201,7 @@ double compare(const AnalysisOutput& out, const std::vector<response::CyclicSens
 // wiring error (a wrong direction, order, node or sign changes the response by O(1)).
 TEST(ForcedWiring, CyclicModelFileEqualsDirectSectorSolve) {
   const CyclicCase c = cyclic_case("");
-  const AnalysisOutput out = analyses::run_cyclic_forced_response(
-      c.model, c.solid,
-      c.model.analyses.front().settings_of<analyses::CyclicForcedResponseSettings>(), "forced");
+  const AnalysisOutput out = run_cyclic(c.model, c.model.analyses.front(), c.solid);
   ASSERT_EQ(out.status, Status::Ok) << out.message;
   cyclic::InterfaceOptions io;
   io.n_sectors = 16;
@@ -238,9 +252,7 @@ TEST(ForcedWiring, GrooveElementSizeRefinesTheGrooveOnly) {
 // sensors are physical DOFs; same tolerance argument as above.
 TEST(ForcedWiring, CyclicCraigBamptonKeepsExcitationAndSensorsAsMasters) {
   const CyclicCase c = cyclic_case("reduction = \"craig_bampton\"\nreduced_modes = 12");
-  const AnalysisOutput out = analyses::run_cyclic_forced_response(
-      c.model, c.solid,
-      c.model.analyses.front().settings_of<analyses::CyclicForcedResponseSettings>(), "forced");
+  const AnalysisOutput out = run_cyclic(c.model, c.model.analyses.front(), c.solid);
   ASSERT_EQ(out.status, Status::Ok) << out.message;
   cyclic::InterfaceOptions io;
   io.n_sectors = 16;
@@ -368,9 +380,7 @@ sensor_components = ["uz"]
     assembly::SolidComponents solids;
     solids.emplace("gear", solid);
     analyses::check_forced_analyses(m, solids);
-    return analyses::run_cyclic_forced_response(
-        m, solid, m.analyses.front().settings_of<analyses::CyclicForcedResponseSettings>(),
-        "forced");
+    return run_cyclic(m, m.analyses.front(), solid);
   };
   // Where the first ND 2 mode meets EO 14.
   const AnalysisOutput wide = run_model(kGearModel + analysis("speed_rpm = [1000]", ""));
@@ -488,7 +498,9 @@ n_modes = 20
   for (const model::Analysis& a : m.analyses) {
     const auto* s = a.settings_as<analyses::GearForcedResponseSettings>();
     if (s == nullptr) continue;
-    const AnalysisOutput out = analyses::run_gear_forced_response(m, system, *s, a.name);
+    const analyses::Context context = analyses::Context(m, a).with_system(&system);
+    const AnalysisOutput out = analyses::gear_forced_response_output(
+        m, *s, analyses::run_gear_forced_response(m, *s, context), context);
     ASSERT_EQ(out.status, Status::Ok) << out.message;
     response::RotorForcedSettings rs;
     rs.gear_mesh = "central_bevel_pair";
@@ -547,8 +559,10 @@ n_modes = 20
   const fe::LinearSystem system = assembly::build_system(plain);
   auto run = [&](const model::Model& m) {
     const model::Analysis& a = m.analyses.back();
-    return analyses::run_gear_forced_response(
-        m, system, a.settings_of<analyses::GearForcedResponseSettings>(), a.name);
+    const auto& s = a.settings_of<analyses::GearForcedResponseSettings>();
+    const analyses::Context context = analyses::Context(m, a).with_system(&system);
+    return analyses::gear_forced_response_output(
+        m, s, analyses::run_gear_forced_response(m, s, context), context);
   };
   const AnalysisOutput reference = run(plain);
   const Table* response = nullptr;
@@ -600,6 +614,219 @@ n_modes = 20
                                                   "measured_mesh_order = 2\n",
                                            (dir / "model.toml").string()),
                InputError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scalar outputs (what a sweep reads): each from the typed result, checked against the table the
+// same run prints and against an independent estimate.
+
+/// Runs analysis `a` of `m` through its registry entry and reads scalar `quantity`.
+struct ScalarRun {
+  analyses::Outcome outcome;
+  const analyses::AnalysisType* type = nullptr;
+  double operator()(const std::string& quantity, const std::string& sensor = {},
+                    double at_rpm = 0.0, std::string* unit = nullptr) const {
+    analyses::ScalarRequest q;
+    q.quantity = quantity;
+    q.sensor = sensor;
+    q.at = at_rpm * kTwoPi / 60.0;
+    std::string u;
+    const double v = type->scalar(outcome, q, u);
+    if (unit != nullptr) *unit = u;
+    return v;
+  }
+};
+
+ScalarRun run_type(const model::Model& m, const model::Analysis& a,
+                   const analyses::Context& context) {
+  ScalarRun r;
+  r.type = analyses::find_analysis_type(a.type);
+  EXPECT_NE(r.type, nullptr);
+  r.outcome = r.type->run(m, a, context);
+  // Every scalar offered is answered for the first sensor.
+  for (const auto& s : r.type->scalars)
+    if (s.name != "amplitude_at") {
+      EXPECT_TRUE(std::isfinite(r(s.name))) << s.name;
+    }
+  return r;
+}
+
+double column_max(const Table& t, const std::string& column) {
+  const auto& v = t.column(column).numbers;
+  return *std::max_element(v.begin(), v.end());
+}
+
+std::size_t peak_row(const Table& peaks, const std::string& sensor, const std::string& curve) {
+  for (std::size_t i = 0; i < peaks.rows(); ++i)
+    if (peaks.column("sensor").texts[i] == sensor && peaks.column("curve").texts[i] == curve)
+      return i;
+  ADD_FAILURE() << "no peak of " << sensor << " " << curve;
+  return 0;
+}
+
+// gear_forced_response on examples/geared_rotor_hcf, two mesh orders. peak_amplitude is the
+// largest sample of the summed curve: exactly the maximum of the printed <sensor>_sum column; the
+// "sum" row of mesh_resonances refines that peak by a parabola through the three samples around
+// it, so it lies within one grid step (98.5 rpm) in speed and within 2 % in amplitude of the
+// sample (the response changes by at most that between neighbours at this grid near a peak
+// with Q < 100). amplitude_at on a grid speed is the printed value, half-way between two speeds
+// the mean of the two (linear interpolation; 1e-12 round-off).
+TEST(ForcedScalars, GearForcedResponse) {
+  const std::string text =
+      read_text(fs::path(GEARDYN_SOURCE_DIR) / "examples" / "geared_rotor_hcf" / "model.toml") +
+      R"(
+[[analyses]]
+name = "mesh_scalars"
+type = "gear_forced_response"
+force_amplitude = [100.0, 40.0]
+speed_start_rpm = 1000
+speed_stop_rpm = 40000
+speed_count = 397
+n_modes = 20
+)";
+  const model::Model m = analyses::parse_model(text, "model.toml");
+  const fe::LinearSystem system = assembly::build_system(m);
+  const model::Analysis& a = m.analyses.back();
+  const ScalarRun run = run_type(m, a, analyses::Context(m, a).with_system(&system));
+  ASSERT_EQ(run.outcome.output.status, Status::Ok) << run.outcome.output.message;
+  const auto& r = analyses::result_of<analyses::GearForcedResponseResult>(run.outcome);
+  const Table& response = table_named(run.outcome.output, "mesh_forced_response");
+  const Table& peaks = table_named(run.outcome.output, "mesh_resonances");
+  const auto& rpm = response.column("speed_rpm").numbers;
+  int located = 0;
+  for (const auto& sensor : r.response.sensors) {
+    const std::string sum =
+        sensor.name + (sensor.rotational ? "_sum_amplitude_rad" : "_sum_amplitude_m");
+    std::string unit;
+    const double peak = run("peak_amplitude", sensor.name, 0.0, &unit);
+    EXPECT_EQ(unit, sensor.rotational ? "rad" : "m");
+    EXPECT_EQ(peak, r.peak_amplitude(r.sensor_index(sensor.name)));
+    EXPECT_EQ(peak, column_max(response, sum)) << sensor.name;
+    const double at = run("peak_location", sensor.name, 0.0, &unit);
+    EXPECT_EQ(unit, "rpm");
+    const std::size_t i = peak_row(peaks, sensor.name, "sum");
+    // The largest resonance of the summed curve is the one peak_amplitude finds (the curve may
+    // also rise at the range's end, where no peak is detected: then skip the comparison).
+    double largest = 0.0;
+    for (std::size_t j = 0; j < peaks.rows(); ++j)
+      if (peaks.column("sensor").texts[j] == sensor.name && peaks.column("curve").texts[j] == "sum")
+        largest = std::max(largest, peaks.column("amplitude").numbers[j]);
+    if (largest == peaks.column("amplitude").numbers[i] && std::abs(largest - peak) < 0.02 * peak) {
+      ++located;
+      EXPECT_NEAR(at, peaks.column("speed_rpm").numbers[i], rpm[1] - rpm[0]) << sensor.name;
+    }
+    // amplitude_at on and between grid speeds.
+    const auto& a_sum = response.column(sum).numbers;
+    EXPECT_NEAR(run("amplitude_at", sensor.name, rpm[100]), a_sum[100], 1e-12 * a_sum[100]);
+    EXPECT_NEAR(run("amplitude_at", sensor.name, 0.5 * (rpm[100] + rpm[101])),
+                0.5 * (a_sum[100] + a_sum[101]), 1e-12 * a_sum[100]);
+  }
+  EXPECT_GT(located, 0);
+  EXPECT_THROW(run("peak_amplitude", "nowhere"), std::runtime_error);
+  EXPECT_THROW(run("amplitude_at", "", 50000.0), std::runtime_error);
+}
+
+// cyclic_forced_response: one engine order (14, ND 2) of a 10 N force across the first ND 2
+// resonance, Q = 30. peak_amplitude is the largest sample of the summed curve (here the one
+// order): exactly the maximum of its printed column; its speed is the resonance speed w_r / k of
+// cyclic_resonances to within one grid step (0.1 % of w_r) plus the shift of a damped peak,
+// w_r (1 - 1 / (8 Q^2)) ~ 1.4e-4 relative: 0.12 % in all (at uz, the direction of that mode).
+TEST(ForcedScalars, CyclicForcedResponse) {
+  auto analysis = [](const std::string& speeds) {
+    return kGearModel + fmt::format(R"(
+[[analyses]]
+name = "forced"
+type = "cyclic_forced_response"
+solid = "gear"
+force_amplitude = 10.0
+engine_orders = [14]
+q_factor = 30
+sensor_sets = ["excitation"]
+sensor_components = ["uz", "uy"]
+{}
+)",
+                                    speeds);
+  };
+  auto run_model = [](const model::Model& m) {
+    return run_type(m, m.analyses.front(), analyses::Context(m, m.analyses.front()));
+  };
+  const model::Model wide = analyses::parse_model(analysis("speed_rpm = [1000]"), "gear.toml");
+  const ScalarRun first = run_model(wide);
+  const double w1 = table_named(first.outcome.output, "cyclic_resonances")
+                        .column("resonance_speed_rpm")
+                        .numbers[0];
+  const model::Model m = analyses::parse_model(
+      analysis(fmt::format("speed_start_rpm = {}\nspeed_stop_rpm = {}\nspeed_count = 201", 0.9 * w1,
+                           1.1 * w1)),
+      "gear.toml");
+  const ScalarRun run = run_model(m);
+  ASSERT_EQ(run.outcome.output.status, Status::Ok) << run.outcome.output.message;
+  const auto& r = analyses::result_of<analyses::CyclicForcedResponseResult>(run.outcome);
+  const Table& response = table_named(run.outcome.output, "cyclic_forced_response");
+  const auto& rpm = response.column("speed_rpm").numbers;
+  for (const std::string sensor : {"excitation_uz", "excitation_uy"}) {
+    const double peak = run("peak_amplitude", sensor);
+    EXPECT_EQ(peak, column_max(response, sensor + "_sum_amplitude_m")) << sensor;
+    const std::vector<double> curve = r.sum_curve(r.sensor_index(sensor));
+    EXPECT_EQ(peak, *std::max_element(curve.begin(), curve.end()));
+    // The axial response (uz) is the one at the ND 2 mode excited; uy rises towards others.
+    if (sensor == "excitation_uz") {
+      EXPECT_NEAR(run("peak_location", sensor), w1, 1.2e-3 * w1);
+    }
+    const auto& a_sum = response.column(sensor + "_sum_amplitude_m").numbers;
+    EXPECT_NEAR(run("amplitude_at", sensor, 0.5 * (rpm[10] + rpm[11])),
+                0.5 * (a_sum[10] + a_sum[11]), 1e-12 * a_sum[10]);
+  }
+  EXPECT_EQ(run("peak_amplitude"), run("peak_amplitude", "excitation_uz"));  // the first sensor
+  EXPECT_THROW(run("peak_location", "excitation_ux"), std::runtime_error);
+  EXPECT_THROW(run("amplitude_at", "", 0.5 * w1), std::runtime_error);
+}
+
+// damper_ring_response on examples/damper_ring (its first analysis without the performance
+// curve, two sensors). For sensor 0 the scalars are the damped row of the resonance table
+// (the same peak: exact; the speed converted to rpm in another order: 1e-12). Independent
+// estimates: each damped peak is the largest continuation point of its printed curve refined by a
+// parabola (within 1 % of it: the continuation steps 1 % of the range and the peak is flat
+// there), and the free peak behind amplitude_vs_free is at least the largest sample of the
+// printed free curve and within 5 % of it (201 speeds over 2000 rpm: 10 rpm steps against a
+// half-power width of 2 zeta W ~ 70 rpm). At sensor 0 (uy, the mode's direction) the ring damps
+// the resonance: amplitude_vs_free < 1.
+TEST(ForcedScalars, DamperRingResponse) {
+  std::string text =
+      read_text(fs::path(GEARDYN_SOURCE_DIR) / "examples" / "damper_ring" / "model.toml");
+  const std::size_t second = text.find("[[analyses]]", text.find("name = \"damper\""));
+  text = text.substr(0, second);
+  for (const std::string key : {"performance_parameter", "performance_values"}) {
+    const std::size_t at = text.find(key);
+    ASSERT_NE(at, std::string::npos);
+    text.erase(at, text.find('\n', at) - at);
+  }
+  const std::string one = "sensor_components = [\"uy\"]";
+  text.replace(text.find(one), one.size(), "sensor_components = [\"uy\", \"uz\"]");
+  const model::Model m = analyses::parse_model(
+      text, (fs::path(GEARDYN_SOURCE_DIR) / "examples" / "damper_ring" / "model.toml").string());
+  const model::Analysis& a = m.analyses.front();
+  ASSERT_EQ(a.type, "damper_ring_response");
+  const ScalarRun run = run_type(m, a, analyses::Context(m, a));
+  ASSERT_EQ(run.outcome.output.status, Status::Ok) << run.outcome.output.message;
+  const Table& resonance = table_named(run.outcome.output, "resonance");
+  EXPECT_EQ(run("peak_amplitude"), resonance.column("peak_amplitude_m").numbers[0]);
+  EXPECT_NEAR(run("peak_location"), resonance.column("peak_speed_rpm").numbers[0],
+              1e-12 * resonance.column("peak_speed_rpm").numbers[0]);
+  EXPECT_EQ(run("amplitude_vs_free"), resonance.column("amplitude_vs_free").numbers[0]);
+  const Table& damped = table_named(run.outcome.output, "damped_response");
+  const Table& linear = table_named(run.outcome.output, "linear_response");
+  for (const std::string sensor : {"excitation_uy", "excitation_uz"}) {
+    const double peak = run("peak_amplitude", sensor);
+    const double sampled = column_max(damped, sensor + "_amplitude_m");
+    EXPECT_NEAR(peak, sampled, 0.01 * sampled) << sensor;
+    const double free = peak / run("amplitude_vs_free", sensor);
+    const double free_sampled = column_max(linear, sensor + "_free_m");
+    EXPECT_GE(free, free_sampled * (1.0 - 1e-12)) << sensor;
+    EXPECT_LE(free, 1.05 * free_sampled) << sensor;
+  }
+  EXPECT_LT(run("amplitude_vs_free"), 1.0);  // the ring damps the resonance at sensor 0
+  EXPECT_THROW(run("peak_amplitude", "nowhere"), std::runtime_error);
 }
 
 }  // namespace

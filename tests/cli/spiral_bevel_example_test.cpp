@@ -101,9 +101,9 @@ TEST(SpiralBevelExample, EngineOrderResonancesAndHarmonics) {
   auto peaks = read_csv(out / "forced" / "cyclic_response_peaks.csv");
   auto campbell = read_csv(out / "campbell" / "cyclic_campbell.csv");
   for (int h : {2, 3}) {
-    const std::size_t i = find_row(peaks, {{"sensor", "excitation_uz"},
-                                           {"nodal_diameter", std::to_string(h)},
-                                           {"engine_order", std::to_string(n - h)}});
+    const std::size_t i =
+        find_row(peaks, {{"sensor", "excitation_uz"},
+                         {"curve", "ND " + std::to_string(h) + " EO " + std::to_string(n - h)}});
     const std::size_t c = find_row(
         campbell, {{"nodal_diameter", std::to_string(h)}, {"engine_order", std::to_string(n - h)}});
     const double w = num(campbell["resonance_speed_rpm"][c]);

@@ -296,7 +296,7 @@ const ErrorCase kCases[] = {
      "type = \"sweep\"\nparameter = \"shafts[0].elements[0].length\"\nvalues = [0.4]\n"
      "analysis = \"modes\"\n[[analyses.outputs]]\nquantity = \"peak_amplitude\"\nsensor = "
      "\"tip\"\n",
-     15, 12, "analyses[1].outputs[0].quantity", "an output of a harmonic or unbalance analysis",
+     15, 12, "analyses[1].outputs[0].quantity", "an output of a harmonic or unbalance",
      "\"peak_amplitude\" for analysis 'modes' of type \"modal\""},
     {"SweepIntegerKeyFractionalValue",
      "[[analyses]]\nname = \"modes\"\ntype = \"modal\"\n[[analyses]]\nname = \"s\"\n"

@@ -1,4 +1,4 @@
-// Forced response of a cyclic sector to engine-order tooth forces (forced/cyclic_forced_response)
+// Forced response of a cyclic sector to engine-order tooth forces (response/cyclic_forced_response)
 // checked against independent computations on the same mesh:
 //   (1) the full 360 deg wheel (cyclic::replicate + solid::assemble) driven by the physical
 //       tooth forces on all N teeth, eq. (1) of cyclic_forced_response.hpp, solved by a sparse
@@ -24,10 +24,10 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
-#include <numbers>
 #include <unordered_map>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/cyclic/replicate.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -40,7 +40,7 @@ namespace geardyn::response {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
+constexpr double kPi = units::kPi;
 constexpr int kSectors = 8;
 constexpr double kRayleighA = 20.0;    // [1/s]
 constexpr double kRayleighB = 2.0e-7;  // [s]

@@ -1,4 +1,4 @@
-// Mesh-order forced response of a geared rotor (forced/rotor_mesh_response): the modal-reduced
+// Mesh-order forced response of a geared rotor (response/rotor_mesh_response): the modal-reduced
 // solver against the direct sparse solve on the same model, its convergence as modes are added,
 // and the load vector of the mesh force.
 //
@@ -19,17 +19,17 @@
 
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/model/parse.hpp"
 
 namespace geardyn::response {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPi = units::kPi;
 
 model::Model example() {
   return analyses::load_model(std::string(GEARDYN_SOURCE_DIR) +

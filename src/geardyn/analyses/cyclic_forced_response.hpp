@@ -3,9 +3,11 @@
 // under the engine-order harmonics of its tooth force, per nodal diameter and engine order.
 //
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
-// sections 6 and 7; DESIGN 4.3-4.5): (model, settings) -> AnalysisOutput with tables, plots and
-// notes. Bad input throws InputError (call check_forced_analyses before running, so it shows
-// before any result); a numerical failure throws NumericalError naming the analysis.
+// sections 6 and 7; DESIGN 4.3-4.5): run_cyclic_forced_response solves (model, settings, context)
+// -> CyclicForcedResponseResult; cyclic_forced_response_output writes its tables, plots and
+// notes. Bad input throws InputError located by the context (call check_forced_analyses before
+// running, so it shows before any result); a numerical failure throws NumericalError naming the
+// analysis.
 //
 // One sector of a cyclic solid (a gear, one tooth per sector when a gear pair loads it) in the
 // frame turning with it. Per nodal diameter h the modes are solved once
@@ -24,22 +26,26 @@
 // nodes of the excitation set.
 // Optional measured curve over speed (gear::read_measured_response_csv, displacement): peak
 // speed, amplitude and Q compared, and the force scaling that matches the peak.
+#include <complex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/gear_common.hpp"
 #include "geardyn/analyses/solid_common.hpp"
 #include "geardyn/assembly/solid_component.hpp"
-#include "geardyn/core/progress.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/cyclic/cyclic_symmetry.hpp"
+#include "geardyn/gear/correlation.hpp"
 #include "geardyn/model/model.hpp"
+#include "geardyn/response/cyclic_forced_response.hpp"
 
 namespace geardyn::analyses {
 
 /// Forced response of a cyclic solid to the engine-order harmonics of its tooth force, over the
 /// speed of that solid, by modal summation per (nodal diameter, engine order) (DESIGN 4.3-4.4;
-/// forced/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
+/// response/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
 /// as mesh_harmonics does) or are given as force_amplitude.
 struct CyclicForcedResponseSettings : model::SettingsOf<CyclicForcedResponseSettings> {
   std::string solid;
@@ -76,16 +82,52 @@ struct CyclicForcedResponseSettings : model::SettingsOf<CyclicForcedResponseSett
   double min_prominence_db = 6.0;
 };
 
-AnalysisOutput run_cyclic_forced_response(const model::Model& model,
-                                          const assembly::SolidComponent& solid,
-                                          const CyclicForcedResponseSettings& settings,
-                                          const std::string& name,
-                                          Progress& progress = null_progress());
+/// One excited (nodal diameter h, engine order k) with its tooth-force harmonic.
+struct CyclicOrderForce {
+  int nodal_diameter = 0;
+  int engine_order = 0;
+  std::complex<double> tangential, radial, axial;  ///< pair: tooth_forces.hpp components [N]
+  double amplitude = 0.0;                          ///< explicit force_amplitude [N] (pair: NaN)
+};
+
+/// What run_cyclic_forced_response solves.
+struct CyclicForcedResponseResult {
+  response::CyclicForcedResult response;  ///< scaled to the measurement if scale_to_measured
+  cyclic::CyclicModesResult modes;        ///< per nodal diameter
+  std::vector<CyclicOrderForce> orders;   ///< the excitation, in the order of response.orders
+  std::string force_note;                 ///< where the harmonics come from
+  std::string reduction_note;             ///< what the Craig-Bampton reduction kept (or empty)
+  /// The measured curve compared (measured_file), the computed curve it is compared with
+  /// (unscaled), the sensor and order (-1: the sum) of that curve, and the force scale applied
+  /// (scale_to_measured; 1: none).
+  std::optional<gear::MeasuredResponse> measured;
+  std::vector<double> measured_computed;
+  std::size_t measured_sensor = 0;
+  int measured_order = -1;
+  double scale = 1.0;
+
+  /// Index of the sensor called `name` (empty: the first); std::runtime_error if none.
+  std::size_t sensor_index(const std::string& name) const;
+  /// The superposed amplitude (sum over the orders) at sensor `k` over speed [m or rad].
+  std::vector<double> sum_curve(std::size_t k) const;
+};
+
+/// Solves the forced response of the cyclic solid s.solid (from context.solid()).
+CyclicForcedResponseResult run_cyclic_forced_response(const model::Model& model,
+                                                      const CyclicForcedResponseSettings& settings,
+                                                      const Context& context);
+
+/// Its tables (cyclic_resonances, cyclic_forced_response, harmonic_forces, the measured
+/// comparison, cyclic_response_peaks, cyclic_modes), plots and notes.
+AnalysisOutput cyclic_forced_response_output(const model::Model& model,
+                                             const CyclicForcedResponseSettings& settings,
+                                             const CyclicForcedResponseResult& result,
+                                             const Context& context);
 
 /// What the parser cannot check: the node sets and node ids the cyclic forced responses name
 /// exist in the built meshes (and carry DOFs), their solids are meshes (not reduced files), the
 /// gear pairs build, and the measured files read and hold a displacement over speed. Throws
-/// InputError with the analysis' key path.
+/// InputError located by the analysis' Context.
 void check_forced_analyses(const model::Model& model, const assembly::SolidComponents& solids);
 
 }  // namespace geardyn::analyses

@@ -3,8 +3,9 @@
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/cyclic_forced_response.hpp"
+#include "geardyn/analyses/forced_helpers.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -143,8 +144,36 @@ AnalysisType cyclic_forced_response_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<CyclicForcedResponseSettings>();
-    return Outcome{run_cyclic_forced_response(m, c.solid(m, s.solid), s, a.name, c.progress()),
-                   nullptr};
+    CyclicForcedResponseResult r = run_cyclic_forced_response(m, s, c);
+    AnalysisOutput out = cyclic_forced_response_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
+  };
+  type.scalars = {
+      {"peak_amplitude",
+       "",
+       "Largest amplitude over speed at `sensor` (sum of the engine orders' amplitudes).",
+       {"sensor"}},
+      {"peak_location", "rpm", "Speed of that peak.", {"sensor"}},
+      {"amplitude_at",
+       "",
+       "Amplitude at `sensor` at speed `at_rpm` (sum of the engine orders, linear "
+       "interpolation).",
+       {"sensor", "at_rpm"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
+    const auto& r = result_of<CyclicForcedResponseResult>(o);
+    const std::size_t k = r.sensor_index(q.sensor);
+    unit = std::string(r.response.sensors[k].component >= 3 ? "rad" : "m");
+    const std::vector<double> a = r.sum_curve(k);
+    const Eigen::VectorXd& w = r.response.speeds;
+    if (q.quantity == "peak_amplitude") return a[largest_sample(a)];
+    if (q.quantity == "peak_location") {
+      unit = std::string("rpm");
+      return units::rad_per_s_to_rpm(w[static_cast<Eigen::Index>(largest_sample(a))]);
+    }
+    if (q.quantity == "amplitude_at")
+      return value_at(std::vector<double>(w.data(), w.data() + w.size()), a, q.at,
+                      units::rad_per_s_to_rpm(1.0), "rpm");
+    throw std::logic_error(fmt::format("cyclic_forced_response offers no scalar {}", q.quantity));
   };
   return type;
 }

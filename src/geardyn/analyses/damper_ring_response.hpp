@@ -1,7 +1,10 @@
 #pragma once
 // damper_ring_response: the friction-damped forced response of a cyclic gear with a damper ring
 // in a groove of its rim, wired to the model file (issue [friction-hbm] sections 3, 4 and 7;
-// DESIGN 4.6-4.7; the damper-ring thesis, /work/shared/references/000, ch. 4 and sec. 5.3).
+// DESIGN 4.6-4.7; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
+// Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, ch. 4 and sec. 5.3).
+// run_damper_ring_response solves (model, settings, context) -> DamperRingResponseResult;
+// damper_ring_response_output writes its tables, plots and notes.
 //
 // The solid is one sector of the gear and of the split ring, meshed together as two bodies
 // (a generated gear_sector with groove = true, or a mesh file with the same sets): the contact
@@ -26,15 +29,18 @@
 // point with energy dissipated per cycle and stick / slip / lift-off fractions; the contact
 // states per pair and the hysteresis loops at the damped peak; optionally the damper performance
 // curve (resonance speed, peak, Q against ring mass, friction coefficient or contact stiffness,
-// the optimum marked). Bad input throws InputError with the analysis' key path; a continuation
-// that stops early returns the points reached with status Failed and its message.
+// the optimum marked). Bad input throws InputError located by the context; a continuation that
+// stops early returns the points reached with status Failed and its message.
 #include <string>
+#include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/cyclic_forced_response.hpp"
 #include "geardyn/assembly/solid_component.hpp"
-#include "geardyn/core/progress.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/damper/damper_ring.hpp"
 #include "geardyn/model/model.hpp"
+#include "geardyn/response/speed_peaks.hpp"
 
 namespace geardyn::analyses {
 
@@ -64,17 +70,55 @@ struct DamperRingResponseSettings
   std::vector<double> sweep_values;  ///< ring-mass or stiffness factors, or mu
 };
 
-AnalysisOutput run_damper_ring_response(const model::Model& model,
-                                        const assembly::SolidComponent& solid,
-                                        const DamperRingResponseSettings& settings,
-                                        const std::string& name,
-                                        Progress& progress = null_progress());
+/// One point of the damper performance curve: the damped peak with one parameter changed.
+struct DamperPerformancePoint {
+  double value = 0.0;  ///< the ring-mass or stiffness factor, or mu
+  response::SpeedPeak peak;
+  double energy = 0.0, slip = 0.0;  ///< at the damped peak
+  Status status = Status::Ok;
+  std::string message;
+};
+
+/// What run_damper_ring_response solves.
+struct DamperRingResponseResult {
+  damper::DamperRingResult response;  ///< damped curve, linear references, contacts at the peak
+  std::vector<std::string> sensor_names;
+  std::vector<damper::ContactPair> pairs;  ///< the independent contact pairs
+  std::vector<std::string> model_notes;    ///< of the condensed model
+  std::vector<std::string> setup_notes;    ///< how the contact stiffnesses were found
+  damper::BodyMass ring;                   ///< mass of the whole ring, r_G
+  damper::ContactLaw contact;              ///< per pair
+  int dropped_pairs = 0;                   ///< on the right sector face
+  double preload_at_max = 0.0;             ///< N0 per pair at the highest speed [N]
+  std::vector<CyclicOrderForce> orders;    ///< the harmonics loaded (engine order n k)
+  std::string force_note;                  ///< where they come from
+  std::string reduction_note;              ///< what the Craig-Bampton reduction kept (or empty)
+  /// Per sensor: the main peak of the damped curve (harmonic 1) and of the gear without ring
+  /// (resolved on a fine speed grid); the stuck ring's for sensor 0.
+  std::vector<response::SpeedPeak> damped_peaks, free_peaks;
+  response::SpeedPeak stuck_peak;
+  std::vector<DamperPerformancePoint> performance;  ///< empty: no performance sweep
+
+  /// Index of the sensor called `name` (empty: the first); std::runtime_error if none.
+  std::size_t sensor_index(const std::string& name) const;
+};
+
+/// Solves the friction-damped response of the solid s.solid (from context.solid()).
+DamperRingResponseResult run_damper_ring_response(const model::Model& model,
+                                                  const DamperRingResponseSettings& settings,
+                                                  const Context& context);
+
+/// Its tables (resonance, damped_response, linear_response, contact_pairs, hysteresis_loops,
+/// performance, harmonic_forces), plots and notes.
+AnalysisOutput damper_ring_response_output(const model::Model& model,
+                                           const DamperRingResponseSettings& settings,
+                                           const DamperRingResponseResult& result,
+                                           const Context& context);
 
 /// What the parser cannot check for one damper_ring_response: the node and element sets exist,
 /// the contact nodes pair up, the ring has a mass, hysteresis_pairs name existing pairs. Throws
-/// InputError with the analysis' key path.
-void check_damper_ring_response(const model::Model& model, const assembly::SolidComponent& solid,
-                                const DamperRingResponseSettings& settings,
-                                const std::string& name);
+/// InputError located by `context`.
+void check_damper_ring_response(const assembly::SolidComponent& solid,
+                                const DamperRingResponseSettings& settings, const Context& context);
 
 }  // namespace geardyn::analyses

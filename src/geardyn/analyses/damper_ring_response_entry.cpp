@@ -4,7 +4,7 @@
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/damper_ring_response.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -225,8 +225,38 @@ AnalysisType damper_ring_response_analysis() {
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
     const auto& s = a.settings_of<DamperRingResponseSettings>();
-    return Outcome{run_damper_ring_response(m, c.solid(m, s.solid), s, a.name, c.progress()),
-                   nullptr};
+    DamperRingResponseResult r = run_damper_ring_response(m, s, c);
+    AnalysisOutput out = damper_ring_response_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
+  };
+  type.scalars = {
+      {"peak_amplitude",
+       "m",
+       "Friction-damped peak amplitude (harmonic 1) at `sensor` over the speed range.",
+       {"sensor"}},
+      {"peak_location", "rpm", "Speed of that peak.", {"sensor"}},
+      {"amplitude_vs_free",
+       "",
+       "Friction-damped peak amplitude at `sensor` over the peak of the gear without ring (< 1: "
+       "the ring reduces it).",
+       {"sensor"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
+    const auto& r = result_of<DamperRingResponseResult>(o);
+    const std::size_t k = r.sensor_index(q.sensor);
+    const response::SpeedPeak& damped = r.damped_peaks.at(k);
+    if (q.quantity == "peak_amplitude") {
+      unit = std::string("m");
+      return damped.amplitude;
+    }
+    if (q.quantity == "peak_location") {
+      unit = std::string("rpm");
+      return units::rad_per_s_to_rpm(damped.speed);
+    }
+    if (q.quantity == "amplitude_vs_free") {
+      unit.clear();
+      return damped.amplitude / r.free_peaks.at(k).amplitude;
+    }
+    throw std::logic_error(fmt::format("damper_ring_response offers no scalar {}", q.quantity));
   };
   return type;
 }

@@ -1,18 +1,20 @@
 #include "geardyn/analyses/forced_helpers.hpp"
 
-#include "geardyn/analyses/cyclic_forced_response.hpp"  // the settings sector_excitation.hpp uses
+#include <algorithm>
+#include <cmath>
+
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/sector_excitation.hpp"
 
 namespace geardyn::analyses {
 
-gear::MeasuredResponse read_measured(const model::Model& model, const std::string& name,
+gear::MeasuredResponse read_measured(const model::Model& model, const Context& context,
                                      const std::string& file) {
   gear::MeasuredResponse m =
       gear::read_measured_response_csv(analyses::resolve_model_path(model, file));
   if (m.abscissa != gear::ResponseAbscissa::SpeedRpm || m.amplitude_unit != "m")
-    throw InputError(
-        where_of(model, name), key_of(model, name, "measured_file"),
+    throw context.error(
+        "measured_file",
         "a measured displacement over speed: columns speed_rpm and amplitude_m "
         "(or _mm, _um, _nm), like the computed response",
         fmt::format("'{}' with {} and an amplitude in {}", m.source,
@@ -41,14 +43,28 @@ Table force_scaling_table(const gear::PeakComparison& pc, const std::string& wha
   return f;
 }
 
+std::vector<gear::PeakComparison> measured_peaks(const gear::MeasuredResponse& m,
+                                                 const std::vector<double>& rpm,
+                                                 const std::vector<double>& computed,
+                                                 double min_prominence_db) {
+  gear::CorrelationOptions co;
+  co.min_prominence_db = min_prominence_db;
+  return gear::compare_peaks(m.x, m.amplitude, rpm, computed, co);
+}
+
+std::size_t largest_measured_peak(const std::vector<gear::PeakComparison>& peaks) {
+  std::size_t main = 0;
+  for (std::size_t j = 1; j < peaks.size(); ++j)
+    if (peaks[j].measured.amplitude > peaks[main].measured.amplitude) main = j;
+  return main;
+}
+
 MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::MeasuredResponse& m,
                                          const std::vector<double>& rpm,
                                          const std::vector<double>& computed,
                                          const std::string& curve_name, double min_prominence_db) {
   MeasuredComparison c;
-  gear::CorrelationOptions co;
-  co.min_prominence_db = min_prominence_db;
-  c.peaks = gear::compare_peaks(m.x, m.amplitude, rpm, computed, co);
+  c.peaks = measured_peaks(m, rpm, computed, min_prominence_db);
   c.plot.name = "measured_overlay";
   c.plot.title = fmt::format("Measured response ({}) and the computed {}", m.source, curve_name);
   c.plot.x_label = "speed [rpm]";
@@ -70,8 +86,7 @@ MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::Measur
       "Measured versus computed peaks ({}); mismatch = (computed - measured) / measured",
       curve_name);
   out.tables.push_back(std::move(t));
-  for (std::size_t j = 1; j < c.peaks.size(); ++j)
-    if (c.peaks[j].measured.amplitude > c.peaks[c.main].measured.amplitude) c.main = j;
+  c.main = largest_measured_peak(c.peaks);
   const gear::PeakComparison& pc = c.peaks[c.main];
   out.notes.push_back(
       fmt::format("Largest measured peak at {:.6g} rpm, {:.4g} m, Q = {:.4g}; computed {:.6g} rpm, "
@@ -80,6 +95,25 @@ MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::Measur
                   pc.computed.amplitude, pc.computed.q_factor, 100 * pc.x_mismatch,
                   100 * pc.amplitude_mismatch, 100 * pc.q_mismatch));
   return c;
+}
+
+std::size_t largest_sample(const std::vector<double>& a) {
+  if (a.empty()) throw std::runtime_error("the response curve has no sample");
+  return static_cast<std::size_t>(std::max_element(a.begin(), a.end()) - a.begin());
+}
+
+double value_at(const std::vector<double>& x, const std::vector<double>& a, double at,
+                double per_unit, const std::string& unit) {
+  const double u = at;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (std::abs(x[k] - u) <= 1e-9 * std::max(1.0, std::abs(u))) return a[k];
+    if (k + 1 < x.size() && (x[k] - u) * (x[k + 1] - u) < 0.0) {
+      const double s = (u - x[k]) / (x[k + 1] - x[k]);
+      return (1.0 - s) * a[k] + s * a[k + 1];
+    }
+  }
+  throw std::runtime_error(
+      fmt::format("{:.6g} {} is outside the analysis range", at * per_unit, unit));
 }
 
 }  // namespace geardyn::analyses

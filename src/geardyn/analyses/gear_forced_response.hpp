@@ -3,10 +3,11 @@
 // harmonics of one of its gear meshes, at its sensors.
 //
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
-// sections 6 and 7; DESIGN 4.3-4.5): (model, settings) -> AnalysisOutput with tables, plots and
-// notes. Bad input throws InputError (call check_forced_analyses, cyclic_forced_response.hpp,
-// before running, so it shows before any result); a numerical failure throws NumericalError
-// naming the analysis.
+// sections 6 and 7; DESIGN 4.3-4.5): run_gear_forced_response solves (model, settings, context)
+// -> GearForcedResponseResult; gear_forced_response_output writes its tables, plots and notes.
+// Bad input throws InputError located by the context (call check_forced_analyses,
+// cyclic_forced_response.hpp, before running, so it shows before any result); a numerical
+// failure throws NumericalError naming the analysis.
 //
 // A rotor with a [[gear_meshes]] entry, excited along the line of action at mesh orders
 // p = 1 .. n with amplitudes F_p (response::run_mesh_forced_response, modal basis of n_modes
@@ -16,15 +17,15 @@
 #include <string>
 #include <vector>
 
-#include "geardyn/core/progress.hpp"
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/core/table.hpp"
-#include "geardyn/fe/linear_system.hpp"
 #include "geardyn/model/model.hpp"
+#include "geardyn/response/rotor_mesh_response.hpp"
 
 namespace geardyn::analyses {
 
 /// Forced response of a rotor model to the mesh-order harmonics of one of its [[gear_meshes]]
-/// over speed (forced/rotor_mesh_response.hpp, modal method).
+/// over speed (response/rotor_mesh_response.hpp, modal method).
 struct GearForcedResponseSettings : model::SettingsOf<GearForcedResponseSettings> {
   std::string gear_mesh;                ///< [[gear_meshes]] name (empty: the only one)
   std::string pair;                     ///< [[gear_pairs]] entry (empty: force_amplitude)
@@ -41,9 +42,33 @@ struct GearForcedResponseSettings : model::SettingsOf<GearForcedResponseSettings
   double min_prominence_db = 6.0;
 };
 
-AnalysisOutput run_gear_forced_response(const model::Model& model, const fe::LinearSystem& system,
-                                        const GearForcedResponseSettings& settings,
-                                        const std::string& name,
-                                        Progress& progress = null_progress());
+/// What run_gear_forced_response solves: the response per mesh order over speed (with its
+/// peaks), and where the mesh-order forces came from.
+struct GearForcedResponseResult {
+  response::RotorForcedResult response;
+  bool from_pair = false;            ///< forces from the gear pair (else force_amplitude)
+  double pair_static_force_n = 0.0;  ///< F_s of the pair [N] (from_pair)
+  bool pair_ste_from_file = false;   ///< the pair's STE read from a file (from_pair)
+
+  /// The largest amplitude over speed of the sum of the mesh orders' amplitudes at sensor
+  /// `sensor` (index into response.sensors) [m or rad], and the speed of that sample [rad/s].
+  double peak_amplitude(std::size_t sensor) const;
+  double peak_speed(std::size_t sensor) const;
+  /// Index of the sensor called `name` in response.sensors (empty: the first);
+  /// std::runtime_error if it has none.
+  std::size_t sensor_index(const std::string& name) const;
+};
+
+/// Solves the mesh-order forced response (the rotor's system from context.system()).
+GearForcedResponseResult run_gear_forced_response(const model::Model& model,
+                                                  const GearForcedResponseSettings& settings,
+                                                  const Context& context);
+
+/// Its tables (mesh_resonances, mesh_forced_response, mesh_order_forces, the measured
+/// comparison), plots and notes.
+AnalysisOutput gear_forced_response_output(const model::Model& model,
+                                           const GearForcedResponseSettings& settings,
+                                           const GearForcedResponseResult& result,
+                                           const Context& context);
 
 }  // namespace geardyn::analyses

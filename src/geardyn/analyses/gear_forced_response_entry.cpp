@@ -2,9 +2,10 @@
 // rules, its checks, how it runs and what it offers to sweeps.
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/common_keys.hpp"
+#include "geardyn/analyses/forced_helpers.hpp"
 #include "geardyn/analyses/gear_forced_response.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -140,10 +141,39 @@ AnalysisType gear_forced_response_analysis() {
     return d;
   };
   type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    return Outcome{
-        run_gear_forced_response(m, c.system(), a.settings_of<GearForcedResponseSettings>(), a.name,
-                                 c.progress()),
-        nullptr};
+    const auto& s = a.settings_of<GearForcedResponseSettings>();
+    GearForcedResponseResult r = run_gear_forced_response(m, s, c);
+    AnalysisOutput out = gear_forced_response_output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
+  };
+  type.scalars = {
+      {"peak_amplitude",
+       "",
+       "Largest amplitude over speed at `sensor` (sum of the mesh orders' amplitudes).",
+       {"sensor"}},
+      {"peak_location", "rpm", "Speed of that peak.", {"sensor"}},
+      {"amplitude_at",
+       "",
+       "Amplitude at `sensor` at speed `at_rpm` (sum of the mesh orders, linear interpolation).",
+       {"sensor", "at_rpm"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
+    const auto& r = result_of<GearForcedResponseResult>(o);
+    const std::size_t k = r.sensor_index(q.sensor);
+    unit = std::string(r.response.sensors[k].rotational ? "rad" : "m");
+    if (q.quantity == "peak_amplitude") return r.peak_amplitude(k);
+    if (q.quantity == "peak_location") {
+      unit = std::string("rpm");
+      return units::rad_per_s_to_rpm(r.peak_speed(k));
+    }
+    if (q.quantity == "amplitude_at") {
+      const Eigen::VectorXd& w = r.response.speeds;
+      const Eigen::MatrixXd& a = r.response.amplitude_sum;
+      const auto col = static_cast<Eigen::Index>(k);
+      return value_at(std::vector<double>(w.data(), w.data() + w.size()),
+                      std::vector<double>(a.col(col).data(), a.col(col).data() + a.rows()), q.at,
+                      units::rad_per_s_to_rpm(1.0), "rpm");
+    }
+    throw std::logic_error(fmt::format("gear_forced_response offers no scalar {}", q.quantity));
   };
   return type;
 }

@@ -4,13 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <set>
 
-#include "geardyn/analyses/damper_ring_response.hpp"
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/tooth_force.hpp"
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/core/version.hpp"
 
 namespace geardyn::analyses {
@@ -18,14 +17,7 @@ namespace geardyn::analyses {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kRpm = 60.0 / (2.0 * std::numbers::pi);  // rpm per rad/s
-
-/// Index of the analysis named `name` in the model (for key paths in messages).
-std::size_t analysis_index(const model::Model& model, const std::string& name) {
-  for (std::size_t i = 0; i < model.analyses.size(); ++i)
-    if (model.analyses[i].name == name) return i;
-  return model.analyses.size();
-}
+constexpr double kRpm = 60.0 / units::kTwoPi;  // rpm per rad/s
 
 /// The node of `set` nearest to the set's centroid (one point per set).
 int central_node(const solid::Mesh& mesh, const std::vector<int>& set) {
@@ -42,17 +34,6 @@ int central_node(const solid::Mesh& mesh, const std::vector<int>& set) {
 
 }  // namespace
 
-std::string key_of(const model::Model& model, const std::string& name, const std::string& key) {
-  const std::size_t i = analysis_index(model, name);
-  if (i == model.analyses.size()) return key;
-  return fmt::format("analyses[{}].{}", i, key);
-}
-
-SourceLocation where_of(const model::Model& model, const std::string& name) {
-  const std::size_t i = analysis_index(model, name);
-  return i == model.analyses.size() ? SourceLocation{} : model.analyses[i].where;
-}
-
 std::string set_list(const solid::Mesh& mesh) {
   std::string out;
   for (const auto& [set_name, nodes] : mesh.node_sets)
@@ -60,36 +41,35 @@ std::string set_list(const solid::Mesh& mesh) {
   return out;
 }
 
-SectorPoints sector_points(const model::Model& model, const std::string& name,
-                           const assembly::SolidComponent& c,
+SectorPoints sector_points(const Context& context, const assembly::SolidComponent& c,
                            const CyclicForcedResponseSettings& s) {
-  const SourceLocation where = where_of(model, name);
   if (!c.has_mesh())
-    throw InputError(where, key_of(model, name, "solid"),
-                     "a mesh solid (mesh file or generated sector): the excitation and sensor "
-                     "node sets are read from its mesh",
-                     fmt::format("solid '{}' of type \"{}\"", c.name, c.kind()),
-                     "use the mesh it was reduced from; reduction = \"craig_bampton\" reduces "
-                     "the sector in the analysis");
+    throw context.error("solid",
+                        "a mesh solid (mesh file or generated sector): the excitation and sensor "
+                        "node sets are read from its mesh",
+                        fmt::format("solid '{}' of type \"{}\"", c.name, c.kind()),
+                        "use the mesh it was reduced from; reduction = \"craig_bampton\" reduces "
+                        "the sector in the analysis");
   const solid::Mesh& mesh = c.mesh;
   SectorPoints p;
   auto it = mesh.node_sets.find(s.excitation_set);
   if (it == mesh.node_sets.end() || it->second.empty())
-    throw InputError(where, key_of(model, name, "excitation_set"),
-                     fmt::format("a non-empty node set of solid '{}' ({})", c.name, set_list(mesh)),
-                     fmt::format("\"{}\"", s.excitation_set));
+    throw context.error(
+        "excitation_set",
+        fmt::format("a non-empty node set of solid '{}' ({})", c.name, set_list(mesh)),
+        fmt::format("\"{}\"", s.excitation_set));
   for (int n : it->second) {
     for (int comp = 0; comp < 3; ++comp)
       if (c.system.node_dof(n, comp) < 0)
-        throw InputError(where, key_of(model, name, "excitation_set"),
-                         "excitation nodes that are free to move (ux, uy, uz not fixed)",
-                         fmt::format("node {} of set \"{}\" with {} fixed",
-                                     mesh.node_ids[static_cast<std::size_t>(n)], s.excitation_set,
-                                     model::kComponentNames[static_cast<std::size_t>(comp)]));
+        throw context.error(
+            "excitation_set", "excitation nodes that are free to move (ux, uy, uz not fixed)",
+            fmt::format("node {} of set \"{}\" with {} fixed",
+                        mesh.node_ids[static_cast<std::size_t>(n)], s.excitation_set,
+                        model::kComponentNames[static_cast<std::size_t>(comp)]));
     const Eigen::Vector3d& x = mesh.coords[static_cast<std::size_t>(n)];
     if (std::hypot(x.x(), x.y()) < 1e-12)
-      throw InputError(
-          where, key_of(model, name, "excitation_set"),
+      throw context.error(
+          "excitation_set",
           "excitation nodes off the z axis (the tooth load directions are radial "
           "and tangential there)",
           fmt::format("node {} on the axis", mesh.node_ids[static_cast<std::size_t>(n)]));
@@ -100,8 +80,8 @@ SectorPoints sector_points(const model::Model& model, const std::string& name,
   for (std::size_t k = 0; k < s.sensor_sets.size(); ++k) {
     auto st = mesh.node_sets.find(s.sensor_sets[k]);
     if (st == mesh.node_sets.end() || st->second.empty())
-      throw InputError(
-          where, fmt::format("{}[{}]", key_of(model, name, "sensor_sets"), k),
+      throw context.error(
+          fmt::format("sensor_sets[{}]", k),
           fmt::format("a non-empty node set of solid '{}' ({})", c.name, set_list(mesh)),
           fmt::format("\"{}\"", s.sensor_sets[k]));
     points.emplace_back(s.sensor_sets[k], central_node(mesh, st->second));
@@ -110,38 +90,39 @@ SectorPoints sector_points(const model::Model& model, const std::string& name,
     const auto id = static_cast<long>(s.sensor_nodes[k]);
     auto found = std::find(mesh.node_ids.begin(), mesh.node_ids.end(), id);
     if (found == mesh.node_ids.end())
-      throw InputError(where, fmt::format("{}[{}]", key_of(model, name, "sensor_nodes"), k),
-                       fmt::format("a node id of solid '{}' (ids {} .. {})", c.name,
-                                   *std::min_element(mesh.node_ids.begin(), mesh.node_ids.end()),
-                                   *std::max_element(mesh.node_ids.begin(), mesh.node_ids.end())),
-                       std::to_string(id));
+      throw context.error(
+          fmt::format("sensor_nodes[{}]", k),
+          fmt::format("a node id of solid '{}' (ids {} .. {})", c.name,
+                      *std::min_element(mesh.node_ids.begin(), mesh.node_ids.end()),
+                      *std::max_element(mesh.node_ids.begin(), mesh.node_ids.end())),
+          std::to_string(id));
     points.emplace_back(fmt::format("node{}", id), static_cast<int>(found - mesh.node_ids.begin()));
   }
   for (const auto& [stem, node] : points)
     for (model::Component comp : s.sensor_components) {
       const int ci = static_cast<int>(comp);
       if (c.system.node_dof(node, ci) < 0)
-        throw InputError(where, key_of(model, name, "sensor_components"),
-                         fmt::format("components the sensor node has and that are not fixed "
-                                     "(solid nodes carry ux, uy, uz)"),
-                         fmt::format("{} at node {} ({})", model::kComponentNames[ci],
-                                     mesh.node_ids[static_cast<std::size_t>(node)], stem));
+        throw context.error("sensor_components",
+                            fmt::format("components the sensor node has and that are not fixed "
+                                        "(solid nodes carry ux, uy, uz)"),
+                            fmt::format("{} at node {} ({})", model::kComponentNames[ci],
+                                        mesh.node_ids[static_cast<std::size_t>(node)], stem));
       p.sensors.push_back({fmt::format("{}_{}", stem, model::kComponentNames[ci]),
                            mesh.node_ids[static_cast<std::size_t>(node)], ci});
     }
   for (const auto& [stem, node] : points) p.sensor_nodes.push_back(node);
   for (std::size_t k = 0; k < s.master_sets.size(); ++k)
     if (!mesh.node_sets.count(s.master_sets[k]))
-      throw InputError(where, fmt::format("{}[{}]", key_of(model, name, "master_sets"), k),
-                       fmt::format("a node set of solid '{}' ({})", c.name, set_list(mesh)),
-                       fmt::format("\"{}\"", s.master_sets[k]));
+      throw context.error(fmt::format("master_sets[{}]", k),
+                          fmt::format("a node set of solid '{}' ({})", c.name, set_list(mesh)),
+                          fmt::format("\"{}\"", s.master_sets[k]));
   return p;
 }
 
 SolvedSector solved_sector(const assembly::SolidComponent& c, const CyclicForcedResponseSettings& s,
                            std::vector<long> masters, const std::string& masters_are,
-                           const std::string& name, Progress& progress,
-                           const Eigen::SparseMatrix<double>* mass) {
+                           const Context& context, const Eigen::SparseMatrix<double>* mass) {
+  Progress& progress = context.progress();
   SolvedSector out;
   out.dofs = c.dofs();
   out.K = c.stiffness();
@@ -160,7 +141,7 @@ SolvedSector solved_sector(const assembly::SolidComponent& c, const CyclicForced
   std::erase_if(masters, [&](long id) { return !with_dofs.count(id); });
   reduce::CraigBamptonOptions o;
   o.n_modes = s.cb_modes;
-  progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", name), 0);
+  progress.start(fmt::format("{}: Craig-Bampton reduction of the sector", context.name()), 0);
   out.cb = reduce::craig_bampton(out.K, out.M, out.dofs, reduce::select_dofs(out.dofs, masters), o,
                                  c.source_sha256, kVersion, progress);
   progress.finish();
@@ -206,9 +187,10 @@ Trace curve(std::string trace_name, const std::vector<double>& x, std::vector<do
   return t;
 }
 
-std::string tooth_force_harmonics(const model::Model& model, const std::string& name,
+std::string tooth_force_harmonics(const model::Model& model, const Context& context,
                                   const CyclicForcedResponseSettings& s,
-                                  std::vector<OrderForce>& orders, Progress& progress) {
+                                  std::vector<OrderForce>& orders, const std::string& orders_key) {
+  Progress& progress = context.progress();
   const analyses::PairModel pm =
       analyses::build_pair_model(model, analyses::pair_index(model, s.pair));
   analyses::ToothForceOptions o;
@@ -221,8 +203,9 @@ std::string tooth_force_harmonics(const model::Model& model, const std::string& 
       s.gear == 1 ? 1.0 : static_cast<double>(pm.pair->teeth2) / pm.pair->teeth1;
   // The infinite-inertia force does not depend on speed: any speed gives it.
   o.speed = s.model == MeshForceModel::Dynamic ? s.harmonics_speed : s.speeds[0] * gear1_per_solid;
-  progress.start(fmt::format("{}: tooth-force harmonics", name), 0);
-  const analyses::ToothForceRevolution rev = analyses::tooth_force_over_revolution(pm, o, name);
+  progress.start(fmt::format("{}: tooth-force harmonics", context.name()), 0);
+  const analyses::ToothForceRevolution rev =
+      analyses::tooth_force_over_revolution(pm, o, context.name());
   progress.finish();
   std::vector<int> ks;
   int highest_order = 0;
@@ -230,13 +213,9 @@ std::string tooth_force_harmonics(const model::Model& model, const std::string& 
     ks.push_back(f.engine_order);
     highest_order = std::max(highest_order, f.engine_order);
   }
-  // The key naming the orders: a damper-ring response has one (engine_order).
-  const model::Analysis* analysis = model.find_analysis(name);
-  const bool single =
-      analysis != nullptr && (analysis->settings_as<DamperRingResponseSettings>() != nullptr);
   if (2 * highest_order >= static_cast<int>(rev.tooth.size()))
-    throw InputError(
-        where_of(model, name), key_of(model, name, single ? "engine_order" : "engine_orders"),
+    throw context.error(
+        orders_key,
         fmt::format("orders below {} (half the samples of one revolution)", rev.tooth.size() / 2),
         std::to_string(highest_order));
   const std::vector<gear::HarmonicComponents> comps = rev.components(ks);

@@ -1,7 +1,6 @@
 #pragma once
 // Parts the forced responses of a cyclic sector share (cyclic_forced_response and
-// damper_ring_response, forcedan/forced_analyses.hpp and forcedan/damper_analysis.hpp): key paths
-// of an analysis, the excitation and sensor points of the sector, the tooth-load frame, the
+// damper_ring_response): the excitation and sensor points of the sector, the tooth-load frame, the
 // tooth-force harmonics of a gear pair and the loads they put on the excitation nodes, and the
 // amplitude-over-speed plots.
 #include <Eigen/Dense>
@@ -10,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/cyclic_forced_response.hpp"
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/core/progress.hpp"
@@ -20,10 +20,6 @@
 
 namespace geardyn::analyses {
 
-/// "analyses[i].<key>" for the analysis named `name` (just `key` if there is none).
-std::string key_of(const model::Model& model, const std::string& name, const std::string& key);
-/// Where the analysis named `name` was defined.
-SourceLocation where_of(const model::Model& model, const std::string& name);
 /// The names of the node sets of a mesh, quoted, for messages.
 std::string set_list(const solid::Mesh& mesh);
 
@@ -33,10 +29,9 @@ struct SectorPoints {
   std::vector<response::CyclicSensor> sensors;
   std::vector<int> sensor_nodes;  ///< node index of each sensor point
 };
-/// Reads them from the mesh of `c` (sets and ids of `s`); InputError with the analysis' key path
-/// for a missing set or node, fixed excitation or sensor components, or a solid without a mesh.
-SectorPoints sector_points(const model::Model& model, const std::string& name,
-                           const assembly::SolidComponent& c,
+/// Reads them from the mesh of `c` (sets and ids of `s`); InputError located by `context` for a
+/// missing set or node, fixed excitation or sensor components, or a solid without a mesh.
+SectorPoints sector_points(const Context& context, const assembly::SolidComponent& c,
                            const CyclicForcedResponseSettings& s);
 
 /// The sector matrices a forced response solves: the assembled mesh, or its Craig-Bampton
@@ -53,7 +48,7 @@ struct SolvedSector {
 /// `mass`: the sector's mass matrix if not c.mass() (e.g. with a body's mass scaled).
 SolvedSector solved_sector(const assembly::SolidComponent& c, const CyclicForcedResponseSettings& s,
                            std::vector<long> masters, const std::string& masters_are,
-                           const std::string& name, Progress& progress,
+                           const Context& context,
                            const Eigen::SparseMatrix<double>* mass = nullptr);
 
 /// Unit vectors of the tooth load at node x (forced_analyses.hpp: tangential -e_theta, radial
@@ -64,19 +59,15 @@ struct LoadFrame {
 LoadFrame load_frame(const Eigen::Vector3d& x, bool apex_below);
 
 /// One excited (h, k) with its harmonic in tooth-force components.
-struct OrderForce {
-  int nodal_diameter = 0;
-  int engine_order = 0;
-  std::complex<double> tangential, radial, axial;  ///< pair: tooth_forces.hpp components [N]
-  double amplitude = 0.0;                          ///< explicit force_amplitude [N] (pair: NaN)
-};
+using OrderForce = CyclicOrderForce;
 
 /// Fills the tangential, radial and axial harmonics of every order from the gear pair s.pair,
-/// exactly as mesh_harmonics computes them; returns the note that says how. InputError when an
-/// order is too high for the samples of one revolution.
-std::string tooth_force_harmonics(const model::Model& model, const std::string& name,
+/// exactly as mesh_harmonics computes them; returns the note that says how. InputError at
+/// `orders_key` (the key naming the orders) when an order is too high for the samples of one
+/// revolution.
+std::string tooth_force_harmonics(const model::Model& model, const Context& context,
                                   const CyclicForcedResponseSettings& s,
-                                  std::vector<OrderForce>& orders, Progress& progress);
+                                  std::vector<OrderForce>& orders, const std::string& orders_key);
 
 /// The loads of one order on the excitation nodes of sector 0 (shared equally), times `scale`:
 /// the pair's components in the load frame, or force_amplitude along force_direction or the

@@ -14,7 +14,8 @@
 // Mesh force harmonics: order p of the mesh frequency of the infinite-inertia mesh force
 // F_d(t) = F_s k(t) / k_mean over one mesh cycle. This is the blocked force of the transmission
 // error, k_mean e_p to first order in the stiffness variation (e = F_s / k): the excitation of a
-// linear rotor model that carries the mean mesh stiffness itself (forced/rotor_mesh_response.hpp).
+// linear rotor model that carries the mean mesh stiffness itself
+// (response/rotor_mesh_response.hpp).
 #include <Eigen/Dense>
 #include <string>
 #include <vector>

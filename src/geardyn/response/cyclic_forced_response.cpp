@@ -6,18 +6,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <unordered_map>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/peak_table.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 
 namespace geardyn::response {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 [[noreturn]] void input_error(const std::string& key, const std::string& expected,
                               const std::string& found, const std::string& hint = {}) {
@@ -449,7 +449,7 @@ CyclicForcedResult run_cyclic_forced_response(const cyclic::CyclicSector& sector
       res.nodal_diameter = ex.nodal_diameter;
       res.engine_order = ex.engine_order;
       res.mode = static_cast<int>(r) + 1;
-      res.frequency_hz = model.natural_frequency[r] / (2.0 * kPi);
+      res.frequency_hz = model.natural_frequency[r] / units::kTwoPi;
       res.speed = resonance_speed[r];
       res.damping_ratio = model.damping_ratio[r];
       res.in_range = res.speed >= settings.speeds[0] && res.speed <= settings.speeds[ns - 1];
@@ -488,7 +488,7 @@ Table CyclicForcedResult::response_table() const {
       for (Eigen::Index i = 0; i < o.displacement.rows(); ++i) {
         const Complex u = o.displacement(i, static_cast<Eigen::Index>(s));
         amp.push_back(std::abs(u));
-        phase.push_back(std::arg(u) * 180.0 / kPi);
+        phase.push_back(std::arg(u) * 180.0 / units::kPi);
       }
       t.add(fmt::format("{}_amplitude_{}", base, unit(s)), unit(s), amp);
       t.add(base + "_phase_deg", "deg", phase);
@@ -547,33 +547,31 @@ Table CyclicForcedResult::resonance_table() const {
 }
 
 Table CyclicForcedResult::peak_table() const {
-  Table t;
-  t.name = "cyclic_response_peaks";
-  t.title = "Peaks of the response curves with their half-power Q (engine_order 0: the sum)";
-  std::vector<std::string> sensor;
-  std::vector<double> nd, eo, rpm, amp, q, r1, r2, pts;
+  std::vector<PeakRow> rows;
   for (const SpeedPeak& p : peaks) {
-    sensor.push_back(sensors[static_cast<std::size_t>(p.sensor)].name);
-    const bool sum = p.curve < 0;
-    nd.push_back(sum ? kNaN : orders[static_cast<std::size_t>(p.curve)].nodal_diameter);
-    eo.push_back(sum ? 0.0 : orders[static_cast<std::size_t>(p.curve)].engine_order);
-    rpm.push_back(p.speed * kRpmPerRadS);
-    amp.push_back(p.amplitude);
-    q.push_back(p.resolved ? p.q_factor : kNaN);
-    r1.push_back(p.speed1 * kRpmPerRadS);
-    r2.push_back(p.speed2 * kRpmPerRadS);
-    pts.push_back(p.points_in_band);
+    const CyclicSensor& sensor = sensors[static_cast<std::size_t>(p.sensor)];
+    PeakRow row;
+    row.sensor = sensor.name;
+    if (p.curve < 0) {
+      row.curve = "sum";
+    } else {
+      const OrderResponse& o = orders[static_cast<std::size_t>(p.curve)];
+      row.curve = fmt::format("ND {} EO {}", o.nodal_diameter, o.engine_order);
+    }
+    row.location = p.speed * kRpmPerRadS;
+    row.amplitude = p.amplitude;
+    row.amplitude_unit = sensor.component >= 3 ? "rad" : "m";
+    row.half_power_low = p.speed1 * kRpmPerRadS;
+    row.half_power_high = p.speed2 * kRpmPerRadS;
+    row.q_factor = p.q_factor;
+    row.points_in_band = p.points_in_band;
+    row.resolved = p.resolved;
+    rows.push_back(std::move(row));
   }
-  t.add_text("sensor", sensor);
-  t.add("nodal_diameter", "", nd);
-  t.add("engine_order", "", eo);
-  t.add("speed_rpm", "rpm", rpm);
-  t.add("amplitude", "m or rad", amp);
-  t.add("q_factor", "", q);
-  t.add("speed1_rpm", "rpm", r1);
-  t.add("speed2_rpm", "rpm", r2);
-  t.add("points_in_band", "", pts);
-  return t;
+  return geardyn::peak_table("cyclic_response_peaks",
+                             "Peaks of the response curves with their half-power Q (curve: nodal "
+                             "diameter and engine order, or the sum of the orders)",
+                             speed_axis(), rows);
 }
 
 }  // namespace geardyn::response

@@ -1,7 +1,8 @@
 #pragma once
 // Forced response of a cyclic gear (N identical sectors, one tooth per sector) to the engine-order
 // harmonics of the tooth force, in the frame rotating with the gear, over a list of speeds
-// (DESIGN.md 4.3, 4.4; damper-ring thesis, /work/shared/references/000, sec. 1.3.3 and 5.2).
+// (DESIGN.md 4.3, 4.4; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
+// Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 1.3.3 and 5.2).
 //
 // Excitation (DESIGN 4.4). The gear turns at W [rad/s] in the positive sense about the cyclic
 // axis; the mesh is fixed in space. Tooth j (j = 0..N-1, sector j, at angle j alpha, alpha =
@@ -41,10 +42,10 @@
 // Resonances: mode r of ND h is met by order k at W_r = w_r / k. Orders exciting ND h:
 // k = h, N - h, N + h, 2N - h, ... (gear::nodal_diameter_orders).
 //
-// Several orders at once (the thesis, 5.2, "mode superposition" of close resonances): their
-// responses have different frequencies k W, so they do not add as complex numbers. At each speed
-// the result gives, per sensor, the sum of amplitudes sum_k |u_k| (an upper bound of the peak of
-// the periodic signal sum_k Re(u_k e^{i k W t}), reached when the phases line up) and the exact
+// Several orders at once (Durastante 2018, sec. 5.2, "mode superposition" of close resonances):
+// their responses have different frequencies k W, so they do not add as complex numbers. At each
+// speed the result gives, per sensor, the sum of amplitudes sum_k |u_k| (an upper bound of the peak
+// of the periodic signal sum_k Re(u_k e^{i k W t}), reached when the phases line up) and the exact
 // RMS sqrt(sum_k |u_k|^2 / 2) (distinct frequencies are orthogonal over one revolution), next to
 // the per-order curves.
 //
@@ -233,8 +234,8 @@ struct CyclicForcedResult {
   /// "cyclic_resonances": nodal_diameter, engine_order, order_rule, wave, mode, frequency_hz,
   /// resonance_speed_rpm, damping_ratio, q_factor, in_range, per sensor <sensor>_amplitude_m.
   Table resonance_table() const;
-  /// "cyclic_response_peaks": sensor, nodal_diameter, engine_order (0 for the sum), speed_rpm,
-  /// amplitude_m, q_factor (NaN when not resolvable), speed1_rpm, speed2_rpm, points_in_band.
+  /// "cyclic_response_peaks": the peaks in the columns of core/peak_table.hpp over speed [rpm];
+  /// curve "ND <h> EO <k>", or "sum" for the superposed sum.
   Table peak_table() const;
 };
 

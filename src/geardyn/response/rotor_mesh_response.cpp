@@ -5,10 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/peak_table.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/fe/gear_mesh_element.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -17,8 +18,7 @@ namespace geardyn::response {
 namespace {
 
 using Complex = std::complex<double>;
-constexpr double kPi = std::numbers::pi;
-constexpr double kRpmPerRadS = 60.0 / (2.0 * kPi);
+constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 [[noreturn]] void input_error(const std::string& key, const std::string& expected,
                               const std::string& found, const std::string& hint = {}) {
@@ -322,7 +322,7 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
     result.status = modal->status();
     result.message = modal->message();
     result.basis_size = modal->basis_size();
-    result.highest_mode_hz = modal->highest_mode() / (2.0 * kPi);
+    result.highest_mode_hz = modal->highest_mode() / units::kTwoPi;
   } else {
     direct = std::make_unique<DirectRotorSolver>(system, load, outputs);
   }
@@ -374,7 +374,7 @@ Table RotorForcedResult::response_table() const {
       for (Eigen::Index i = 0; i < speeds.size(); ++i) {
         const Complex u = displacement[h](i, static_cast<Eigen::Index>(s));
         amp.push_back(std::abs(u));
-        phase.push_back(std::arg(u) * 180.0 / kPi);
+        phase.push_back(std::arg(u) * 180.0 / units::kPi);
       }
       const std::string base = fmt::format("{}_p{}", sensors[s].name, harmonics[h].order);
       t.add(fmt::format("{}_amplitude_{}", base, unit(s)), unit(s), amp);
@@ -394,33 +394,29 @@ Table RotorForcedResult::response_table() const {
 }
 
 Table RotorForcedResult::resonance_table() const {
-  Table t;
-  t.name = "mesh_resonances";
-  t.title = "Resonance peaks of the mesh-order responses (order 0: the sum over orders)";
-  std::vector<std::string> sensor;
-  std::vector<double> order, rpm, f, amp, q, r1, r2, pts;
+  std::vector<PeakRow> rows;
   for (const SpeedPeak& p : peaks) {
-    sensor.push_back(sensors[static_cast<std::size_t>(p.sensor)].name);
-    const int o = p.curve < 0 ? 0 : harmonics[static_cast<std::size_t>(p.curve)].order;
-    order.push_back(o);
-    rpm.push_back(p.speed * kRpmPerRadS);
-    f.push_back(o > 0 ? o * mesh_frequency_per_speed * p.speed / (2.0 * kPi) : kNaN);
-    amp.push_back(p.amplitude);
-    q.push_back(p.resolved ? p.q_factor : kNaN);
-    r1.push_back(p.speed1 * kRpmPerRadS);
-    r2.push_back(p.speed2 * kRpmPerRadS);
-    pts.push_back(p.points_in_band);
+    const RotorSensor& sensor = sensors[static_cast<std::size_t>(p.sensor)];
+    PeakRow row;
+    row.sensor = sensor.name;
+    row.curve = p.curve < 0
+                    ? std::string("sum")
+                    : fmt::format("order {}", harmonics[static_cast<std::size_t>(p.curve)].order);
+    row.location = p.speed * kRpmPerRadS;
+    row.amplitude = p.amplitude;
+    row.amplitude_unit = sensor.rotational ? "rad" : "m";
+    row.half_power_low = p.speed1 * kRpmPerRadS;
+    row.half_power_high = p.speed2 * kRpmPerRadS;
+    row.q_factor = p.q_factor;
+    row.points_in_band = p.points_in_band;
+    row.resolved = p.resolved;
+    rows.push_back(std::move(row));
   }
-  t.add_text("sensor", sensor);
-  t.add("order", "", order);
-  t.add("speed_rpm", "rpm", rpm);
-  t.add("frequency_hz", "Hz", f);
-  t.add("amplitude", "m or rad", amp);
-  t.add("q_factor", "", q);
-  t.add("speed1_rpm", "rpm", r1);
-  t.add("speed2_rpm", "rpm", r2);
-  t.add("points_in_band", "", pts);
-  return t;
+  return peak_table("mesh_resonances",
+                    "Resonance peaks of the mesh-order responses (curve: the mesh order, or the "
+                    "sum over orders); the excitation frequency at a peak is order x "
+                    "frequency_per_speed (mesh_order_forces) x speed",
+                    speed_axis(), rows);
 }
 
 std::string RotorForcedResult::brief_report() const {

@@ -157,9 +157,9 @@ struct RotorForcedResult {
   /// "mesh_forced_response": speed_rpm, per order p and sensor <sensor>_p<p>_amplitude_<unit>
   /// and _phase_deg, <sensor>_sum_amplitude_<unit>, <sensor>_rms_<unit>.
   Table response_table() const;
-  /// "mesh_resonances": sensor, order (0: the sum), speed_rpm, frequency_hz (excitation
-  /// frequency at the peak), amplitude, q_factor (NaN when not resolvable), speed1_rpm,
-  /// speed2_rpm, points_in_band.
+  /// "mesh_resonances": the peaks in the columns of core/peak_table.hpp over speed [rpm]; curve
+  /// "order <p>", or "sum" for the sum over orders (the excitation frequency at a peak is
+  /// p mesh_frequency_per_speed speed).
   Table resonance_table() const;
   std::string brief_report() const;
 };
