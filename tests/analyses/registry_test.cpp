@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 
@@ -62,6 +63,36 @@ TEST(Registry, TheParserMakesEachTypesSettings) {
     const model::Analysis copy = a;
     EXPECT_NE(copy.settings.get(), nullptr);
     EXPECT_NE(copy.settings.get(), a.settings.get());
+  }
+}
+
+TEST(Registry, EveryAnalysisOffersScalarsToSweepsAndDesignStudies) {
+  // Issue [architecture]: every analysis is sweepable. A sweep cannot target a sweep; every
+  // other type declares at least one scalar, each with a meaning and only parameters that
+  // [[analyses.outputs]] has; a name offered by several types has one unit everywhere.
+  const std::set<std::string> parameters = {"mode", "sensor", "at_rpm", "at_hz"};
+  std::map<std::string, std::string> unit_of;
+  for (const auto& t : registry()) {
+    if (t.name == "sweep") {
+      EXPECT_TRUE(t.scalars.empty());
+      continue;
+    }
+    EXPECT_FALSE(t.scalars.empty()) << t.name << " offers no scalar";
+    std::set<std::string> names;
+    for (const auto& s : t.scalars) {
+      EXPECT_TRUE(names.insert(s.name).second) << t.name << ": " << s.name << " twice";
+      EXPECT_FALSE(s.meaning.empty()) << t.name << "." << s.name;
+      for (const auto& p : s.parameters) {
+        EXPECT_TRUE(parameters.count(p)) << t.name << "." << s.name << " reads " << p;
+      }
+      const auto [it, inserted] = unit_of.emplace(s.name, s.unit);
+      // A response amplitude is in m or rad (set per sensor); a peak location in Hz or rpm.
+      const bool unit_varies =
+          s.name == "peak_amplitude" || s.name == "peak_location" || s.name == "amplitude_at";
+      if (!inserted && !unit_varies) {
+        EXPECT_EQ(it->second, s.unit) << s.name << " has two units";
+      }
+    }
   }
 }
 

@@ -20,11 +20,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "analyses/table_scalars.hpp"
 #include "geardyn/analyses/campbell.hpp"
 #include "geardyn/analyses/harmonic.hpp"
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/registry.hpp"
-#include "geardyn/analyses/scalar_tables.hpp"
 #include "geardyn/analyses/transient.hpp"
 #include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/core/units.hpp"

@@ -1,5 +1,5 @@
-// Scalar outputs read from an analysis's result tables (modal, campbell, harmonic, unbalance).
-#include "geardyn/analyses/scalar_tables.hpp"
+// Test oracle: scalar outputs read back from result tables (see table_scalars.hpp).
+#include "analyses/table_scalars.hpp"
 
 #include <fmt/format.h>
 
