@@ -103,12 +103,7 @@ AnalysisType campbell_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<CampbellSettings>();
-    CampbellResult r = run_campbell(m, s, c);
-    AnalysisOutput out = campbell_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_campbell, campbell_output);
   type.scalars = {
       {"natural_frequency",
        "Hz",

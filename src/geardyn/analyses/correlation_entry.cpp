@@ -107,12 +107,7 @@ AnalysisType correlation_analysis() {
     d.finish = finish;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<CorrelationSettings>();
-    CorrelationResult r = run_correlation(m, s, c);
-    AnalysisOutput out = correlation_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_correlation, correlation_output);
   type.scalars = {
       {"measured_peak_location",
        "Hz",

@@ -142,12 +142,7 @@ AnalysisType cyclic_forced_response_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<CyclicForcedResponseSettings>();
-    CyclicForcedResponseResult r = run_cyclic_forced_response(m, s, c);
-    AnalysisOutput out = cyclic_forced_response_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_cyclic_forced_response, cyclic_forced_response_output);
   type.scalars = {
       {"peak_amplitude",
        "",

@@ -114,12 +114,7 @@ AnalysisType cyclic_modal_analysis() {
     const auto& s = a.settings_of<CyclicModalSettings>();
     check_master_sets(c, s.solid, s.master_sets);
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<CyclicModalSettings>();
-    CyclicModalResult r = run_cyclic_modal(m, s, c);
-    AnalysisOutput out = cyclic_modal_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_cyclic_modal, cyclic_modal_output);
   type.scalars = {{"natural_frequency",
                    "Hz",
                    "Natural frequency of mode `mode` counted over all nodal diameters solved, in "

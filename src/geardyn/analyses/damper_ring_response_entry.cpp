@@ -223,12 +223,7 @@ AnalysisType damper_ring_response_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<DamperRingResponseSettings>();
-    DamperRingResponseResult r = run_damper_ring_response(m, s, c);
-    AnalysisOutput out = damper_ring_response_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_damper_ring_response, damper_ring_response_output);
   type.scalars = {
       {"peak_amplitude",
        "m",

@@ -140,12 +140,7 @@ AnalysisType gear_forced_response_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<GearForcedResponseSettings>();
-    GearForcedResponseResult r = run_gear_forced_response(m, s, c);
-    AnalysisOutput out = gear_forced_response_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_gear_forced_response, gear_forced_response_output);
   type.scalars = {
       {"peak_amplitude",
        "",

@@ -81,12 +81,7 @@ AnalysisType gear_pair_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<GearPairSettings>();
-    GearPairResult r = run_gear_pair(m, s, c);
-    AnalysisOutput out = gear_pair_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_gear_pair, gear_pair_output);
   type.scalars = {
       {"contact_ratio",
        "",

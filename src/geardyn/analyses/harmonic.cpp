@@ -1017,4 +1017,9 @@ AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSett
   return out;
 }
 
+FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
+                       const Context& context) {
+  return run_harmonic(model, settings, context, AdaptiveGridOptions{});
+}
+
 }  // namespace geardyn::analyses

@@ -175,7 +175,10 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
 /// forces and sensors by name (InputError when unknown or constrained) and runs
 /// frequency_response.
 FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
-                       const Context& context, const AdaptiveGridOptions& options = {});
+                       const Context& context, const AdaptiveGridOptions& options);
+/// The same with the default grid options (the driver the registry runs).
+FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
+                       const Context& context);
 
 /// Tables "frf" (frequency_hz, per sensor <sensor>_amplitude_<unit>, <sensor>_phase_deg) and
 /// "peaks" (the resonance-peak table of core/peak_table.hpp, curve = the response quantity),

@@ -136,12 +136,7 @@ AnalysisType harmonic_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<HarmonicSettings>();
-    FrfResult r = run_harmonic(m, s, c);
-    AnalysisOutput out = harmonic_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_harmonic, harmonic_output);
   type.scalars = {
       {"peak_amplitude", "", "Largest response amplitude at `sensor`.", {"sensor"}},
       {"peak_location", "Hz", "Frequency of that peak.", {"sensor"}},

@@ -116,12 +116,7 @@ AnalysisType mesh_force_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<MeshForceSettings>();
-    MeshForceResult r = run_mesh_force(m, s, c);
-    AnalysisOutput out = mesh_force_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_mesh_force, mesh_force_output);
   type.scalars = {
       {"dynamic_factor",
        "",

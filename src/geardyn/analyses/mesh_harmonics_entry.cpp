@@ -87,12 +87,7 @@ AnalysisType mesh_harmonics_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<MeshHarmonicsSettings>();
-    MeshHarmonicsResult r = run_mesh_harmonics(m, s, c);
-    AnalysisOutput out = mesh_harmonics_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_mesh_harmonics, mesh_harmonics_output);
   type.scalars = {
       {"harmonic_amplitude",
        "N",

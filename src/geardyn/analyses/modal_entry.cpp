@@ -47,12 +47,7 @@ AnalysisType modal_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<ModalSettings>();
-    ModalResult r = run_modal(m, s, c);
-    AnalysisOutput out = modal_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_modal, modal_output);
   type.scalars = {
       {"natural_frequency", "Hz", "Undamped natural frequency of mode `mode`.", {"mode"}},
       {"damping_ratio",

@@ -104,12 +104,7 @@ AnalysisType reduction_analysis() {
     const auto& s = a.settings_of<ReductionSettings>();
     check_master_sets(c, s.solid, s.master_sets);
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<ReductionSettings>();
-    ReductionResult r = run_reduction(m, s, c);
-    AnalysisOutput out = reduction_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_reduction, reduction_output);
   type.scalars = {
       {"max_frequency_error",
        "%",

@@ -89,6 +89,19 @@ Outcome outcome(AnalysisOutput output, R result) {
   return {std::move(output), std::make_shared<const R>(std::move(result))};
 }
 
+/// The `run` of an AnalysisType from its driver (solving: model, settings, context -> result R)
+/// and its post-processing (-> AnalysisOutput): every type's runner has this shape.
+template <class S, class R>
+auto runner(R (*solve)(const model::Model&, const S&, const Context&),
+            AnalysisOutput (*output)(const model::Model&, const S&, const R&, const Context&)) {
+  return [solve, output](const model::Model& m, const model::Analysis& a, const Context& c) {
+    const S& s = a.settings_of<S>();
+    R r = solve(m, s, c);
+    AnalysisOutput out = output(m, s, r, c);
+    return outcome(std::move(out), std::move(r));
+  };
+}
+
 /// The result of an Outcome made by outcome<R> (std::logic_error if it holds none).
 template <class R>
 const R& result_of(const Outcome& o) {

@@ -63,12 +63,7 @@ AnalysisType solid_modal_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<SolidModalSettings>();
-    SolidModalResult r = run_solid_modal(m, s, c);
-    AnalysisOutput out = solid_modal_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_solid_modal, solid_modal_output);
   type.scalars = {{"natural_frequency",
                    "Hz",
                    "Natural frequency of mode `mode` of the solid (the mesh as given, or the "

@@ -186,4 +186,16 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
   return out;
 }
 
+SweepResult run_sweep(const model::Model& /*model*/, const SweepSettings& settings,
+                      const Context& context) {
+  if (context.document() == nullptr)
+    throw NumericalError(context.name(), "a sweep needs the model document to rebuild points");
+  return run_sweep(*context.document(), settings, context.progress());
+}
+
+AnalysisOutput sweep_output(const model::Model& /*model*/, const SweepSettings& settings,
+                            const SweepResult& result, const Context& context) {
+  return sweep_output(result, settings, context.name());
+}
+
 }  // namespace geardyn::analyses

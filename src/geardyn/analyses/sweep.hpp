@@ -67,4 +67,11 @@ double extract_scalar(const model::Analysis& analysis, const Outcome& outcome,
 AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& settings,
                             const std::string& analysis_name);
 
+/// The driver shape of every analysis: the sweep of the model document the context carries
+/// (NumericalError without one), and its output.
+SweepResult run_sweep(const model::Model& model, const SweepSettings& settings,
+                      const Context& context);
+AnalysisOutput sweep_output(const model::Model& model, const SweepSettings& settings,
+                            const SweepResult& result, const Context& context);
+
 }  // namespace geardyn::analyses

@@ -284,14 +284,7 @@ AnalysisType sweep_analysis() {
     d.check = check;
     return d;
   };
-  type.run = [](const model::Model&, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<SweepSettings>();
-    if (c.document() == nullptr)
-      throw NumericalError(a.name, "a sweep needs the model document to rebuild points");
-    SweepResult r = run_sweep(*c.document(), s, c.progress());
-    AnalysisOutput out = sweep_output(r, s, a.name);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_sweep, sweep_output);
   return type;
 }
 

@@ -91,12 +91,7 @@ AnalysisType transient_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<TransientSettings>();
-    TransientResult r = run_transient(m, s, c);
-    AnalysisOutput out = transient_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_transient, transient_output);
   type.scalars = {
       {"max_response", "", "Largest |x(t)| of `sensor` over the record.", {"sensor"}},
       {"max_response_speed",

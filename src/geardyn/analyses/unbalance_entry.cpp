@@ -86,12 +86,7 @@ AnalysisType unbalance_analysis() {
     d.needs_rotor = true;
     return d;
   };
-  type.run = [](const model::Model& m, const Analysis& a, const Context& c) {
-    const auto& s = a.settings_of<UnbalanceSettings>();
-    UnbalanceResult r = run_unbalance(m, s, c);
-    AnalysisOutput out = unbalance_output(m, s, r, c);
-    return outcome(std::move(out), std::move(r));
-  };
+  type.run = runner(run_unbalance, unbalance_output);
   type.scalars = {
       {"peak_amplitude", "", "Largest response amplitude at `sensor`.", {"sensor"}},
       {"peak_location", "rpm", "Speed of that peak.", {"sensor"}},
