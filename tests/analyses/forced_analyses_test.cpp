@@ -21,6 +21,7 @@
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/run_analysis.hpp"
 #include "geardyn/analyses/tooth_force.hpp"
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/assembly/system_builder.hpp"
@@ -294,7 +295,7 @@ TEST(ForcedWiring, CyclicInputErrorsNameTheKey) {
       const model::Model m = analyses::parse_model(kGearModel + analysis, "gear.toml");
       assembly::SolidComponents solids;
       solids.emplace("gear", solid);
-      analyses::check_forced_analyses(m, solids);
+      analyses::check_inputs(m, solids);
       ADD_FAILURE() << "no error for " << key;
     } catch (const InputError& e) {
       EXPECT_EQ(e.key_path(), key) << e.what();
@@ -379,7 +380,7 @@ sensor_components = ["uz"]
     const model::Model m = analyses::parse_model(text, (dir / "gear.toml").string());
     assembly::SolidComponents solids;
     solids.emplace("gear", solid);
-    analyses::check_forced_analyses(m, solids);
+    analyses::check_inputs(m, solids);
     return run_cyclic(m, m.analyses.front(), solid);
   };
   // Where the first ND 2 mode meets EO 14.
@@ -477,7 +478,7 @@ speed_rpm = [3000, 9000, 20000, 36900]
 n_modes = 20
 )";
   const model::Model m = analyses::parse_model(text, (dir / "model.toml").string());
-  analyses::check_forced_analyses(m, {});
+  analyses::check_inputs(m, {});
   const fe::LinearSystem system = assembly::build_system(m);
 
   // The blocked force of the pair: analytic series (tolerance: the mesh model evaluates k at
@@ -582,7 +583,7 @@ n_modes = 20
           "measured_file = \"measured.csv\"\nmeasured_sensor = \"turbine_x\"\n"
           "measured_mesh_order = 1\nscale_to_measured = true\n",
       (dir / "model.toml").string());
-  analyses::check_forced_analyses(m, {});
+  analyses::check_inputs(m, {});
   const AnalysisOutput out = run(m);
   ASSERT_EQ(out.status, Status::Ok) << out.message;
   const Table* comparison = nullptr;

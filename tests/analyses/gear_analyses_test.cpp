@@ -21,6 +21,7 @@
 #include "geardyn/analyses/mesh_harmonics.hpp"
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/run_analysis.hpp"
 #include "support/gear_models.hpp"
 
 namespace geardyn::analyses {
@@ -65,7 +66,7 @@ TEST(GearanValidation, GearPairToothForcesAndContactRatioOfASpurPair) {
 name = "pair"
 type = "gear_pair"
 )");
-  check_gear_analyses(m);
+  check_inputs(m, {});
   const AnalysisOutput out = run_entry(m, 0).output;
 
   const Table& forces = table(out, "tooth_forces");
@@ -152,7 +153,7 @@ direction = "up"
 model = "infinite_inertia"
 )",
                                       1000.0 * rb1, rb1 * rb1, rpm_low, rpm_res, rpm_low));
-  check_gear_analyses(m);
+  check_inputs(m, {});
   const AnalysisOutput out = run_entry(m, 0).output;
   ASSERT_EQ(out.status, Status::Ok) << out.message;
   const Table& t = table(out, "sweep_up");
@@ -260,7 +261,7 @@ model = "infinite_inertia"
 contact_ratio = 1.6
 nodal_diameters = [0, 1, 7]
 )"));
-  check_gear_analyses(m);
+  check_inputs(m, {});
   const AnalysisOutput out = run_entry(m, 0).output;
   ASSERT_EQ(out.status, Status::Ok) << out.message;
   const double ft = 100.0 / 0.030;
@@ -332,7 +333,7 @@ reference_peak_hz = 101
 reference_amplitude = 1e-4
 reference_q = 40
 )");
-  check_gear_analyses(m);
+  check_inputs(m, {});
   const AnalysisOutput out = run_entry(m, 0).output;
   const Table& peaks = table(out, "peaks");
   ASSERT_EQ(peaks.rows(), 1u);

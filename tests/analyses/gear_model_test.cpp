@@ -1,7 +1,7 @@
 // The [[gear_pairs]] section and the gear analyses in the model file: every key read into the
 // Model in SI units (good input), and every class of bad input reported as an InputError naming
 // file:line, the key path, what was expected and what was found — at parse time, or (geometry,
-// STE and measured files, which need the gear library) by analyses::check_gear_analyses before
+// STE and measured files, which need the gear library) by analyses::check_inputs before
 // any analysis runs.
 #include <gtest/gtest.h>
 
@@ -15,6 +15,7 @@
 #include "geardyn/analyses/mesh_force.hpp"
 #include "geardyn/analyses/mesh_harmonics.hpp"
 #include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/analyses/run_analysis.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/gear/ste.hpp"
 #include "geardyn/model/parse.hpp"
@@ -231,7 +232,7 @@ reference_q = 20
   EXPECT_TRUE(c.reference_is_speed);
   EXPECT_DOUBLE_EQ(c.reference_amplitude, 4e-6);
   EXPECT_DOUBLE_EQ(c.reference_q, 20.0);
-  EXPECT_NO_THROW(check_gear_analyses(m));
+  EXPECT_NO_THROW(check_inputs(m, {}));
 }
 
 // A step STE held between rows (single / double contact) read onto its own grid keeps every
@@ -293,7 +294,7 @@ struct ErrorCase {
   std::string key;        ///< InputError::key_path()
   std::string expected;   ///< part of InputError::expected()
   std::string found;      ///< part of InputError::found()
-  bool at_check = false;  ///< found by check_gear_analyses, not by the parser
+  bool at_check = false;  ///< found by check_inputs, not by the parser
   std::string file = "model.toml";
 };
 
@@ -311,7 +312,7 @@ TEST_P(GearanErrors, NameFileLineKeyExpectedFound) {
   try {
     const model::Model m = load(dir, kMaterial + c.text);
     EXPECT_TRUE(c.at_check) << "the parser accepted it";
-    check_gear_analyses(m);
+    check_inputs(m, {});
   } catch (const InputError& e) {
     error = e;
   }
@@ -361,7 +362,7 @@ INSTANTIATE_TEST_SUITE_P(
                   "gear_pairs[0].ste_interpolation", "an ste_file", "no ste_file"},
         ErrorCase{"ShiftOutOfRange", kSpur + "ste_shift = 1.0\n", 14, "gear_pairs[0].ste_shift",
                   "[0, 1)", "1"},
-        // Needs the gear library: found by check_gear_analyses, at the pair's table.
+        // Needs the gear library: found by check_inputs, at the pair's table.
         ErrorCase{"ContactRatioBelowOne", kSpur + "addendum_coefficient = 0.5\n", 7,
                   "gear_pairs[0]", "contact ratio eps_alpha >= 1", "eps_alpha = 0.", true},
         ErrorCase{"Interference",

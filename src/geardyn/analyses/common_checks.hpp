@@ -21,7 +21,8 @@ struct GearPairUse {
 
 /// The pair exists (or is the only one), the dynamic model has the inertias it needs, and the
 /// nodal diameters fit the gear. (The geometry itself, interference and contact ratio, is
-/// checked with the gear library before anything runs: check_gear_analyses.)
+/// checked with the gear library before anything runs: check_gear_pairs and each type's
+/// check_inputs.)
 void check_gear_pair_use(const model::Analysis& a, const std::string& path,
                          const model::ModelCheck& check, const GearPairUse& use);
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <vector>
 
 #include "geardyn/analyses/gear_helpers.hpp"
@@ -12,6 +13,7 @@
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/peak_table.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/gear/correlation.hpp"
 #include "geardyn/signal/half_power.hpp"
 
 namespace geardyn::analyses {
@@ -197,6 +199,27 @@ AnalysisOutput correlation_output(const model::Model& /*model*/,
       "yet: give its peak as reference_peak_rpm / reference_peak_hz, reference_amplitude and "
       "reference_q.");
   return out;
+}
+
+void check_correlation_inputs(const model::Model& model, const CorrelationSettings& c,
+                              const Context& context) {
+  namespace fs = std::filesystem;
+  const fs::path path = resolve_model_path(model, c.measured_file);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw context.error("measured_file",
+                        "a readable measured-response CSV file (relative to the model file)",
+                        fmt::format("\"{}\" ({} does not exist)", c.measured_file, path.string()));
+  const gear::MeasuredResponse m = gear::read_measured_response_csv(path);
+  if (!std::isnan(c.reference_peak)) {
+    const bool file_speed = m.abscissa == gear::ResponseAbscissa::SpeedRpm;
+    if (file_speed != c.reference_is_speed)
+      throw context.error(
+          c.reference_is_speed ? "reference_peak_rpm" : "reference_peak_hz",
+          fmt::format("reference_peak_{} for a measured file over {}", file_speed ? "rpm" : "hz",
+                      file_speed ? "speed_rpm" : "frequency_hz"),
+          fmt::format("reference_peak_{}", c.reference_is_speed ? "rpm" : "hz"));
+  }
 }
 
 }  // namespace geardyn::analyses

@@ -6,8 +6,9 @@
 // crossings, and the comparison with a reference peak (DESIGN 4.4-4.5; issue [mesh-excitation]):
 // run_correlation finds the peaks (CorrelationResult), correlation_output writes the peak table
 // (core/peak_table.hpp), the comparison, the plot and notes. Bad input throws InputError
-// (call check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
-// numerical failure throws NumericalError naming the analysis.
+// (call check_gear_pairs and the type's own input check, through analyses::check_inputs, before
+// running, so it shows before any result); a numerical failure throws NumericalError naming the
+// analysis.
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,5 +44,10 @@ CorrelationResult run_correlation(const model::Model& model, const CorrelationSe
 
 AnalysisOutput correlation_output(const model::Model& model, const CorrelationSettings& settings,
                                   const CorrelationResult& result, const Context& context);
+
+/// Checks made before anything runs: the measured file exists and reads, and its abscissa fits
+/// the reference key (reference_peak_rpm or _hz). InputError.
+void check_correlation_inputs(const model::Model& model, const CorrelationSettings& settings,
+                              const Context& context);
 
 }  // namespace geardyn::analyses

@@ -107,6 +107,9 @@ AnalysisType correlation_analysis() {
     d.finish = finish;
     return d;
   };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    check_correlation_inputs(m, a.settings_of<CorrelationSettings>(), c);
+  };
   type.run = runner(run_correlation, correlation_output);
   type.scalars = {
       {"measured_peak_location",

@@ -422,44 +422,26 @@ AnalysisOutput cyclic_forced_response_output(const model::Model& model,
 // ---------------------------------------------------------------------------------------------
 // checks before the run
 
-void check_forced_analyses(const model::Model& model, const assembly::SolidComponents& solids) {
-  for (const model::Analysis& a : model.analyses) {
-    Context context(model, a);
-    context.with_solids(&solids);
-    if (const auto* s = a.settings_as<CyclicForcedResponseSettings>()) {
-      auto it = solids.find(s->solid);
-      if (it != solids.end()) (void)sector_points(context, it->second, *s);
-      const auto* d = a.settings_as<DamperRingResponseSettings>();
-      if (d != nullptr && it != solids.end()) check_damper_ring_response(it->second, *d, context);
-      if (!s->pair.empty()) {
-        const analyses::PairModel pm =
-            analyses::build_pair_model(model, analyses::pair_index(model, s->pair));
-        const int teeth = s->gear == 1 ? pm.pair->teeth1 : pm.pair->teeth2;
-        const double cr =
-            std::isnan(s->contact_ratio) ? pm.geometry.total_contact_ratio : s->contact_ratio;
-        try {
-          (void)gear::tooth_load_window(0.0, teeth, cr);
-        } catch (const InputError& e) {
-          throw context.error("contact_ratio", e.expected(), e.found(), e.hint());
-        }
-      }
-      if (!s->measured_file.empty()) (void)read_measured(model, context, s->measured_file);
-    }
-    if (const auto* g = a.settings_as<GearForcedResponseSettings>()) {
-      if (!g->measured_file.empty()) (void)read_measured(model, context, g->measured_file);
-      if (!g->pair.empty()) {
-        const analyses::PairModel pm =
-            analyses::build_pair_model(model, analyses::pair_index(model, g->pair));
-        try {
-          (void)analyses::blocked_mesh_force_harmonics(pm, g->max_mesh_order);
-        } catch (const InputError& e) {
-          throw context.error("max_mesh_order",
-                              "a mesh order below half the STE samples per mesh cycle", e.found(),
-                              "give more samples per cycle (the pair's ste_samples)");
-        }
-      }
+void check_cyclic_forced_response_inputs(const model::Model& model,
+                                         const CyclicForcedResponseSettings& s,
+                                         const Context& context) {
+  if (const assembly::SolidComponents* solids = context.solids()) {
+    const auto it = solids->find(s.solid);
+    if (it != solids->end()) (void)sector_points(context, it->second, s);
+  }
+  if (!s.pair.empty()) {
+    const analyses::PairModel pm =
+        analyses::build_pair_model(model, analyses::pair_index(model, s.pair));
+    const int teeth = s.gear == 1 ? pm.pair->teeth1 : pm.pair->teeth2;
+    const double cr =
+        std::isnan(s.contact_ratio) ? pm.geometry.total_contact_ratio : s.contact_ratio;
+    try {
+      (void)gear::tooth_load_window(0.0, teeth, cr);
+    } catch (const InputError& e) {
+      throw context.error("contact_ratio", e.expected(), e.found(), e.hint());
     }
   }
+  if (!s.measured_file.empty()) (void)read_measured(model, context, s.measured_file);
 }
 
 }  // namespace geardyn::analyses

@@ -5,9 +5,9 @@
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
 // sections 6 and 7; DESIGN 4.3-4.5): run_cyclic_forced_response solves (model, settings, context)
 // -> CyclicForcedResponseResult; cyclic_forced_response_output writes its tables, plots and
-// notes. Bad input throws InputError located by the context (call check_forced_analyses before
-// running, so it shows before any result); a numerical failure throws NumericalError naming the
-// analysis.
+// notes. Bad input throws InputError located by the context (analyses::check_inputs runs
+// check_cyclic_forced_response_inputs before running, so it shows before any result); a numerical
+// failure throws NumericalError naming the analysis.
 //
 // One sector of a cyclic solid (a gear, one tooth per sector when a gear pair loads it) in the
 // frame turning with it. Per nodal diameter h the modes are solved once
@@ -124,10 +124,13 @@ AnalysisOutput cyclic_forced_response_output(const model::Model& model,
                                              const CyclicForcedResponseResult& result,
                                              const Context& context);
 
-/// What the parser cannot check: the node sets and node ids the cyclic forced responses name
-/// exist in the built meshes (and carry DOFs), their solids are meshes (not reduced files), the
-/// gear pairs build, and the measured files read and hold a displacement over speed. Throws
-/// InputError located by the analysis' Context.
-void check_forced_analyses(const model::Model& model, const assembly::SolidComponents& solids);
+/// What the parser cannot check for a cyclic forced response (or a damper-ring response, whose
+/// settings extend these): the node sets and node ids it names exist in the solid built before
+/// the run (context.solids()) and carry DOFs, the solid is a mesh (not a reduced file), the
+/// tooth-load window of its gear pair fits, and the measured file reads and holds a
+/// displacement over speed. Throws InputError located by `context`.
+void check_cyclic_forced_response_inputs(const model::Model& model,
+                                         const CyclicForcedResponseSettings& settings,
+                                         const Context& context);
 
 }  // namespace geardyn::analyses

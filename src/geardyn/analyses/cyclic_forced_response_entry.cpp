@@ -142,6 +142,9 @@ AnalysisType cyclic_forced_response_analysis() {
     d.check = check;
     return d;
   };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    check_cyclic_forced_response_inputs(m, a.settings_of<CyclicForcedResponseSettings>(), c);
+  };
   type.run = runner(run_cyclic_forced_response, cyclic_forced_response_output);
   type.scalars = {
       {"peak_amplitude",

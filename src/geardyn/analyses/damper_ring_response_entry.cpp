@@ -223,6 +223,13 @@ AnalysisType damper_ring_response_analysis() {
     d.check = check;
     return d;
   };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    const auto& s = a.settings_of<DamperRingResponseSettings>();
+    check_cyclic_forced_response_inputs(m, s, c);
+    if (c.solids() == nullptr) return;
+    const auto it = c.solids()->find(s.solid);
+    if (it != c.solids()->end()) check_damper_ring_response(it->second, s, c);
+  };
   type.run = runner(run_damper_ring_response, damper_ring_response_output);
   type.scalars = {
       {"peak_amplitude",

@@ -230,4 +230,18 @@ AnalysisOutput gear_forced_response_output(const model::Model& model,
   return out;
 }
 
+void check_gear_forced_response_inputs(const model::Model& model,
+                                       const GearForcedResponseSettings& g,
+                                       const Context& context) {
+  if (!g.measured_file.empty()) (void)read_measured(model, context, g.measured_file);
+  if (g.pair.empty()) return;
+  const PairModel pm = build_pair_model(model, pair_index(model, g.pair));
+  try {
+    (void)blocked_mesh_force_harmonics(pm, g.max_mesh_order);
+  } catch (const InputError& e) {
+    throw context.error("max_mesh_order", "a mesh order below half the STE samples per mesh cycle",
+                        e.found(), "give more samples per cycle (the pair's ste_samples)");
+  }
+}
+
 }  // namespace geardyn::analyses

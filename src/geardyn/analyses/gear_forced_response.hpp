@@ -5,8 +5,8 @@
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
 // sections 6 and 7; DESIGN 4.3-4.5): run_gear_forced_response solves (model, settings, context)
 // -> GearForcedResponseResult; gear_forced_response_output writes its tables, plots and notes.
-// Bad input throws InputError located by the context (call check_forced_analyses,
-// cyclic_forced_response.hpp, before running, so it shows before any result); a numerical
+// Bad input throws InputError located by the context (check_gear_forced_response_inputs runs
+// before any analysis, through analyses::check_inputs, so it shows before any result); a numerical
 // failure throws NumericalError naming the analysis.
 //
 // A rotor with a [[gear_meshes]] entry, excited along the line of action at mesh orders
@@ -70,5 +70,11 @@ AnalysisOutput gear_forced_response_output(const model::Model& model,
                                            const GearForcedResponseSettings& settings,
                                            const GearForcedResponseResult& result,
                                            const Context& context);
+
+/// What the parser cannot check: the measured file reads, and the gear pair's STE resolves
+/// max_mesh_order. Throws InputError located by `context`.
+void check_gear_forced_response_inputs(const model::Model& model,
+                                       const GearForcedResponseSettings& settings,
+                                       const Context& context);
 
 }  // namespace geardyn::analyses

@@ -140,6 +140,9 @@ AnalysisType gear_forced_response_analysis() {
     d.needs_rotor = true;
     return d;
   };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    check_gear_forced_response_inputs(m, a.settings_of<GearForcedResponseSettings>(), c);
+  };
   type.run = runner(run_gear_forced_response, gear_forced_response_output);
   type.scalars = {
       {"peak_amplitude",

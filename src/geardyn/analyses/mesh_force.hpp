@@ -6,10 +6,10 @@
 // and contact loss versus speed, the mesh resonance speed (f_n = sqrt(k_mean / m_e) / 2 pi), time
 // histories at `detail_rpm` (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_force solves
 // (MeshForceResult), mesh_force_output writes tables, plots and notes. Bad input throws InputError
-// (call check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
-// numerical failure throws NumericalError naming the analysis, or, where the rest of the result
-// is still worth having (a speed sweep), comes back as a non-Ok status with every failed point
-// listed in the message.
+// (call check_gear_pairs and the type's own input check, through analyses::check_inputs, before
+// running, so it shows before any result); a numerical failure throws NumericalError naming the
+// analysis, or, where the rest of the result is still worth having (a speed sweep), comes back as a
+// non-Ok status with every failed point listed in the message.
 #include <string>
 #include <vector>
 

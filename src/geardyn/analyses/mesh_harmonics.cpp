@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "geardyn/analyses/gear_helpers.hpp"
+#include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/dynamic_mesh.hpp"
@@ -210,6 +211,30 @@ AnalysisOutput mesh_harmonics_output(const model::Model& /*model*/,
   out.tables.push_back(harmonics_table(settings, result));
   add_notes(out, settings, result);
   return out;
+}
+
+void check_mesh_harmonics_inputs(const model::Model& model, const MeshHarmonicsSettings& h,
+                                 const Context& context) {
+  const PairModel pm = build_pair_model(model, pair_index(model, h.pair));
+  const int teeth = h.gear == 1 ? pm.pair->teeth1 : pm.pair->teeth2;
+  const double cr = std::isnan(h.contact_ratio) ? pm.geometry.total_contact_ratio : h.contact_ratio;
+  if (!(cr >= 1.0 && cr <= 3.0 && cr < teeth))
+    throw context.error(
+        "contact_ratio",
+        fmt::format("a tooth-load window contact ratio in [1, 3] and below the "
+                    "{} teeth of gear {}",
+                    teeth, h.gear),
+        fmt::format("{:.6g}{}", cr,
+                    std::isnan(h.contact_ratio)
+                        ? fmt::format(" (the total contact ratio of pair '{}')", pm.pair->name)
+                        : ""),
+        "give contact_ratio for the window explicitly");
+  if (h.max_order > 64 * teeth)
+    throw context.error("max_order",
+                        fmt::format("an order <= 64 N = {} (resolved by the samples of one "
+                                    "revolution)",
+                                    64 * teeth),
+                        std::to_string(h.max_order));
 }
 
 }  // namespace geardyn::analyses

@@ -8,8 +8,8 @@
 // axial components (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_harmonics solves
 // (MeshHarmonicsResult), mesh_harmonics_output writes tables, plots and notes. Bad input throws
 // InputError (call
-// check_gear_analyses, pair_model.hpp, before running, so it shows before any result); a
-// numerical failure throws NumericalError naming the analysis.
+// check_gear_pairs and the type's own input check, through analyses::check_inputs, before running,
+// so it shows before any result); a numerical failure throws NumericalError naming the analysis.
 #include <string>
 #include <vector>
 
@@ -55,5 +55,10 @@ MeshHarmonicsResult run_mesh_harmonics(const model::Model& model,
 AnalysisOutput mesh_harmonics_output(const model::Model& model,
                                      const MeshHarmonicsSettings& settings,
                                      const MeshHarmonicsResult& result, const Context& context);
+
+/// Checks made before anything runs: the tooth-load window's contact ratio (in [1, 3] and below
+/// the teeth) and max_order (resolved by the samples of one revolution). InputError.
+void check_mesh_harmonics_inputs(const model::Model& model, const MeshHarmonicsSettings& settings,
+                                 const Context& context);
 
 }  // namespace geardyn::analyses

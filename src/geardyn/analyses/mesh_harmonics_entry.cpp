@@ -87,6 +87,9 @@ AnalysisType mesh_harmonics_analysis() {
     d.check = check;
     return d;
   };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    check_mesh_harmonics_inputs(m, a.settings_of<MeshHarmonicsSettings>(), c);
+  };
   type.run = runner(run_mesh_harmonics, mesh_harmonics_output);
   type.scalars = {
       {"harmonic_amplitude",

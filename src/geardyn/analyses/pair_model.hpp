@@ -62,10 +62,8 @@ std::size_t pair_index(const model::Model& model, const std::string& name);
 /// A file name of the model, relative to the model file's folder.
 std::filesystem::path resolve_model_path(const model::Model& model, const std::string& file);
 
-/// Checks every gear pair and every gear analysis of `model` before anything runs: builds each
-/// pair (geometry, contact ratio, STE file), reads each correlation's measured file and checks
-/// that its reference keys fit the file, and checks each mesh_harmonics window (contact ratio
-/// in [1, 3] and below the teeth). Throws InputError for the first problem.
-void check_gear_analyses(const model::Model& model);
+/// Checks every gear pair of `model` before anything runs (geometry, contact ratio, STE file):
+/// builds each; InputError at the pair for the first problem.
+void check_gear_pairs(const model::Model& model);
 
 }  // namespace geardyn::analyses

@@ -86,7 +86,10 @@ Outcome run_analysis(const model::Model& model, const model::Analysis& analysis,
 }
 
 void check_inputs(const model::Model& model, const assembly::SolidComponents& solids) {
+  // The model's components first (the solids' joints, every gear pair), then each analysis's
+  // own checks (node sets, tooth-load windows, measured files).
   assembly::check_solid_sets(model, solids);
+  check_gear_pairs(model);
   for (const auto& a : model.analyses) {
     const AnalysisType& type = type_of(a);
     if (!type.check_inputs) continue;
@@ -94,10 +97,6 @@ void check_inputs(const model::Model& model, const assembly::SolidComponents& so
     context.with_solids(&solids);
     type.check_inputs(model, a, context);
   }
-  // Whole-model checks of the gear pairs (geometry, STE files) and of the analyses that use
-  // them (measured files, tooth-load window), and of the forced responses' node sets.
-  check_gear_analyses(model);
-  check_forced_analyses(model, solids);
 }
 
 }  // namespace geardyn::analyses
