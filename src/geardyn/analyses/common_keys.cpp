@@ -333,4 +333,41 @@ std::vector<double> amplitudes_of(const FieldValue& v) {
   return v.is_array ? v.numbers : std::vector<double>{v.number};
 }
 
+std::vector<model::Field> cyclic_sector_response_keys() {
+  return {
+      speed_list_key().read_by_finish<model::Analysis>(),
+      speed_start_rpm_key().read_by_finish<model::Analysis>(),
+      speed_stop_rpm_key().read_by_finish<model::Analysis>(),
+      speed_count_key().read_by_finish<model::Analysis>(),
+      n_modes_key().to_settings(&CyclicForcedResponseSettings::n_modes),
+      solid_key().to_settings(&CyclicForcedResponseSettings::solid),
+      reduction_key().to_settings_fn<CyclicForcedResponseSettings>(
+          [](auto& s, const FieldValue& v) {
+            s.reduction = v.given ? reduction_method(v) : ReductionMethod::None;
+          }),
+      reduced_modes_key().to_settings(&CyclicForcedResponseSettings::cb_modes),
+      master_sets_key().to_settings(&CyclicForcedResponseSettings::master_sets),
+      mesh_model_key().to_settings_enum(&CyclicForcedResponseSettings::model,
+                                        {MeshForceModel::Dynamic, MeshForceModel::InfiniteInertia}),
+      contact_loss_key().to_settings(&CyclicForcedResponseSettings::contact_loss),
+      gear_key().to_settings(&CyclicForcedResponseSettings::gear),
+      window_shift_key().to_settings(&CyclicForcedResponseSettings::window_shift),
+      contact_ratio_key().to_settings(&CyclicForcedResponseSettings::contact_ratio),
+      forced_pair_key().to_settings(&CyclicForcedResponseSettings::pair),
+      force_amplitude_key().to_settings_fn<CyclicForcedResponseSettings>(
+          [](auto& s, const FieldValue& v) { s.force_amplitude = amplitudes_of(v); }),
+      harmonics_rpm_key().to_settings(&CyclicForcedResponseSettings::harmonics_speed),
+      force_direction_key().to_settings(&CyclicForcedResponseSettings::force_direction),
+      cone_apex_key().to_settings_fn<CyclicForcedResponseSettings>(
+          [](auto& s, const FieldValue& v) { s.apex_below = v.choice == 0; }),
+      excitation_set_key().to_settings(&CyclicForcedResponseSettings::excitation_set),
+      sensor_sets_key().to_settings(&CyclicForcedResponseSettings::sensor_sets),
+      sensor_nodes_key().to_settings_fn<CyclicForcedResponseSettings>(
+          [](auto& s, const FieldValue& v) { s.sensor_nodes = integers_of(v); }),
+      sensor_components_key().to_settings(&CyclicForcedResponseSettings::sensor_components),
+      damping_ratio_key().to_settings(&CyclicForcedResponseSettings::damping_ratio),
+      q_factor_key().to_settings(&CyclicForcedResponseSettings::q_factor),
+  };
+}
+
 }  // namespace geardyn::analyses

@@ -149,4 +149,10 @@ struct CyclicForcedResponseSettings;
 /// damper_ring_response).
 void finish_tooth_excitation(CyclicForcedResponseSettings& s, const model::TableContext& t);
 
+/// The keys every forced response of a cyclic sector shares (cyclic_forced_response and
+/// damper_ring_response, whose settings extend CyclicForcedResponseSettings): speeds, solid and
+/// reduction, the tooth-force source (gear pair or explicit amplitude), excitation and sensor
+/// points, modal damping.
+std::vector<model::Field> cyclic_sector_response_keys();
+
 }  // namespace geardyn::analyses

@@ -66,39 +66,8 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
 }
 
 std::vector<model::Field> keys() {
-  return {
-      speed_list_key().read_by_finish<model::Analysis>(),
-      speed_start_rpm_key().read_by_finish<model::Analysis>(),
-      speed_stop_rpm_key().read_by_finish<model::Analysis>(),
-      speed_count_key().read_by_finish<model::Analysis>(),
-      n_modes_key().to_settings(&CyclicForcedResponseSettings::n_modes),
-      solid_key().to_settings(&CyclicForcedResponseSettings::solid),
-      reduction_key().to_settings_fn<CyclicForcedResponseSettings>(
-          [](auto& s, const FieldValue& v) {
-            s.reduction = v.given ? reduction_method(v) : ReductionMethod::None;
-          }),
-      reduced_modes_key().to_settings(&CyclicForcedResponseSettings::cb_modes),
-      master_sets_key().to_settings(&CyclicForcedResponseSettings::master_sets),
-      mesh_model_key().to_settings_enum(&CyclicForcedResponseSettings::model,
-                                        {MeshForceModel::Dynamic, MeshForceModel::InfiniteInertia}),
-      contact_loss_key().to_settings(&CyclicForcedResponseSettings::contact_loss),
-      gear_key().to_settings(&CyclicForcedResponseSettings::gear),
-      window_shift_key().to_settings(&CyclicForcedResponseSettings::window_shift),
-      contact_ratio_key().to_settings(&CyclicForcedResponseSettings::contact_ratio),
-      forced_pair_key().to_settings(&CyclicForcedResponseSettings::pair),
-      force_amplitude_key().to_settings_fn<CyclicForcedResponseSettings>(
-          [](auto& s, const FieldValue& v) { s.force_amplitude = amplitudes_of(v); }),
-      harmonics_rpm_key().to_settings(&CyclicForcedResponseSettings::harmonics_speed),
-      force_direction_key().to_settings(&CyclicForcedResponseSettings::force_direction),
-      cone_apex_key().to_settings_fn<CyclicForcedResponseSettings>(
-          [](auto& s, const FieldValue& v) { s.apex_below = v.choice == 0; }),
-      excitation_set_key().to_settings(&CyclicForcedResponseSettings::excitation_set),
-      sensor_sets_key().to_settings(&CyclicForcedResponseSettings::sensor_sets),
-      sensor_nodes_key().to_settings_fn<CyclicForcedResponseSettings>(
-          [](auto& s, const FieldValue& v) { s.sensor_nodes = integers_of(v); }),
-      sensor_components_key().to_settings(&CyclicForcedResponseSettings::sensor_components),
-      damping_ratio_key().to_settings(&CyclicForcedResponseSettings::damping_ratio),
-      q_factor_key().to_settings(&CyclicForcedResponseSettings::q_factor),
+  std::vector<model::Field> fields = cyclic_sector_response_keys();
+  std::vector<model::Field> own = {
       integer("engine_order",
               "Engine order k of the tooth force exciting the gear; it excites nodal "
               "diameter h = +-k mod sectors, and harmonic n of the response carries "
@@ -199,6 +168,8 @@ std::vector<model::Field> keys() {
           .min_items(1)
           .to_settings(&DamperRingResponseSettings::sweep_values),
   };
+  fields.insert(fields.end(), own.begin(), own.end());
+  return fields;
 }
 
 }  // namespace
