@@ -8,17 +8,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::cyclic {
 
 using Complex = std::complex<double>;
 using ComplexSparse = Eigen::SparseMatrix<Complex>;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 Eigen::Matrix3d rotation(const Eigen::Vector3d& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
@@ -155,7 +154,7 @@ void detected_sides(const std::vector<long>& node_ids, const std::vector<Eigen::
   for (std::size_t i = 0; i < n; ++i) angle[i] = std::atan2(coords[i].dot(e2), coords[i].dot(e1));
   std::vector<double> sorted = angle;
   std::sort(sorted.begin(), sorted.end());
-  double gap = sorted.front() + kTwoPi - sorted.back(), start = sorted.front();
+  double gap = sorted.front() + units::kTwoPi - sorted.back(), start = sorted.front();
   for (std::size_t i = 1; i < n; ++i)
     if (sorted[i] - sorted[i - 1] > gap) {
       gap = sorted[i] - sorted[i - 1];
@@ -164,13 +163,12 @@ void detected_sides(const std::vector<long>& node_ids, const std::vector<Eigen::
   std::vector<long> beyond;
   double widest = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    double psi = std::fmod(angle[i] - start + 2.0 * kTwoPi, kTwoPi);
-    if (psi > kTwoPi - 1e-12) psi = 0.0;
+    double psi = std::fmod(angle[i] - start + 2.0 * units::kTwoPi, units::kTwoPi);
+    if (psi > units::kTwoPi - 1e-12) psi = 0.0;
     widest = std::max(widest, psi);
-    const double to_left = radius[i] * std::sin(std::min(psi, 0.5 * std::numbers::pi));
+    const double to_left = radius[i] * std::sin(std::min(psi, 0.5 * units::kPi));
     const double off_right = out.sector_angle - psi;
-    const double to_right =
-        radius[i] * std::sin(std::min(std::abs(off_right), 0.5 * std::numbers::pi));
+    const double to_right = radius[i] * std::sin(std::min(std::abs(off_right), 0.5 * units::kPi));
     if (to_left <= tol) left.push_back(static_cast<int>(i));
     if (to_right <= tol) right.push_back(static_cast<int>(i));
     if (off_right < 0.0 && to_right > tol) beyond.push_back(node_ids[i]);
@@ -180,7 +178,7 @@ void detected_sides(const std::vector<long>& node_ids, const std::vector<Eigen::
                 fmt::format("a sector of 360/{} = {:.6g} deg", options.n_sectors,
                             360.0 / options.n_sectors),
                 fmt::format("nodes spanning {:.6g} deg; node(s) {} lie beyond the sector angle",
-                            widest * 180.0 / std::numbers::pi, list_ids(beyond)),
+                            widest * 180.0 / units::kPi, list_ids(beyond)),
                 "check the number of sectors and that the mesh is one sector only");
 }
 
@@ -255,7 +253,7 @@ SectorInterfaces find_interfaces(const std::vector<long>& node_ids,
   SectorInterfaces out;
   out.n_sectors = options.n_sectors;
   out.axis = options.axis.normalized();
-  out.sector_angle = kTwoPi / options.n_sectors;
+  out.sector_angle = units::kTwoPi / options.n_sectors;
   const Eigen::Vector3d& a = out.axis;
   const Eigen::Matrix3d R = rotation(a, out.sector_angle);
   const std::size_t n = coords.size();
@@ -415,7 +413,7 @@ Complex CyclicSector::phase(int h) const {
   const int k = ((h % N) + N) % N;
   if (k == 0) return 1.0;
   if (2 * k == N) return -1.0;
-  return std::polar(1.0, kTwoPi * k / N);
+  return std::polar(1.0, units::kTwoPi * k / N);
 }
 
 ComplexSparse CyclicSector::transformation(int h) const {
@@ -466,7 +464,7 @@ Eigen::VectorXcd CyclicSector::expand_to_sector(const Eigen::VectorXcd& u0, int 
                 std::to_string(u0.size()));
   const int k = static_cast<int>((static_cast<long long>(h) * sector) % N);
   const Complex ph =
-      k == 0 ? Complex(1.0) : (2 * k == N ? Complex(-1.0) : std::polar(1.0, kTwoPi * k / N));
+      k == 0 ? Complex(1.0) : (2 * k == N ? Complex(-1.0) : std::polar(1.0, units::kTwoPi * k / N));
   const Eigen::Matrix3d Rs = rotation(interfaces_.axis, sector * interfaces_.sector_angle);
   Eigen::VectorXcd out = ph * u0;  // generalised coordinates: phase only
   for (const auto& triple : triples_) {
@@ -563,7 +561,7 @@ CyclicModesResult solve_cyclic_modes(const Eigen::SparseMatrix<double>& K,
     const ComplexSparse Kh = sector.reduce(K, h), Mh = sector.reduce(M, h);
     d.eigen = eig::solve_hermitian(Kh, Mh, options.eigen);
     d.frequency_hz = d.eigen.eigenvalues.unaryExpr(
-        [](double lambda) { return std::sqrt(std::max(lambda, 0.0)) / kTwoPi; });
+        [](double lambda) { return std::sqrt(std::max(lambda, 0.0)) / units::kTwoPi; });
     if (d.eigen.eigenvectors.cols() > 0)
       d.sector_shapes = sector.transformation(h) * d.eigen.eigenvectors;
     if (d.eigen.status != Status::Ok) {

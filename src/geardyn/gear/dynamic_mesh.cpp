@@ -6,13 +6,13 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <numbers>
 #include <utility>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Floquet multipliers must be this far inside the unit circle for a fixed point of the
@@ -149,7 +149,7 @@ class Solver {
     const std::size_t ns = ste.size();
     // Interval count: a multiple of the STE samples (Hold steps fall on interval boundaries),
     // at least min_points_per_period, and short against the shortest natural period.
-    const double shortest_natural_period = kTwoPi / std::sqrt(mesh.max_stiffness_n_m() / m_);
+    const double shortest_natural_period = units::kTwoPi / std::sqrt(mesh.max_stiffness_n_m() / m_);
     const double needed = std::max(static_cast<double>(o.min_points_per_period),
                                    o.points_per_natural_period * period_ / shortest_natural_period);
     const double per_sample = std::ceil(needed / static_cast<double>(ns));
@@ -574,7 +574,7 @@ DynamicMesh::DynamicMesh(SteCurve ste, DynamicMeshOptions options)
 }
 
 double DynamicMesh::natural_frequency_hz() const {
-  return std::sqrt(k_mean_ / options_.equivalent_mass_kg) / kTwoPi;
+  return std::sqrt(k_mean_ / options_.equivalent_mass_kg) / units::kTwoPi;
 }
 
 MeshState DynamicMesh::static_state() const {

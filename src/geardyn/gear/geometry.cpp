@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void fail(const GearPairSpec& spec, const std::string& field, std::string expected,
@@ -26,9 +26,9 @@ void require_positive(const GearPairSpec& spec, const std::string& field, double
 
 void validate_angles(const GearPairSpec& spec) {
   const double alpha = spec.pressure_angle_rad;
-  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 45.0 * kDeg)
+  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 45.0 * units::kRadPerDegree)
     fail(spec, "pressure_angle", "a normal pressure angle in (0, 45) deg",
-         num(alpha / kDeg) + " deg");
+         num(alpha / units::kRadPerDegree) + " deg");
   const double beta = spec.helix_angle_rad;
   if (!std::isfinite(beta)) fail(spec, "helix_angle", "a finite angle", num(beta));
   switch (spec.type) {
@@ -36,34 +36,37 @@ void validate_angles(const GearPairSpec& spec) {
     case GearType::StraightBevel:
       if (beta != 0.0)
         fail(spec, "helix_angle", fmt::format("0 for a {} gear", to_string(spec.type)),
-             num(beta / kDeg) + " deg",
+             num(beta / units::kRadPerDegree) + " deg",
              spec.type == GearType::Spur ? "use type \"helical\" for a helix angle"
                                          : "use type \"spiral_bevel\" for a spiral angle");
       break;
     case GearType::Helical:
-      if (beta <= 0.0 || beta >= 45.0 * kDeg)
+      if (beta <= 0.0 || beta >= 45.0 * units::kRadPerDegree)
         fail(spec, "helix_angle", "a helix angle in (0, 45) deg (the hand is given separately)",
-             num(beta / kDeg) + " deg", beta == 0.0 ? "use type \"spur\" for beta = 0" : "");
+             num(beta / units::kRadPerDegree) + " deg",
+             beta == 0.0 ? "use type \"spur\" for beta = 0" : "");
       break;
     case GearType::SpiralBevel:
-      if (beta <= 0.0 || beta >= 60.0 * kDeg)
-        fail(spec, "helix_angle", "a mean spiral angle in (0, 60) deg", num(beta / kDeg) + " deg",
+      if (beta <= 0.0 || beta >= 60.0 * units::kRadPerDegree)
+        fail(spec, "helix_angle", "a mean spiral angle in (0, 60) deg",
+             num(beta / units::kRadPerDegree) + " deg",
              beta == 0.0 ? "use type \"straight_bevel\" for beta = 0" : "");
       break;
     case GearType::Hypoid:
-      if (beta < 0.0 || beta >= 60.0 * kDeg)
+      if (beta < 0.0 || beta >= 60.0 * units::kRadPerDegree)
         fail(spec, "helix_angle", "the wheel's mean spiral angle in [0, 60) deg",
-             num(beta / kDeg) + " deg");
+             num(beta / units::kRadPerDegree) + " deg");
       break;
   }
   const double beta1 = spec.pinion_spiral_angle_rad;
   if (spec.type == GearType::Hypoid) {
-    if (!std::isfinite(beta1) || beta1 <= 0.0 || beta1 >= 70.0 * kDeg)
+    if (!std::isfinite(beta1) || beta1 <= 0.0 || beta1 >= 70.0 * units::kRadPerDegree)
       fail(spec, "pinion_spiral_angle", "the hypoid pinion's mean spiral angle in (0, 70) deg",
-           num(beta1 / kDeg) + " deg");
+           num(beta1 / units::kRadPerDegree) + " deg");
   } else if (!std::isnan(beta1)) {
     fail(spec, "pinion_spiral_angle", "no pinion spiral angle (it applies to hypoid gears only)",
-         num(beta1 / kDeg) + " deg", "for spiral bevel gears give the mean spiral angle only");
+         num(beta1 / units::kRadPerDegree) + " deg",
+         "for spiral bevel gears give the mean spiral angle only");
   }
 }
 
@@ -299,18 +302,19 @@ Transverse bevel_pair(const GearPairSpec& spec, double u, GearPairGeometry& g, d
     fail(spec, "centre_distance", "no centre distance (cylindrical gears only)",
          num(spec.centre_distance_m), "bevel gears are set by the shaft angle");
   const double sigma = spec.shaft_angle_rad;
-  if (!std::isfinite(sigma) || sigma <= 0.0 || sigma >= std::numbers::pi)
-    fail(spec, "shaft_angle", "a shaft angle in (0, 180) deg", num(sigma / kDeg) + " deg");
+  if (!std::isfinite(sigma) || sigma <= 0.0 || sigma >= units::kPi)
+    fail(spec, "shaft_angle", "a shaft angle in (0, 180) deg",
+         num(sigma / units::kRadPerDegree) + " deg");
   if (std::abs(x1 + x2) > 1e-12)
     fail(spec, "profile_shift_wheel",
          fmt::format("x2 = -x1 = {} (bevel gears use balanced profile shift)", num(-x1)), num(x2));
   const double delta1 = std::atan2(std::sin(sigma), u + std::cos(sigma));
   const double delta2 = sigma - delta1;
-  if (delta2 >= 0.5 * std::numbers::pi - 1e-9)
+  if (delta2 >= 0.5 * units::kPi - 1e-9)
     fail(spec, "shaft_angle",
          "a wheel pitch cone angle below 90 deg (crown and internal bevel gears are not "
          "supported)",
-         fmt::format("delta2 = {} deg", num(delta2 / kDeg)));
+         fmt::format("delta2 = {} deg", num(delta2 / units::kRadPerDegree)));
   const double m_e = spec.module_m;
   const double R_e = 0.5 * m_e * z1 / std::sin(delta1);
   if (!std::isnan(spec.outer_cone_distance_m)) {
@@ -403,9 +407,9 @@ GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
   g.working_pressure_angle_rad = t.alpha_wt;
   g.centre_distance_m = t.a;
   g.transverse_base_pitch_m =
-      std::numbers::pi * g.transverse_module_m * std::cos(g.transverse_pressure_angle_rad);
+      units::kPi * g.transverse_module_m * std::cos(g.transverse_pressure_angle_rad);
   g.transverse_contact_ratio = g.path_of_contact_m / g.transverse_base_pitch_m;
-  g.overlap_ratio = g.face_width_m * std::sin(beta) / (std::numbers::pi * m_n);
+  g.overlap_ratio = g.face_width_m * std::sin(beta) / (units::kPi * m_n);
   g.total_contact_ratio = g.transverse_contact_ratio + g.overlap_ratio;
 
   const double cb = std::cos(g.base_helix_angle_rad);
@@ -452,13 +456,13 @@ Table geometry_table(const std::vector<GearPairGeometry>& pairs) {
       ra.push_back(m.tip_radius_m);
       rf.push_back(m.root_radius_m);
       rw.push_back(m.working_pitch_radius_m);
-      delta.push_back(m.pitch_cone_angle_rad / kDeg);
-      beta.push_back(m.spiral_angle_rad / kDeg);
+      delta.push_back(m.pitch_cone_angle_rad / units::kRadPerDegree);
+      beta.push_back(m.spiral_angle_rad / units::kRadPerDegree);
       x.push_back(m.profile_shift);
       a.push_back(g.centre_distance_m);
       mn.push_back(g.normal_module_m);
       mt.push_back(g.transverse_module_m);
-      alpha_w.push_back(g.working_pressure_angle_rad / kDeg);
+      alpha_w.push_back(g.working_pressure_angle_rad / units::kRadPerDegree);
       ea.push_back(g.transverse_contact_ratio);
       eb.push_back(g.overlap_ratio);
       eg.push_back(g.total_contact_ratio);

@@ -11,11 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/hbm/harmonic_basis.hpp"
 #include "geardyn/hbm/stability.hpp"
 
@@ -248,7 +248,7 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
     return lambda[a].imag() > lambda[b].imag();
   });
   const auto n_kept = static_cast<Eigen::Index>(accepted.size());
-  const double period = 2.0 * std::numbers::pi / omega;
+  const double period = units::kTwoPi / omega;
   out.exponents.resize(n_kept);
   out.multipliers.resize(n_kept);
   out.centroids.resize(n_kept);

@@ -10,12 +10,12 @@
 #include <map>
 #include <set>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/meshgen/gmsh_session.hpp"
 
 namespace geardyn::meshgen {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr const char* kAnalysis = "gear_sector";
 
 class Checker {
@@ -52,7 +52,7 @@ Interval centred(double centre, double width) {
   return {centre - 0.5 * width, centre + 0.5 * width};
 }
 
-double sector_angle(const GearSectorParams& p) { return 2.0 * kPi / p.num_sectors; }
+double sector_angle(const GearSectorParams& p) { return units::kTwoPi / p.num_sectors; }
 
 }  // namespace
 
@@ -70,7 +70,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
   ToothGeometry g;
   if (t.profile == ToothProfile::Module) {
     check.positive("tooth.module", t.module);
-    if (!(t.pressure_angle > 0 && t.pressure_angle < kPi / 4))
+    if (!(t.pressure_angle > 0 && t.pressure_angle < units::kPi / 4))
       check.fail("tooth.pressure_angle", "an angle in (0, pi/4) rad", t.pressure_angle);
     check.positive("tooth.addendum_coefficient", t.addendum_coefficient);
     check.positive("tooth.dedendum_coefficient", t.dedendum_coefficient);
@@ -78,7 +78,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
     g.tip_radius = g.pitch_radius + t.addendum_coefficient * t.module;
     g.root_radius = g.pitch_radius - t.dedendum_coefficient * t.module;
     // Basic rack: thickness pi m / 2 at the pitch line, flanks inclined by the pressure angle.
-    const double s_p = 0.5 * kPi * t.module;
+    const double s_p = 0.5 * units::kPi * t.module;
     g.tip_thickness = s_p - 2.0 * t.addendum_coefficient * t.module * std::tan(t.pressure_angle);
     g.root_thickness = s_p + 2.0 * t.dedendum_coefficient * t.module * std::tan(t.pressure_angle);
     if (!(g.root_radius > 0))
@@ -108,7 +108,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
   }
   // A tooth space must remain at the root (the sector faces cut through it); 2 % of the pitch
   // keeps the mesh there from degenerating into slivers.
-  const double root_pitch = 2.0 * kPi * g.root_radius / p.num_teeth;
+  const double root_pitch = 2.0 * units::kPi * g.root_radius / p.num_teeth;
   if (!(g.root_thickness < 0.98 * root_pitch))
     check.fail(
         t.profile == ToothProfile::Module ? "tooth.module" : "tooth.root_thickness",
@@ -503,7 +503,7 @@ SectorBodies sector_bodies(const GearSectorParams& p, const ToothGeometry& tooth
 
   std::vector<int> tooth_volumes;
   for (int j = 0; j < teeth_per_sector; ++j)
-    tooth_volumes.push_back(add_tooth(tooth, (j + 0.5) * 2.0 * kPi / p.num_teeth, b));
+    tooth_volumes.push_back(add_tooth(tooth, (j + 0.5) * 2.0 * units::kPi / p.num_teeth, b));
 
   // One gear solid: fusing (rather than fragmenting) the blank pieces and the teeth leaves no
   // internal faces; a flat tet with its four corners on such a curved internal face (e.g. the
@@ -547,7 +547,7 @@ SectorBodies sector_bodies(const GearSectorParams& p, const ToothGeometry& tooth
 // flank face it lies on. Returns its Gmsh point tag.
 int embed_excitation_point(const GearSectorParams& p, const ToothGeometry& tooth,
                            const std::vector<int>& gear, double tol) {
-  const Eigen::Vector3d pitch_point = flank_point(tooth, kPi / p.num_teeth);
+  const Eigen::Vector3d pitch_point = flank_point(tooth, units::kPi / p.num_teeth);
   const int excitation_point = occ::addPoint(pitch_point.x(), pitch_point.y(), pitch_point.z());
   occ::synchronize();
 

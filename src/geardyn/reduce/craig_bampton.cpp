@@ -7,10 +7,10 @@
 #include <cmath>
 #include <ctime>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 
@@ -313,7 +313,7 @@ double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
   eo.dense_limit = options.dense_limit;
   eo.krylov = options.krylov;
   if (band) {
-    const double omega = 2.0 * std::numbers::pi * options.frequency_max_hz;
+    const double omega = units::kTwoPi * options.frequency_max_hz;
     eo.band_max = omega * omega;
     // Below zero as well, so that a free motion computed at -1e-12 is caught, not skipped.
     eo.band_min = -eo.band_max;
@@ -478,7 +478,7 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
   rc.n_modal = static_cast<int>(nm);
   rc.fixed_interface_hz.resize(nm);
   for (Eigen::Index k = 0; k < nm; ++k)
-    rc.fixed_interface_hz[k] = std::sqrt(std::max(lambda[k], 0.0)) / (2.0 * std::numbers::pi);
+    rc.fixed_interface_hz[k] = std::sqrt(std::max(lambda[k], 0.0)) / units::kTwoPi;
   rc.Psi = std::move(Psi);
   rc.Phi = std::move(Phi);
   return rc;
