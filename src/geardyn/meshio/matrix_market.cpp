@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "geardyn/core/text.hpp"
+
 namespace geardyn::meshio {
 namespace {
 
@@ -69,19 +71,14 @@ bool parse_double(std::string_view t, double& v) {
   return ec == std::errc() && ptr == t.data() + t.size();
 }
 
-std::string read_file(const fs::path& path, const char* what) {
+// The whole file; InputError when it does not exist or cannot be read.
+std::string read_existing_file(const fs::path& path, const char* what) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw InputError(SourceLocation{path.string(), 0, 0}, "file",
                      fmt::format("an existing {}", what),
                      "'" + path.string() + "' does not exist or is not a file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (!in)
-    throw InputError(SourceLocation{path.string(), 0, 0}, "file", "a readable file",
-                     "'" + path.string() + "' cannot be read");
-  return content.str();
+  return read_file(path);
 }
 
 }  // namespace
@@ -107,7 +104,7 @@ Header parse_header(const std::vector<std::string_view>& lines, const Locator& a
   if (header.empty() || lower(header[0].text) != "%%matrixmarket")
     throw InputError(at(0, 1), "header",
                      "'%%MatrixMarket matrix coordinate real general' or similar",
-                     "'" + std::string(lines[0].substr(0, 60)) + "'");
+                     "'" + shorten(lines[0], 60) + "'");
   const auto header_word = [&](std::size_t k, const char* key,
                                std::initializer_list<const char*> allowed) {
     const std::string word = k < header.size() ? lower(header[k].text) : std::string();
@@ -286,7 +283,7 @@ MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string&
 }
 
 MatrixMarketMatrix read_matrix_market(const fs::path& path) {
-  return parse_matrix_market(read_file(path, "Matrix Market file"), path.string());
+  return parse_matrix_market(read_existing_file(path, "Matrix Market file"), path.string());
 }
 
 std::vector<solid::DofInfo> parse_dof_map_csv(std::string_view text, const std::string& file) {

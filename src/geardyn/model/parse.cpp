@@ -18,6 +18,8 @@
 #include <set>
 #include <sstream>
 
+#include "geardyn/core/text.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema.hpp"
 
 namespace geardyn::model {
@@ -85,11 +87,6 @@ SourceLocation location_of(const toml::source_region& r, const SourceLocation& f
   if (starts_with(*r.path, kSetPrefix) || starts_with(*r.path, kSweepPrefix))
     return {*r.path, 0, 0};
   return {*r.path, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-}
-
-std::string shorten(std::string_view s) {
-  if (s.size() <= 60) return std::string(s);
-  return std::string(s.substr(0, 57)) + "...";
 }
 
 std::string number_text(double x) {
@@ -1143,7 +1140,6 @@ void Resolver::resolve_speeds() {
 }
 
 void Resolver::resolve_disks() {
-  constexpr double kPi = 3.14159265358979323846;
   for (std::size_t i = 0; i < m_.disks.size(); ++i) {
     Disk& d = m_.disks[i];
     check_node(fmt::format("disks[{}].node", i), d.node);
@@ -1153,7 +1149,7 @@ void Resolver::resolve_disks() {
     // Id = m (3 (ro^2 + ri^2) + h^2) / 12 (about a diameter through the centre of mass).
     const double rho = m_.find_material(d.material)->density;
     const double ro = d.outer_diameter / 2.0, ri = d.inner_diameter / 2.0, h = d.thickness;
-    d.mass = rho * kPi * (ro * ro - ri * ri) * h;
+    d.mass = rho * units::kPi * (ro * ro - ri * ri) * h;
     d.polar_inertia = d.mass * (ro * ro + ri * ri) / 2.0;
     d.diametral_inertia = d.mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0;
   }
@@ -1239,15 +1235,14 @@ void Resolver::check_damping() {
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return m_.damping.bands[a].f_min < m_.damping.bands[b].f_min;
   });
-  constexpr double kToHz = 1.0 / (2.0 * 3.14159265358979323846);
   for (std::size_t k = 1; k < order.size(); ++k) {
     const DampingBand& lo = m_.damping.bands[order[k - 1]];
     const DampingBand& hi = m_.damping.bands[order[k]];
     if (hi.f_min < lo.f_max)
       fail(fmt::format("damping.bands[{}].f_min_hz", order[k]),
            fmt::format("a band that does not overlap damping.bands[{}] (which ends at {} Hz)",
-                       order[k - 1], number_text(lo.f_max * kToHz)),
-           fmt::format("{} Hz", number_text(hi.f_min * kToHz)));
+                       order[k - 1], number_text(lo.f_max * (1.0 / units::kTwoPi))),
+           fmt::format("{} Hz", number_text(hi.f_min * (1.0 / units::kTwoPi))));
   }
 }
 
@@ -1584,11 +1579,9 @@ ModelDocument parse_document(const std::string& text, const std::string& file_na
 }
 
 ModelDocument load_document(const std::string& path, const Section& schema) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_document(text.str(), path, schema);
+  const std::optional<std::string> text = try_read_file(path);
+  if (!text) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
+  return parse_document(*text, path, schema);
 }
 
 void apply_override(ModelDocument& document, const std::string& assignment) {

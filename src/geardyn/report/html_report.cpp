@@ -23,26 +23,7 @@ using nlohmann::json;
 
 // Plotly renders its strings (titles, labels, legend, hover) as a small HTML subset and decodes
 // character references, so escaping & < > shows the text literally.
-std::string plotly_text(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
+std::string plotly_text(std::string_view text) { return escape_html_content(text); }
 
 // JSON placed inside a <script> element: '<' only occurs inside JSON strings, where \u003c is the
 // same character, so no "</script>" or "<!--" can end or confuse the element.
@@ -455,33 +436,6 @@ std::string table_html(const Table& table, const std::string& analysis_name,
 }
 
 }  // namespace
-
-std::string escape_html(std::string_view text) {
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string escape_script_text(std::string_view js) {
   // A "</script" in any letter case would end the element early; "<\/script" means the same
