@@ -519,7 +519,7 @@ double mesh_frequency_hz(double speed_rpm, int teeth) {
   if (!std::isfinite(speed_rpm) || speed_rpm < 0.0)
     throw InputError(SourceLocation{}, "speed_rpm", "a finite speed >= 0 rpm",
                      fmt::format("{}", speed_rpm));
-  return speed_rpm / 60.0 * teeth;
+  return units::rpm_to_hz(speed_rpm) * teeth;
 }
 
 void DynamicMeshOptions::validate() const {
@@ -866,7 +866,7 @@ MeshSweepResult sweep_mesh_frequency(const DynamicMesh& mesh, const MeshSweepOpt
       previous = r.start_state;
       MeshSweepPoint p;
       p.mesh_frequency_hz = f[i];
-      p.speed_rpm = options.teeth > 0 ? 60.0 * f[i] / options.teeth : kNaN;
+      p.speed_rpm = options.teeth > 0 ? units::hz_to_rpm(f[i]) / options.teeth : kNaN;
       p.dte_mean_m = r.dte_mean_m;
       p.dte_rms_m = r.dte_rms_m;
       p.dte_max_m = r.dte_max_m;
