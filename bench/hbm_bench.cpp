@@ -27,10 +27,10 @@
 #include <cmath>
 #include <complex>
 #include <cstdlib>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/hbm/condensed.hpp"
 #include "geardyn/hbm/friction_contact.hpp"
 
@@ -42,7 +42,6 @@ using cd = std::complex<double>;
 constexpr int kPairs = 100, kHarmonics = 5, kModes = 40, kSectors = 40, kDiameter = 3;
 constexpr double kNormalStiffness = 5e7, kTangentialStiffness = 3e7, kFriction = 0.3;
 constexpr double kPreload = 150.0;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 double position(int p) { return (p + 0.5) / kPairs; }
 
@@ -60,15 +59,15 @@ hbm::ModalReceptance receptance(int n) {
     if (n == 1 && m == 9) f = 1850.0;   // a neighbour just below the band
     if (n == 1 && m == 10) f = 2000.0;  // the excited mode
     if (n == 1 && m == 11) f = 2160.0;  // a neighbour just above the band
-    r.natural_frequency[m] = kTwoPi * f;
+    r.natural_frequency[m] = geardyn::units::kTwoPi * f;
     r.damping_ratio[m] = 0.002 + 0.003 * (0.5 + 0.5 * std::sin(1.7 * m + n));
     const double k = 1.0 + (m % 6);  // half-waves along the groove
     for (int p = 0; p < kPairs; ++p) {
       const double s = position(p);
-      const cd travelling = std::polar(1.0, kTwoPi * h * s / kSectors);
+      const cd travelling = std::polar(1.0, geardyn::units::kTwoPi * h * s / kSectors);
       // Mass-normalised shapes [m / sqrt(kg)]: the tangential slip larger than the approach.
-      const double normal = 0.03 * std::cos(std::numbers::pi * k * s + 0.4 * m);
-      const double tangential = 0.1 * std::cos(std::numbers::pi * k * s + 0.9 * m + 0.3);
+      const double normal = 0.03 * std::cos(geardyn::units::kPi * k * s + 0.4 * m);
+      const double tangential = 0.1 * std::cos(geardyn::units::kPi * k * s + 0.9 * m + 0.3);
       r.left(2 * p, m) = normal * travelling;
       r.left(2 * p + 1, m) = tangential * travelling;
     }
@@ -81,7 +80,7 @@ hbm::ModalReceptance receptance(int n) {
     for (int q = 0; q < kPairs; ++q) {
       const double ds = position(p) - position(q);
       const cd value = 3e-10 * std::exp(-(ds / 0.04) * (ds / 0.04)) *
-                       std::polar(1.0, kTwoPi * h * ds / kSectors);
+                       std::polar(1.0, geardyn::units::kTwoPi * h * ds / kSectors);
       r.residual(2 * p, 2 * q) = 0.5 * value;
       r.residual(2 * p + 1, 2 * q + 1) = value;
     }
@@ -120,7 +119,7 @@ RingCase ring_case() {
   for (int i = 0; i < nc; ++i) k[i] = i % 2 == 0 ? kNormalStiffness : kTangentialStiffness;
   double best = 0.0, best_omega = 0.0, best_norm = 0.0;
   for (double f = 1950.0; f <= 2250.0; f += 1.0) {
-    const double w = kTwoPi * f;
+    const double w = geardyn::units::kTwoPi * f;
     Eigen::MatrixXcd A = r1.receptance(w) * k.asDiagonal();
     A.diagonal().array() += 1.0;
     const Eigen::VectorXcd x = A.partialPivLu().solve(r1.linear_response(w));
@@ -134,7 +133,7 @@ RingCase ring_case() {
   }
   const double scale = 40.0 * kFriction * kPreload / kTangentialStiffness / best;
   c.harmonics[1].modal_excitation *= scale;
-  c.omega_min = 0.96 * kTwoPi * 2000.0;
+  c.omega_min = 0.96 * geardyn::units::kTwoPi * 2000.0;
   c.omega_max = 1.04 * best_omega;
   // The damped peak is a fraction of the stuck one: a scale of that order weighs the amplitude
   // and the frequency alike in the arc length.
@@ -236,7 +235,8 @@ void BM_FrictionRingCurve(benchmark::State& state) {
     }
   }
   const double points = static_cast<double>(r.points.size());
-  state.SetLabel(fmt::format("peak slip {:.10e} m at {:.6f} Hz", peak, peak_omega / kTwoPi));
+  state.SetLabel(
+      fmt::format("peak slip {:.10e} m at {:.6f} Hz", peak, peak_omega / geardyn::units::kTwoPi));
   state.counters["points"] = points;
   state.counters["newton"] = static_cast<double>(newton);
   state.counters["linearized"] = static_cast<double>(stats.linearizations);

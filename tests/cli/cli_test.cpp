@@ -88,7 +88,8 @@ TEST(Cli, FriswellExample591ReproducesTheBook) {
   EXPECT_TRUE(fs::exists(out / "campbell" / "critical_speeds.csv"));
 }
 
-// The geared rotor of Wang et al. (Chinese J. Aeronautics 2020): the unbalance on the HPR
+// The geared rotor of J. Hong, L. Jiang, X. Xu, Y. Ma, "High cycle fatigue failure with radial
+// cracks in gears of aero-engines", Chinese Journal of Aeronautics, 2020: the unbalance on the HPR
 // reaches the driven gear's swing only through the mesh. Their Fig. 18 shows the swing
 // response vanishing for weak meshes (below ~1e5 N/m); with k_mesh = 1 N/m the swing must be
 // at least 1e4 times smaller than at the design value 1e7 N/m (it scales with k for k -> 0).
@@ -116,7 +117,7 @@ TEST(Cli, GearedRotorDemoRunsAndTheMeshCarriesTheSwing) {
   EXPECT_LT(at_weak, 1e-4 * at_design);
   EXPECT_TRUE(fs::exists(out / "transient_36900rpm" / "time_history.csv"));
 
-  // Wang et al., Table 3: without the mesh the HPR modes carry no swing of the driven gear;
+  // Hong et al. (2020), Table 3: without the mesh the HPR modes carry no swing of the driven gear;
   // with the mesh some of them do. HPR modes: the turbine disk moves (relative amplitude
   // > 0.1). "No swing": below 1e-9 (round-off of the eigenvectors); "carries": above 1e-3.
   auto count_hpr_modes_with_swing = [](const fs::path& csv, double threshold, int& hpr_modes) {

@@ -147,8 +147,9 @@ TEST(SolidExamples, GearSectorCyclicEqualsFullWheel) {
 // a direct solve in tests/damper: 1e-6 here is the Newton tolerance); the performance curve
 // re-traced with the ring's mass matrix scaled must equal the same gear meshed with a ring of the
 // scaled density (same mesh: the mass matrices are equal to round-off, 1e-6 leaves room for the
-// continuation's points); and the thesis's Figure 5-11 shape (/work/shared/references/000, sec.
-// 5.3): the peak first falls as the ring grows heavier, then rises as it sticks, with an
+// continuation's points); and the Figure 5-11 shape of A. Durastante, "Simulation of the Dynamic
+// Response of Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino,
+// 2018, sec. 5.3: the peak first falls as the ring grows heavier, then rises as it sticks, with an
 // interior optimum.
 TEST(SolidExamples, DamperRingStuckSteelRingAndAnInteriorMassOptimum) {
   const fs::path out = fresh_dir("damper_ring");

@@ -2,12 +2,13 @@
 // ring (meshgen::gear_sector, 10 sectors, 40 teeth, tet4), nodal diameter 2, engine order 2.
 //
 // References and tolerances:
-//  * Stuck limit against a direct solve (the thesis, /work/shared/references/000, sec. 4.4: a
-//    ring that never slips only stiffens): the contacts as linear springs assembled into the
-//    sector stiffness between each pair's nodes, reduced to nodal diameter 2 and solved directly
-//    with a sparse LU, against the condensed stuck response (40 modes + residual flexibility)
-//    at 0.25 to 0.7 of the resonance speed. The residual is the static flexibility of the modes
-//    left out, so the error is of order (w / w_41)^2 times their share of the response:
+//  * Stuck limit against a direct solve (A. Durastante, "Simulation of the Dynamic Response of
+//    Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
+//    sec. 4.4: a ring that never slips only stiffens): the contacts as linear springs assembled
+//    into the sector stiffness between each pair's nodes, reduced to nodal diameter 2 and solved
+//    directly with a sparse LU, against the condensed stuck response (40 modes + residual
+//    flexibility) at 0.25 to 0.7 of the resonance speed. The residual is the static flexibility of
+//    the modes left out, so the error is of order (w / w_41)^2 times their share of the response:
 //    measured 8.6e-4 relative, 2e-3 asserted.
 //  * mu -> infinity: the friction-damped harmonic balance equals the stuck linear response;
 //    mu = 0: it equals the gear without ring (the issue's limits). The only difference left is

@@ -1,7 +1,8 @@
 // Interface-mode (Tran) reduction of Craig-Bampton components.
 // Source: D.-M. Tran, "Component mode synthesis methods using interface modes. Application to
-// structures with cyclic symmetry", Computers & Structures 79 (2001); damper-ring thesis
-// (/work/shared/references) chapter 2.2.3: at least six interface modes so that the rigid-body
+// structures with cyclic symmetry", Computers & Structures 79 (2001); A. Durastante, "Simulation
+// of the Dynamic Response of Aeronautical Gears Equipped with Damper Rings", MSc thesis,
+// Politecnico di Torino, 2018, chapter 2.2.3: at least six interface modes so that the rigid-body
 // motions survive.
 #include "geardyn/reduce/interface_reduction.hpp"
 

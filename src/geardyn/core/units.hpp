@@ -19,5 +19,8 @@ constexpr double hz_to_rad_per_s(double f) { return f * kRadPerSecondPerHz; }
 constexpr double rad_per_s_to_hz(double w) { return w / kRadPerSecondPerHz; }
 constexpr double deg_to_rad(double deg) { return deg * kRadPerDegree; }
 constexpr double rad_to_deg(double rad) { return rad / kRadPerDegree; }
+/// Revolutions per minute to revolutions per second (a rotation frequency in Hz), and back.
+constexpr double rpm_to_hz(double rpm) { return rpm / 60.0; }
+constexpr double hz_to_rpm(double f) { return f * 60.0; }
 
 }  // namespace geardyn::units

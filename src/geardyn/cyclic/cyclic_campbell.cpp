@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::cyclic {
 
@@ -69,12 +70,14 @@ Table cyclic_campbell(const std::vector<ModeFrequencyLine>& lines,
       const std::string branch = (k % N == line.nodal_diameter) ? "h+mN" : "mN-h";
       if (f.size() == 1) {
         if (f[0] > 0.0)
-          rows.push_back({line.nodal_diameter, line.mode, k, branch, f[0], 60.0 * f[0] / k});
+          rows.push_back(
+              {line.nodal_diameter, line.mode, k, branch, f[0], units::hz_to_rpm(f[0]) / k});
         continue;
       }
       // g(speed) = f(speed) - k speed / 60; a sign change between two speeds is a crossing.
       for (std::size_t i = 0; i + 1 < speeds.size(); ++i) {
-        const double g0 = f[i] - k * speeds[i] / 60.0, g1 = f[i + 1] - k * speeds[i + 1] / 60.0;
+        const double g0 = f[i] - units::rpm_to_hz(k * speeds[i]),
+                     g1 = f[i + 1] - units::rpm_to_hz(k * speeds[i + 1]);
         if (g0 == 0.0) {
           rows.push_back({line.nodal_diameter, line.mode, k, branch, f[i], speeds[i]});
         } else if ((g0 > 0.0 && g1 < 0.0) || (g0 < 0.0 && g1 > 0.0)) {
@@ -83,7 +86,7 @@ Table cyclic_campbell(const std::vector<ModeFrequencyLine>& lines,
                           speeds[i] + t * (speeds[i + 1] - speeds[i])});
         }
       }
-      if (f.back() - k * speeds.back() / 60.0 == 0.0)
+      if (f.back() - units::rpm_to_hz(k * speeds.back()) == 0.0)
         rows.push_back({line.nodal_diameter, line.mode, k, branch, f.back(), speeds.back()});
     }
   }

@@ -8,17 +8,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::cyclic {
 
 using Complex = std::complex<double>;
 using ComplexSparse = Eigen::SparseMatrix<Complex>;
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 Eigen::Matrix3d rotation(const Eigen::Vector3d& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
@@ -86,10 +85,12 @@ class SpatialHash {
 
 }  // namespace
 
-SectorInterfaces find_interfaces(const std::vector<long>& node_ids,
-                                 const std::vector<Eigen::Vector3d>& coords,
-                                 const InterfaceOptions& options) {
-  const std::string key = "cyclic.interfaces";
+namespace {
+
+// The checks of the options and of the node lists.
+void check_interface_input(const std::vector<long>& node_ids,
+                           const std::vector<Eigen::Vector3d>& coords,
+                           const InterfaceOptions& options, const std::string& key) {
   if (options.n_sectors < 2)
     input_error(key + ".n_sectors", "N >= 2 sectors", std::to_string(options.n_sectors));
   if (!(options.axis.norm() > 0.0) || !options.axis.allFinite())
@@ -107,95 +108,86 @@ SectorInterfaces find_interfaces(const std::vector<long>& node_ids,
     input_error(key, "left and right node sets both given or both empty",
                 fmt::format("{} left, {} right nodes", options.left_nodes.size(),
                             options.right_nodes.size()));
+}
 
-  SectorInterfaces out;
-  out.n_sectors = options.n_sectors;
-  out.axis = options.axis.normalized();
-  out.sector_angle = kTwoPi / options.n_sectors;
-  const Eigen::Vector3d& a = out.axis;
-  const Eigen::Matrix3d R = rotation(a, out.sector_angle);
-  const std::size_t n = coords.size();
-
-  double size = 0.0;
-  for (const auto& x : coords) size = std::max(size, x.norm());
-  if (!(size > 0.0)) input_error(key, "nodes away from the origin", "all nodes at the origin");
-  const double tol = std::isnan(options.tolerance) ? 1e-6 * size : options.tolerance;
-  out.tolerance_used = tol;
-
-  std::vector<double> radius(n);
-  std::vector<long> on_axis;
-  for (std::size_t i = 0; i < n; ++i) {
-    radius[i] = (coords[i] - coords[i].dot(a) * a).norm();
-    if (radius[i] <= tol) on_axis.push_back(node_ids[i]);
-  }
-  if (!on_axis.empty())
-    input_error(key, "no node on the axis of symmetry",
-                fmt::format("node(s) {} within {:.3g} m of the axis", list_ids(on_axis), tol),
-                "a node on the axis belongs to every sector, which cyclic symmetry does not "
-                "support here; mesh a small hole around the axis");
-
-  std::vector<int> left, right;
-  if (!options.left_nodes.empty()) {
-    std::unordered_map<long, int> index;
-    for (std::size_t i = 0; i < n; ++i) index.emplace(node_ids[i], static_cast<int>(i));
-    auto lookup = [&](const std::vector<long>& ids, const char* side, std::vector<int>& into) {
-      std::vector<long> missing;
-      for (long id : ids) {
-        const auto it = index.find(id);
-        if (it == index.end())
-          missing.push_back(id);
-        else
-          into.push_back(it->second);
-      }
-      if (!missing.empty())
-        input_error(key + "." + side + "_nodes", "ids of sector nodes",
-                    fmt::format("unknown node id(s) {}", list_ids(missing)));
-    };
-    lookup(options.left_nodes, "left", left);
-    lookup(options.right_nodes, "right", right);
-    std::unordered_set<int> left_set(left.begin(), left.end());
-    std::vector<long> both;
-    for (int i : right)
-      if (left_set.count(i)) both.push_back(node_ids[static_cast<std::size_t>(i)]);
-    if (!both.empty())
-      input_error(key, "disjoint left and right node sets",
-                  fmt::format("node(s) {} in both", list_ids(both)));
-  } else {
-    // Angles about the axis; the sector is the complement of the largest empty angular gap.
-    Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
-    std::vector<double> angle(n);
-    for (std::size_t i = 0; i < n; ++i) angle[i] = std::atan2(coords[i].dot(e2), coords[i].dot(e1));
-    std::vector<double> sorted = angle;
-    std::sort(sorted.begin(), sorted.end());
-    double gap = sorted.front() + kTwoPi - sorted.back(), start = sorted.front();
-    for (std::size_t i = 1; i < n; ++i)
-      if (sorted[i] - sorted[i - 1] > gap) {
-        gap = sorted[i] - sorted[i - 1];
-        start = sorted[i];
-      }
-    std::vector<long> beyond;
-    double widest = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-      double psi = std::fmod(angle[i] - start + 2.0 * kTwoPi, kTwoPi);
-      if (psi > kTwoPi - 1e-12) psi = 0.0;
-      widest = std::max(widest, psi);
-      const double to_left = radius[i] * std::sin(std::min(psi, 0.5 * std::numbers::pi));
-      const double off_right = out.sector_angle - psi;
-      const double to_right =
-          radius[i] * std::sin(std::min(std::abs(off_right), 0.5 * std::numbers::pi));
-      if (to_left <= tol) left.push_back(static_cast<int>(i));
-      if (to_right <= tol) right.push_back(static_cast<int>(i));
-      if (off_right < 0.0 && to_right > tol) beyond.push_back(node_ids[i]);
+// The left and right nodes (indices) given by id in the options.
+void given_sides(const std::vector<long>& node_ids, const InterfaceOptions& options,
+                 const std::string& key, std::vector<int>& left, std::vector<int>& right) {
+  const std::size_t n = node_ids.size();
+  std::unordered_map<long, int> index;
+  for (std::size_t i = 0; i < n; ++i) index.emplace(node_ids[i], static_cast<int>(i));
+  auto lookup = [&](const std::vector<long>& ids, const char* side, std::vector<int>& into) {
+    std::vector<long> missing;
+    for (long id : ids) {
+      const auto it = index.find(id);
+      if (it == index.end())
+        missing.push_back(id);
+      else
+        into.push_back(it->second);
     }
-    if (!beyond.empty())
-      input_error(key + ".n_sectors",
-                  fmt::format("a sector of 360/{} = {:.6g} deg", options.n_sectors,
-                              360.0 / options.n_sectors),
-                  fmt::format("nodes spanning {:.6g} deg; node(s) {} lie beyond the sector angle",
-                              widest * 180.0 / std::numbers::pi, list_ids(beyond)),
-                  "check the number of sectors and that the mesh is one sector only");
-  }
+    if (!missing.empty())
+      input_error(key + "." + side + "_nodes", "ids of sector nodes",
+                  fmt::format("unknown node id(s) {}", list_ids(missing)));
+  };
+  lookup(options.left_nodes, "left", left);
+  lookup(options.right_nodes, "right", right);
+  std::unordered_set<int> left_set(left.begin(), left.end());
+  std::vector<long> both;
+  for (int i : right)
+    if (left_set.count(i)) both.push_back(node_ids[static_cast<std::size_t>(i)]);
+  if (!both.empty())
+    input_error(key, "disjoint left and right node sets",
+                fmt::format("node(s) {} in both", list_ids(both)));
+}
 
+// The left and right nodes (indices) found from the angles about the axis: the sector is the
+// complement of the largest empty angular gap.
+void detected_sides(const std::vector<long>& node_ids, const std::vector<Eigen::Vector3d>& coords,
+                    const std::vector<double>& radius, const InterfaceOptions& options,
+                    const SectorInterfaces& out, double tol, const std::string& key,
+                    std::vector<int>& left, std::vector<int>& right) {
+  const Eigen::Vector3d& a = out.axis;
+  const std::size_t n = coords.size();
+  // Angles about the axis; the sector is the complement of the largest empty angular gap.
+  Eigen::Vector3d e1 = a.unitOrthogonal(), e2 = a.cross(e1);
+  std::vector<double> angle(n);
+  for (std::size_t i = 0; i < n; ++i) angle[i] = std::atan2(coords[i].dot(e2), coords[i].dot(e1));
+  std::vector<double> sorted = angle;
+  std::sort(sorted.begin(), sorted.end());
+  double gap = sorted.front() + units::kTwoPi - sorted.back(), start = sorted.front();
+  for (std::size_t i = 1; i < n; ++i)
+    if (sorted[i] - sorted[i - 1] > gap) {
+      gap = sorted[i] - sorted[i - 1];
+      start = sorted[i];
+    }
+  std::vector<long> beyond;
+  double widest = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double psi = std::fmod(angle[i] - start + 2.0 * units::kTwoPi, units::kTwoPi);
+    if (psi > units::kTwoPi - 1e-12) psi = 0.0;
+    widest = std::max(widest, psi);
+    const double to_left = radius[i] * std::sin(std::min(psi, 0.5 * units::kPi));
+    const double off_right = out.sector_angle - psi;
+    const double to_right = radius[i] * std::sin(std::min(std::abs(off_right), 0.5 * units::kPi));
+    if (to_left <= tol) left.push_back(static_cast<int>(i));
+    if (to_right <= tol) right.push_back(static_cast<int>(i));
+    if (off_right < 0.0 && to_right > tol) beyond.push_back(node_ids[i]);
+  }
+  if (!beyond.empty())
+    input_error(key + ".n_sectors",
+                fmt::format("a sector of 360/{} = {:.6g} deg", options.n_sectors,
+                            360.0 / options.n_sectors),
+                fmt::format("nodes spanning {:.6g} deg; node(s) {} lie beyond the sector angle",
+                            widest * 180.0 / units::kPi, list_ids(beyond)),
+                "check the number of sectors and that the mesh is one sector only");
+}
+
+// Pairs every left node with the right node at its position rotated by the sector angle R.
+void pair_sides(const std::vector<long>& node_ids, const std::vector<Eigen::Vector3d>& coords,
+                const std::vector<int>& left, const std::vector<int>& right,
+                const Eigen::Matrix3d& R, double tol, const std::string& key,
+                SectorInterfaces& out) {
+  const std::size_t n = coords.size();
   SpatialHash hash(tol, coords, right);
   std::vector<char> right_used(n, 0);
   std::vector<long> unpaired_left, shared_right;
@@ -248,6 +240,50 @@ SectorInterfaces find_interfaces(const std::vector<long>& node_ids,
   }
   if (out.pairs.empty())
     input_error(key, "interface nodes on the sector's edges", "no left/right node pairs");
+}
+
+}  // namespace
+
+SectorInterfaces find_interfaces(const std::vector<long>& node_ids,
+                                 const std::vector<Eigen::Vector3d>& coords,
+                                 const InterfaceOptions& options) {
+  const std::string key = "cyclic.interfaces";
+  check_interface_input(node_ids, coords, options, key);
+
+  SectorInterfaces out;
+  out.n_sectors = options.n_sectors;
+  out.axis = options.axis.normalized();
+  out.sector_angle = units::kTwoPi / options.n_sectors;
+  const Eigen::Vector3d& a = out.axis;
+  const Eigen::Matrix3d R = rotation(a, out.sector_angle);
+  const std::size_t n = coords.size();
+
+  double size = 0.0;
+  for (const auto& x : coords) size = std::max(size, x.norm());
+  if (!(size > 0.0)) input_error(key, "nodes away from the origin", "all nodes at the origin");
+  const double tol = std::isnan(options.tolerance) ? 1e-6 * size : options.tolerance;
+  out.tolerance_used = tol;
+
+  std::vector<double> radius(n);
+  std::vector<long> on_axis;
+  for (std::size_t i = 0; i < n; ++i) {
+    radius[i] = (coords[i] - coords[i].dot(a) * a).norm();
+    if (radius[i] <= tol) on_axis.push_back(node_ids[i]);
+  }
+  if (!on_axis.empty())
+    input_error(key, "no node on the axis of symmetry",
+                fmt::format("node(s) {} within {:.3g} m of the axis", list_ids(on_axis), tol),
+                "a node on the axis belongs to every sector, which cyclic symmetry does not "
+                "support here; mesh a small hole around the axis");
+
+  std::vector<int> left, right;
+  if (!options.left_nodes.empty()) {
+    given_sides(node_ids, options, key, left, right);
+  } else {
+    detected_sides(node_ids, coords, radius, options, out, tol, key, left, right);
+  }
+
+  pair_sides(node_ids, coords, left, right, R, tol, key, out);
   std::sort(out.pairs.begin(), out.pairs.end(),
             [](const NodePair& x, const NodePair& y) { return x.left_node_id < y.left_node_id; });
   for (const auto& pr : out.pairs)
@@ -377,7 +413,7 @@ Complex CyclicSector::phase(int h) const {
   const int k = ((h % N) + N) % N;
   if (k == 0) return 1.0;
   if (2 * k == N) return -1.0;
-  return std::polar(1.0, kTwoPi * k / N);
+  return std::polar(1.0, units::kTwoPi * k / N);
 }
 
 ComplexSparse CyclicSector::transformation(int h) const {
@@ -428,7 +464,7 @@ Eigen::VectorXcd CyclicSector::expand_to_sector(const Eigen::VectorXcd& u0, int 
                 std::to_string(u0.size()));
   const int k = static_cast<int>((static_cast<long long>(h) * sector) % N);
   const Complex ph =
-      k == 0 ? Complex(1.0) : (2 * k == N ? Complex(-1.0) : std::polar(1.0, kTwoPi * k / N));
+      k == 0 ? Complex(1.0) : (2 * k == N ? Complex(-1.0) : std::polar(1.0, units::kTwoPi * k / N));
   const Eigen::Matrix3d Rs = rotation(interfaces_.axis, sector * interfaces_.sector_angle);
   Eigen::VectorXcd out = ph * u0;  // generalised coordinates: phase only
   for (const auto& triple : triples_) {
@@ -525,7 +561,7 @@ CyclicModesResult solve_cyclic_modes(const Eigen::SparseMatrix<double>& K,
     const ComplexSparse Kh = sector.reduce(K, h), Mh = sector.reduce(M, h);
     d.eigen = eig::solve_hermitian(Kh, Mh, options.eigen);
     d.frequency_hz = d.eigen.eigenvalues.unaryExpr(
-        [](double lambda) { return std::sqrt(std::max(lambda, 0.0)) / kTwoPi; });
+        [](double lambda) { return std::sqrt(std::max(lambda, 0.0)) / units::kTwoPi; });
     if (d.eigen.eigenvectors.cols() > 0)
       d.sector_shapes = sector.transformation(h) * d.eigen.eigenvectors;
     if (d.eigen.status != Status::Ok) {

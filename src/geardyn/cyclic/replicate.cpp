@@ -6,18 +6,16 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <numbers>
 #include <set>
 #include <unordered_map>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 
 namespace geardyn::cyclic {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // True when the component set {c : flags[c]} is mapped onto itself by the rotation R (for both
 // the translation and the rotation triple): a component that is in the set must not feed one
@@ -85,7 +83,7 @@ ReplicatedMesh replicate(const solid::Mesh& sector, int n_sectors, double tolera
     throw InputError({}, key + ".tolerance", "a positive tolerance [m] or NaN (automatic)",
                      fmt::format("{}", tolerance));
   const Eigen::Vector3d axis = axis_in.normalized();
-  const double alpha = kTwoPi / n_sectors;
+  const double alpha = units::kTwoPi / n_sectors;
   const Eigen::Matrix3d R1 = rotation(axis, alpha);
 
   for (const auto& s : sector.springs) {

@@ -233,12 +233,10 @@ Eigen::VectorXcd StuckRingResponse::operator()(double speed) const {
   return r.sensor_response(w, kc_.cast<cd>().cwiseProduct(x));
 }
 
-DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& progress) {
-  if (!p.sector) throw InputError({}, "damper_ring.sector", "the cyclic sector", "none");
-  const cyclic::CyclicSector& sector = *p.sector;
-  const int N = sector.n_sectors();
-  const response::OrderRelation relation =
-      response::relate_order(N, p.nodal_diameter, p.engine_order);
+namespace {
+
+// The checks of the problem that need no modes.
+void check_problem(const DamperRingProblem& p) {
   if (p.pairs.empty())
     throw InputError({}, "damper_ring.contact", "at least one contact pair", "none");
   if (p.contact.tangential_directions != 1 && p.contact.tangential_directions != 2)
@@ -262,6 +260,165 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     throw InputError({}, "damper_ring.damping", "a valid modal damping", problems.front());
   if (p.harmonics < 1)
     throw InputError({}, "damper_ring.harmonics", "at least 1", std::to_string(p.harmonics));
+}
+
+// Contact coordinates (G) and sensors (Gs) from sector DOFs, and the sector-0 load of each loaded
+// harmonic.
+struct SectorProjections {
+  Eigen::SparseMatrix<cd> G, Gs;
+  std::vector<Eigen::VectorXcd> f0;
+};
+
+SectorProjections sector_projections(const DamperRingModel& m, const DamperRingProblem& p,
+                                     const cyclic::CyclicSector& sector) {
+  SectorProjections out;
+  const auto index = dof_index(sector.dofs());
+  const Eigen::Index n_dof = sector.num_dofs();
+  auto dof = [&](long node, int comp, const std::string& what) {
+    const auto it = index.find({node, comp});
+    if (it == index.end())
+      throw InputError({}, what, "a node with translational DOFs in the sector",
+                       fmt::format("node {} component {}", node, comp));
+    return it->second;
+  };
+  // G: contact coordinates from sector DOFs; Gs: sensors.
+  const int n_c = m.coordinates();
+  std::vector<Eigen::Triplet<double>> tg;
+  for (std::size_t q = 0; q < p.pairs.size(); ++q) {
+    const auto dirs = coordinate_directions(p.contact, p.pairs[q].position);
+    for (std::size_t j = 0; j < dirs.size(); ++j) {
+      const int row = static_cast<int>(q) * m.coordinates_per_pair + static_cast<int>(j);
+      for (int c = 0; c < 3; ++c) {
+        if (dirs[j][c] == 0.0) continue;
+        tg.emplace_back(row, dof(p.pairs[q].ring_node, c, "damper_ring.contact"), dirs[j][c]);
+        tg.emplace_back(row, dof(p.pairs[q].gear_node, c, "damper_ring.contact"), -dirs[j][c]);
+      }
+    }
+  }
+  Eigen::SparseMatrix<cd>& G = out.G;
+  G.resize(n_c, n_dof);
+  {
+    std::vector<Eigen::Triplet<cd>> t;
+    for (const auto& e : tg) t.emplace_back(e.row(), e.col(), cd(e.value(), 0.0));
+    G.setFromTriplets(t.begin(), t.end());
+  }
+  const Eigen::Index n_s = static_cast<Eigen::Index>(p.sensors.size());
+  Eigen::SparseMatrix<cd>& Gs = out.Gs;
+  Gs.resize(n_s, n_dof);
+  {
+    std::vector<Eigen::Triplet<cd>> t;
+    for (Eigen::Index i = 0; i < n_s; ++i)
+      t.emplace_back(i,
+                     dof(p.sensors[static_cast<std::size_t>(i)].node_id,
+                         p.sensors[static_cast<std::size_t>(i)].component, "damper_ring.sensors"),
+                     cd(1.0, 0.0));
+    Gs.setFromTriplets(t.begin(), t.end());
+  }
+  // Sector-0 load of each loaded harmonic (engine order n k).
+  std::vector<Eigen::VectorXcd>& f0 = out.f0;
+  f0.assign(p.loads.size(), Eigen::VectorXcd::Zero(n_dof));
+  for (std::size_t n = 0; n < p.loads.size(); ++n)
+    for (const auto& l : p.loads[n])
+      for (int c = 0; c < 3; ++c) f0[n][dof(l.node_id, c, "damper_ring.excitation")] += l.force[c];
+  return out;
+}
+
+// The receptances of the harmonics on nodal diameter nd: the retained modes plus the residual
+// flexibility of the others, and their excitation.
+void add_diameter_receptances(DamperRingModel& m, const DamperRingProblem& p,
+                              const cyclic::CyclicSector& sector,
+                              const cyclic::NodalDiameterModes& nd, const SectorProjections& proj) {
+  const int H = p.harmonics;
+  const Eigen::SparseMatrix<cd>& G = proj.G;
+  const Eigen::SparseMatrix<cd>& Gs = proj.Gs;
+  const std::vector<Eigen::VectorXcd>& f0 = proj.f0;
+  const int h = nd.nodal_diameter;
+  const Eigen::SparseMatrix<cd> T = sector.transformation(h);
+  const Eigen::SparseMatrix<cd> Kh = sector.reduce(p.K, h), Mh = sector.reduce(p.M, h);
+  const double sigma = eig::automatic_shift(Kh, Mh);
+  linalg::SparseLU<cd> lu;
+  const Eigen::SparseMatrix<cd> shifted = Kh - cd(sigma, 0.0) * Mh;
+  // K - sigma M with sigma below the spectrum: well conditioned, no iterative refinement
+  // (the residual flexibility solves one right-hand side per contact coordinate).
+  if (lu.compute(shifted, false) != Status::Ok)
+    throw NumericalError(
+        "damper_ring",
+        fmt::format("nodal diameter {}: the shifted stiffness is singular ({})", h, lu.message()));
+  const Eigen::SparseMatrix<cd> A = G * T, As = Gs * T;
+  const Eigen::MatrixXcd Y = lu.solve(Eigen::MatrixXcd(Eigen::MatrixXcd(A.adjoint())));
+  const Eigen::MatrixXcd static_cc = A * Y, static_sc = As * Y;
+  const Eigen::MatrixXcd& psi = nd.sector_shapes;
+  const Eigen::VectorXd lambda = nd.eigen.eigenvalues;
+  const Eigen::Index n_m = lambda.size();
+  Eigen::VectorXd w(n_m), zeta(n_m), inv_shifted(n_m);
+  for (Eigen::Index r = 0; r < n_m; ++r) {
+    w[r] = std::sqrt(std::max(lambda[r], 0.0));
+    zeta[r] = p.damping.ratio(r);
+    inv_shifted[r] = 1.0 / (lambda[r] - sigma);
+  }
+  const Eigen::MatrixXcd U = G * psi, S = Gs * psi;
+  const Eigen::MatrixXcd R_cc = static_cc - U * inv_shifted.asDiagonal() * U.adjoint();
+  const Eigen::MatrixXcd R_sc = static_sc - S * inv_shifted.asDiagonal() * U.adjoint();
+  for (int n = 1; n <= H; ++n) {
+    if (m.harmonic_diameter[n] != h) continue;
+    const bool conj = m.harmonic_conjugate[n];
+    hbm::ModalReceptance& rec = m.receptances[static_cast<std::size_t>(n)];
+    rec.natural_frequency = w;
+    rec.damping_ratio = zeta;
+    rec.left = conj ? Eigen::MatrixXcd(U.conjugate()) : U;
+    rec.right = rec.left;
+    rec.residual = conj ? Eigen::MatrixXcd(R_cc.conjugate()) : R_cc;
+    rec.sensor_left = conj ? Eigen::MatrixXcd(S.conjugate()) : S;
+    rec.sensor_residual = conj ? Eigen::MatrixXcd(R_sc.conjugate()) : R_sc;
+    if (n <= static_cast<int>(f0.size())) {
+      // The excitation: for the conjugate pattern everything is the conjugate of the
+      // nodal-diameter-h response to conj(f0) (H_{-h} = conj H_h).
+      const Eigen::VectorXcd& fn = f0[static_cast<std::size_t>(n - 1)];
+      const Eigen::VectorXcd f = conj ? Eigen::VectorXcd(fn.conjugate()) : fn;
+      const Eigen::VectorXcd yb = lu.solve(Eigen::VectorXcd(T.adjoint() * f));
+      const Eigen::VectorXcd pm = psi.adjoint() * f;
+      const Eigen::VectorXcd r_cf = A * yb - U * (inv_shifted.cast<cd>().cwiseProduct(pm));
+      const Eigen::VectorXcd r_sf = As * yb - S * (inv_shifted.cast<cd>().cwiseProduct(pm));
+      rec.modal_excitation = conj ? Eigen::VectorXcd(pm.conjugate()) : pm;
+      rec.residual_excitation = conj ? Eigen::VectorXcd(r_cf.conjugate()) : r_cf;
+      rec.sensor_residual_excitation = conj ? Eigen::VectorXcd(r_sf.conjugate()) : r_sf;
+    }
+  }
+}
+
+void add_notes(DamperRingModel& m, const DamperRingProblem& p,
+               const response::OrderRelation& relation) {
+  const int H = p.harmonics;
+  m.notes.push_back(fmt::format(
+      "Damper ring: {} contact pairs per sector ({} coordinates each), engine order {} on nodal "
+      "diameter {} ({} wave); harmonics 1..{} on nodal diameters {}; {} time samples per period; "
+      "{} modes per nodal diameter plus the residual flexibility of the others; the mean held at "
+      "the preloaded equilibrium.",
+      p.pairs.size(), m.coordinates_per_pair, p.engine_order, p.nodal_diameter,
+      response::to_string(relation.wave), H,
+      [&] {
+        std::string s;
+        for (int n = 1; n <= H; ++n)
+          s += fmt::format("{}{}{}", n > 1 ? ", " : "", m.harmonic_diameter[n],
+                           m.harmonic_conjugate[n] ? "*" : "");
+        return s;
+      }(),
+      m.basis.time_samples(), p.n_modes));
+  m.notes.push_back(fmt::format(
+      "Centrifugal preload per contact N0 = m_ring W^2 r_G / (N n_pairs) = {:.6g} W^2 N "
+      "(m_ring {:.6g} kg, r_G {:.6g} m).",
+      m.preload_per_speed_squared, p.ring_mass, p.ring_radius));
+}
+
+}  // namespace
+
+DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& progress) {
+  if (!p.sector) throw InputError({}, "damper_ring.sector", "the cyclic sector", "none");
+  const cyclic::CyclicSector& sector = *p.sector;
+  const int N = sector.n_sectors();
+  const response::OrderRelation relation =
+      response::relate_order(N, p.nodal_diameter, p.engine_order);
+  check_problem(p);
 
   DamperRingModel m;
   m.n_sectors = N;
@@ -288,51 +445,9 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
     diameters.insert(m.harmonic_diameter[n]);
   }
 
-  const auto index = dof_index(sector.dofs());
-  const Eigen::Index n_dof = sector.num_dofs();
-  auto dof = [&](long node, int comp, const std::string& what) {
-    const auto it = index.find({node, comp});
-    if (it == index.end())
-      throw InputError({}, what, "a node with translational DOFs in the sector",
-                       fmt::format("node {} component {}", node, comp));
-    return it->second;
-  };
-  // G: contact coordinates from sector DOFs; Gs: sensors.
   const int n_c = m.coordinates();
-  std::vector<Eigen::Triplet<double>> tg;
-  for (std::size_t q = 0; q < p.pairs.size(); ++q) {
-    const auto dirs = coordinate_directions(p.contact, p.pairs[q].position);
-    for (std::size_t j = 0; j < dirs.size(); ++j) {
-      const int row = static_cast<int>(q) * m.coordinates_per_pair + static_cast<int>(j);
-      for (int c = 0; c < 3; ++c) {
-        if (dirs[j][c] == 0.0) continue;
-        tg.emplace_back(row, dof(p.pairs[q].ring_node, c, "damper_ring.contact"), dirs[j][c]);
-        tg.emplace_back(row, dof(p.pairs[q].gear_node, c, "damper_ring.contact"), -dirs[j][c]);
-      }
-    }
-  }
-  Eigen::SparseMatrix<cd> G(n_c, n_dof);
-  {
-    std::vector<Eigen::Triplet<cd>> t;
-    for (const auto& e : tg) t.emplace_back(e.row(), e.col(), cd(e.value(), 0.0));
-    G.setFromTriplets(t.begin(), t.end());
-  }
   const Eigen::Index n_s = static_cast<Eigen::Index>(p.sensors.size());
-  Eigen::SparseMatrix<cd> Gs(n_s, n_dof);
-  {
-    std::vector<Eigen::Triplet<cd>> t;
-    for (Eigen::Index i = 0; i < n_s; ++i)
-      t.emplace_back(i,
-                     dof(p.sensors[static_cast<std::size_t>(i)].node_id,
-                         p.sensors[static_cast<std::size_t>(i)].component, "damper_ring.sensors"),
-                     cd(1.0, 0.0));
-    Gs.setFromTriplets(t.begin(), t.end());
-  }
-  // Sector-0 load of each loaded harmonic (engine order n k).
-  std::vector<Eigen::VectorXcd> f0(p.loads.size(), Eigen::VectorXcd::Zero(n_dof));
-  for (std::size_t n = 0; n < p.loads.size(); ++n)
-    for (const auto& l : p.loads[n])
-      for (int c = 0; c < 3; ++c) f0[n][dof(l.node_id, c, "damper_ring.excitation")] += l.force[c];
+  const SectorProjections proj = sector_projections(m, p, sector);
 
   // Modes of every nodal diameter used.
   cyclic::CyclicModesOptions mo;
@@ -347,58 +462,7 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
   m.receptances.assign(H + 1, hbm::ModalReceptance{});
   progress.start("damper ring: residual flexibility and excitation", 0);
   for (const auto& nd : modes.diameters) {
-    const int h = nd.nodal_diameter;
-    const Eigen::SparseMatrix<cd> T = sector.transformation(h);
-    const Eigen::SparseMatrix<cd> Kh = sector.reduce(p.K, h), Mh = sector.reduce(p.M, h);
-    const double sigma = eig::automatic_shift(Kh, Mh);
-    linalg::SparseLU<cd> lu;
-    const Eigen::SparseMatrix<cd> shifted = Kh - cd(sigma, 0.0) * Mh;
-    // K - sigma M with sigma below the spectrum: well conditioned, no iterative refinement
-    // (the residual flexibility solves one right-hand side per contact coordinate).
-    if (lu.compute(shifted, false) != Status::Ok)
-      throw NumericalError(
-          "damper_ring", fmt::format("nodal diameter {}: the shifted stiffness is singular ({})", h,
-                                     lu.message()));
-    const Eigen::SparseMatrix<cd> A = G * T, As = Gs * T;
-    const Eigen::MatrixXcd Y = lu.solve(Eigen::MatrixXcd(Eigen::MatrixXcd(A.adjoint())));
-    const Eigen::MatrixXcd static_cc = A * Y, static_sc = As * Y;
-    const Eigen::MatrixXcd& psi = nd.sector_shapes;
-    const Eigen::VectorXd lambda = nd.eigen.eigenvalues;
-    const Eigen::Index n_m = lambda.size();
-    Eigen::VectorXd w(n_m), zeta(n_m), inv_shifted(n_m);
-    for (Eigen::Index r = 0; r < n_m; ++r) {
-      w[r] = std::sqrt(std::max(lambda[r], 0.0));
-      zeta[r] = p.damping.ratio(r);
-      inv_shifted[r] = 1.0 / (lambda[r] - sigma);
-    }
-    const Eigen::MatrixXcd U = G * psi, S = Gs * psi;
-    const Eigen::MatrixXcd R_cc = static_cc - U * inv_shifted.asDiagonal() * U.adjoint();
-    const Eigen::MatrixXcd R_sc = static_sc - S * inv_shifted.asDiagonal() * U.adjoint();
-    for (int n = 1; n <= H; ++n) {
-      if (m.harmonic_diameter[n] != h) continue;
-      const bool conj = m.harmonic_conjugate[n];
-      hbm::ModalReceptance& rec = m.receptances[static_cast<std::size_t>(n)];
-      rec.natural_frequency = w;
-      rec.damping_ratio = zeta;
-      rec.left = conj ? Eigen::MatrixXcd(U.conjugate()) : U;
-      rec.right = rec.left;
-      rec.residual = conj ? Eigen::MatrixXcd(R_cc.conjugate()) : R_cc;
-      rec.sensor_left = conj ? Eigen::MatrixXcd(S.conjugate()) : S;
-      rec.sensor_residual = conj ? Eigen::MatrixXcd(R_sc.conjugate()) : R_sc;
-      if (n <= static_cast<int>(f0.size())) {
-        // The excitation: for the conjugate pattern everything is the conjugate of the
-        // nodal-diameter-h response to conj(f0) (H_{-h} = conj H_h).
-        const Eigen::VectorXcd& fn = f0[static_cast<std::size_t>(n - 1)];
-        const Eigen::VectorXcd f = conj ? Eigen::VectorXcd(fn.conjugate()) : fn;
-        const Eigen::VectorXcd yb = lu.solve(Eigen::VectorXcd(T.adjoint() * f));
-        const Eigen::VectorXcd pm = psi.adjoint() * f;
-        const Eigen::VectorXcd r_cf = A * yb - U * (inv_shifted.cast<cd>().cwiseProduct(pm));
-        const Eigen::VectorXcd r_sf = As * yb - S * (inv_shifted.cast<cd>().cwiseProduct(pm));
-        rec.modal_excitation = conj ? Eigen::VectorXcd(pm.conjugate()) : pm;
-        rec.residual_excitation = conj ? Eigen::VectorXcd(r_cf.conjugate()) : r_cf;
-        rec.sensor_residual_excitation = conj ? Eigen::VectorXcd(r_sf.conjugate()) : r_sf;
-      }
-    }
+    add_diameter_receptances(m, p, sector, nd, proj);
   }
   progress.finish();
   // Harmonic 0 stays empty: the mean held at the preloaded equilibrium.
@@ -406,37 +470,17 @@ DamperRingModel build_damper_ring_model(const DamperRingProblem& p, Progress& pr
   m.receptances[0].right.resize(n_c, 0);
   m.receptances[0].sensor_left.resize(n_s, 0);
 
-  m.notes.push_back(fmt::format(
-      "Damper ring: {} contact pairs per sector ({} coordinates each), engine order {} on nodal "
-      "diameter {} ({} wave); harmonics 1..{} on nodal diameters {}; {} time samples per period; "
-      "{} modes per nodal diameter plus the residual flexibility of the others; the mean held at "
-      "the preloaded equilibrium.",
-      p.pairs.size(), m.coordinates_per_pair, p.engine_order, p.nodal_diameter,
-      response::to_string(relation.wave), H,
-      [&] {
-        std::string s;
-        for (int n = 1; n <= H; ++n)
-          s += fmt::format("{}{}{}", n > 1 ? ", " : "", m.harmonic_diameter[n],
-                           m.harmonic_conjugate[n] ? "*" : "");
-        return s;
-      }(),
-      m.basis.time_samples(), p.n_modes));
-  m.notes.push_back(fmt::format(
-      "Centrifugal preload per contact N0 = m_ring W^2 r_G / (N n_pairs) = {:.6g} W^2 N "
-      "(m_ring {:.6g} kg, r_G {:.6g} m).",
-      m.preload_per_speed_squared, p.ring_mass, p.ring_radius));
+  add_notes(m, p, relation);
   return m;
 }
 
-DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptions& o,
-                                 Progress& progress) {
-  if (!(o.speed_min > 0.0 && o.speed_max > o.speed_min))
-    throw InputError({}, "damper_ring.speeds", "0 < speed_min < speed_max",
-                     fmt::format("{} .. {} rad/s", o.speed_min, o.speed_max));
-  DamperRingResult out;
+namespace {
+
+// The linear references (free and stuck ring) and the amplitude scale of the continuation.
+double linear_references(const DamperRingModel& m, const DamperRingOptions& o, Progress& progress,
+                         DamperRingResult& out) {
   const double k = m.engine_order;
   const Eigen::Index n_s = static_cast<Eigen::Index>(m.sensor_names.size());
-
   // Linear references.
   progress.start("damper ring: linear references", 0);
   const int nl = std::max(o.linear_points, 2);
@@ -458,6 +502,128 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     x_scale = std::max(x_scale, r1.linear_response(k * speed).norm());
   }
   progress.finish();
+  return x_scale;
+}
+
+// One point of the damped branch: sensor harmonics and peaks, contact states and energy.
+DampedPoint damped_point(const DamperRingModel& m, const hbm::CondensedHarmonicBalance& hb,
+                         const hbm::ContinuationPoint& pt) {
+  const double k = m.engine_order;
+  const Eigen::Index n_s = static_cast<Eigen::Index>(m.sensor_names.size());
+  const hbm::HarmonicBasis& b = m.basis;
+  const int cp = m.coordinates_per_pair, s = b.size();
+  const int H = b.harmonics();
+  DampedPoint d;
+  d.speed = pt.omega / k;
+  d.iterations = pt.iterations;
+  d.amplitude.resize(n_s);
+  d.peak.setZero(n_s);
+  d.harmonics.resize(H, n_s);
+  Eigen::MatrixXd signal = Eigen::MatrixXd::Zero(b.time_samples(), n_s);
+  for (int n = 1; n <= H; ++n) {
+    const Eigen::VectorXcd z = hb.sensor_response(pt.X, pt.omega, n);
+    if (n == 1) d.amplitude = z.cwiseAbs();
+    d.harmonics.row(n - 1) = z.cwiseAbs().transpose();
+    for (Eigen::Index i = 0; i < n_s; ++i) {
+      Eigen::VectorXd c = Eigen::VectorXd::Zero(s);
+      c[hbm::HarmonicBasis::cos_index(n)] = z[i].real();
+      c[hbm::HarmonicBasis::sin_index(n)] = -z[i].imag();
+      signal.col(i) += b.to_time(c);
+    }
+  }
+  d.peak = signal.cwiseAbs().colwise().maxCoeff().transpose();
+  const double N0 = m.preload(d.speed);
+  double stick = 0, slip = 0, lift = 0, energy = 0;
+  for (std::size_t q = 0; q < m.pairs.size(); ++q) {
+    const Eigen::VectorXd w = pt.X.segment(static_cast<Eigen::Index>(q) * cp * s, cp * s);
+    const hbm::ContactResponse r =
+        hbm::friction_contact_response(friction_contact(m.contact, N0), b, w);
+    stick += r.stick_fraction;
+    slip += r.slip_fraction;
+    lift += r.lift_off_fraction;
+    energy += r.energy_per_cycle;
+    d.loops_closed = d.loops_closed && r.loop_closed;
+  }
+  const double np = static_cast<double>(m.pairs.size());
+  d.stick = stick / np;
+  d.slip = slip / np;
+  d.lift_off = lift / np;
+  d.energy_per_cycle = energy * m.n_sectors;
+  return d;
+}
+
+// Fold-type instability: the branch after an odd number of turning points in speed.
+void mark_fold_instability(DamperRingResult& out) {
+  std::vector<double> speeds;
+  for (const auto& d : out.damped) speeds.push_back(d.speed);
+  const std::vector<char> unstable = hbm::fold_unstable(speeds);
+  for (std::size_t i = 0; i < out.damped.size(); ++i) {
+    out.damped[i].fold_unstable = unstable[i] != 0;
+    if (i > 0 && unstable[i] != unstable[i - 1])  // the curve turned at point i - 1
+      out.turning_points.push_back(speeds[i - 1]);
+  }
+}
+
+// At the peak point: the contact state and energy of each pair, the harmonic truncation of the
+// contact forces and the hysteresis loops asked for.
+void peak_point_details(const DamperRingModel& m, const DamperRingOptions& o,
+                        const hbm::ContinuationPoint& pt, DamperRingResult& out) {
+  const double k = m.engine_order;
+  const hbm::HarmonicBasis& b = m.basis;
+  const int cp = m.coordinates_per_pair, s = b.size();
+  const int H = b.harmonics();
+  const double N0 = m.preload(pt.omega / k);
+  const Eigen::Index np = static_cast<Eigen::Index>(m.pairs.size());
+  out.pair_states.resize(np, 3);
+  out.pair_energy.resize(np);
+  // The truncation check: the same motion with 3H + 2 harmonics (their coefficients zero).
+  const int Hc = 3 * H + 2;
+  const hbm::HarmonicBasis bc(Hc, std::max(b.time_samples(), hbm::default_time_samples(Hc)));
+  const int sc = bc.size();
+  for (Eigen::Index q = 0; q < np; ++q) {
+    const Eigen::VectorXd w = pt.X.segment(q * cp * s, cp * s);
+    const hbm::ContactResponse r =
+        hbm::friction_contact_response(friction_contact(m.contact, N0), b, w);
+    Eigen::VectorXd wc = Eigen::VectorXd::Zero(cp * sc);
+    for (int j = 0; j < cp; ++j) wc.segment(j * sc, s) = w.segment(j * s, s);
+    const hbm::ContactResponse rc =
+        hbm::friction_contact_response(friction_contact(m.contact, N0), bc, wc);
+    double kept = 0.0, beyond = 0.0;
+    for (int j = 0; j < cp; ++j) {
+      kept += rc.coefficients.segment(j * sc + 1, s - 1).squaredNorm();
+      beyond += rc.coefficients.segment(j * sc + s, sc - s).squaredNorm();
+    }
+    const double share = kept + beyond > 0.0 ? std::sqrt(beyond / (kept + beyond)) : 0.0;
+    if (share > out.force_truncation) {
+      out.force_truncation = share;
+      out.truncation_pair = static_cast<int>(q);
+    }
+    out.pair_states.row(q) << r.stick_fraction, r.slip_fraction, r.lift_off_fraction;
+    out.pair_energy[q] = r.energy_per_cycle;
+    if (std::find(o.hysteresis_pairs.begin(), o.hysteresis_pairs.end(), q) !=
+        o.hysteresis_pairs.end()) {
+      HysteresisLoop loop;
+      loop.pair = static_cast<int>(q);
+      loop.slip = b.to_time(w.segment(s, s));
+      loop.force = r.force.col(1);
+      loop.normal = r.force.col(0);
+      out.loops.push_back(std::move(loop));
+    }
+  }
+}
+
+}  // namespace
+
+DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptions& o,
+                                 Progress& progress) {
+  if (!(o.speed_min > 0.0 && o.speed_max > o.speed_min))
+    throw InputError({}, "damper_ring.speeds", "0 < speed_min < speed_max",
+                     fmt::format("{} .. {} rad/s", o.speed_min, o.speed_max));
+  DamperRingResult out;
+  const double k = m.engine_order;
+  const Eigen::Index n_s = static_cast<Eigen::Index>(m.sensor_names.size());
+
+  const double x_scale = linear_references(m, o, progress, out);
 
   const hbm::CondensedHarmonicBalance hb = m.system(m.contact);
   hbm::ContinuationOptions co;
@@ -476,47 +642,9 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
   out.status = cr.status;
   out.message = cr.message;
 
-  const hbm::HarmonicBasis& b = m.basis;
-  const int cp = m.coordinates_per_pair, s = b.size();
-  const int H = b.harmonics();
   double best = -1.0;
   for (const auto& pt : cr.points) {
-    DampedPoint d;
-    d.speed = pt.omega / k;
-    d.iterations = pt.iterations;
-    d.amplitude.resize(n_s);
-    d.peak.setZero(n_s);
-    d.harmonics.resize(H, n_s);
-    Eigen::MatrixXd signal = Eigen::MatrixXd::Zero(b.time_samples(), n_s);
-    for (int n = 1; n <= H; ++n) {
-      const Eigen::VectorXcd z = hb.sensor_response(pt.X, pt.omega, n);
-      if (n == 1) d.amplitude = z.cwiseAbs();
-      d.harmonics.row(n - 1) = z.cwiseAbs().transpose();
-      for (Eigen::Index i = 0; i < n_s; ++i) {
-        Eigen::VectorXd c = Eigen::VectorXd::Zero(s);
-        c[hbm::HarmonicBasis::cos_index(n)] = z[i].real();
-        c[hbm::HarmonicBasis::sin_index(n)] = -z[i].imag();
-        signal.col(i) += b.to_time(c);
-      }
-    }
-    d.peak = signal.cwiseAbs().colwise().maxCoeff().transpose();
-    const double N0 = m.preload(d.speed);
-    double stick = 0, slip = 0, lift = 0, energy = 0;
-    for (std::size_t q = 0; q < m.pairs.size(); ++q) {
-      const Eigen::VectorXd w = pt.X.segment(static_cast<Eigen::Index>(q) * cp * s, cp * s);
-      const hbm::ContactResponse r =
-          hbm::friction_contact_response(friction_contact(m.contact, N0), b, w);
-      stick += r.stick_fraction;
-      slip += r.slip_fraction;
-      lift += r.lift_off_fraction;
-      energy += r.energy_per_cycle;
-      d.loops_closed = d.loops_closed && r.loop_closed;
-    }
-    const double np = static_cast<double>(m.pairs.size());
-    d.stick = stick / np;
-    d.slip = slip / np;
-    d.lift_off = lift / np;
-    d.energy_per_cycle = energy * m.n_sectors;
+    DampedPoint d = damped_point(m, hb, pt);
     if (n_s > 0 && d.amplitude[0] > best) {
       best = d.amplitude[0];
       out.peak_point = static_cast<int>(out.damped.size());
@@ -524,59 +652,10 @@ DamperRingResult run_damper_ring(const DamperRingModel& m, const DamperRingOptio
     out.damped.push_back(std::move(d));
   }
 
-  // Fold-type instability: the branch after an odd number of turning points in speed.
-  {
-    std::vector<double> speeds;
-    for (const auto& d : out.damped) speeds.push_back(d.speed);
-    const std::vector<char> unstable = hbm::fold_unstable(speeds);
-    for (std::size_t i = 0; i < out.damped.size(); ++i) {
-      out.damped[i].fold_unstable = unstable[i] != 0;
-      if (i > 0 && unstable[i] != unstable[i - 1])  // the curve turned at point i - 1
-        out.turning_points.push_back(speeds[i - 1]);
-    }
-  }
+  mark_fold_instability(out);
 
-  if (out.peak_point >= 0) {
-    const auto& pt = cr.points[static_cast<std::size_t>(out.peak_point)];
-    const double N0 = m.preload(pt.omega / k);
-    const Eigen::Index np = static_cast<Eigen::Index>(m.pairs.size());
-    out.pair_states.resize(np, 3);
-    out.pair_energy.resize(np);
-    // The truncation check: the same motion with 3H + 2 harmonics (their coefficients zero).
-    const int Hc = 3 * H + 2;
-    const hbm::HarmonicBasis bc(Hc, std::max(b.time_samples(), hbm::default_time_samples(Hc)));
-    const int sc = bc.size();
-    for (Eigen::Index q = 0; q < np; ++q) {
-      const Eigen::VectorXd w = pt.X.segment(q * cp * s, cp * s);
-      const hbm::ContactResponse r =
-          hbm::friction_contact_response(friction_contact(m.contact, N0), b, w);
-      Eigen::VectorXd wc = Eigen::VectorXd::Zero(cp * sc);
-      for (int j = 0; j < cp; ++j) wc.segment(j * sc, s) = w.segment(j * s, s);
-      const hbm::ContactResponse rc =
-          hbm::friction_contact_response(friction_contact(m.contact, N0), bc, wc);
-      double kept = 0.0, beyond = 0.0;
-      for (int j = 0; j < cp; ++j) {
-        kept += rc.coefficients.segment(j * sc + 1, s - 1).squaredNorm();
-        beyond += rc.coefficients.segment(j * sc + s, sc - s).squaredNorm();
-      }
-      const double share = kept + beyond > 0.0 ? std::sqrt(beyond / (kept + beyond)) : 0.0;
-      if (share > out.force_truncation) {
-        out.force_truncation = share;
-        out.truncation_pair = static_cast<int>(q);
-      }
-      out.pair_states.row(q) << r.stick_fraction, r.slip_fraction, r.lift_off_fraction;
-      out.pair_energy[q] = r.energy_per_cycle;
-      if (std::find(o.hysteresis_pairs.begin(), o.hysteresis_pairs.end(), q) !=
-          o.hysteresis_pairs.end()) {
-        HysteresisLoop loop;
-        loop.pair = static_cast<int>(q);
-        loop.slip = b.to_time(w.segment(s, s));
-        loop.force = r.force.col(1);
-        loop.normal = r.force.col(0);
-        out.loops.push_back(std::move(loop));
-      }
-    }
-  }
+  if (out.peak_point >= 0)
+    peak_point_details(m, o, cr.points[static_cast<std::size_t>(out.peak_point)], out);
   return out;
 }
 

@@ -4,27 +4,26 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::fe {
 
 GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo& gear1,
                                     const NodeInfo& gear2, const std::string& key) {
-  const double half_pi = std::numbers::pi / 2;
   if (!(mesh.base_radius1 > 0) || !std::isfinite(mesh.base_radius1)) {
     throw InputError(mesh.where, key + ".base_radius1", "a positive base radius [m]",
                      fmt::format("{}", mesh.base_radius1));
   }
-  if (!(mesh.pressure_angle > 0 && mesh.pressure_angle < half_pi)) {
+  if (!(mesh.pressure_angle > 0 && mesh.pressure_angle < units::kPi / 2)) {
     throw InputError(mesh.where, key + ".pressure_angle", "an angle in (0, 90) deg",
                      fmt::format("{} rad", mesh.pressure_angle));
   }
   const bool spur = mesh.type == model::GearType::Spur;
   const bool straight = spur || mesh.type == model::GearType::StraightBevel;
   const double beta = straight ? 0.0 : mesh.helix_angle;
-  if (!(std::abs(beta) < half_pi)) {
+  if (!(std::abs(beta) < units::kPi / 2)) {
     throw InputError(mesh.where, key + ".helix_angle", "an angle with |angle| < 90 deg",
                      fmt::format("{} rad", mesh.helix_angle));
   }
@@ -73,7 +72,7 @@ GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo&
     g.axial_force = g.sigma * hand * std::tan(beta);
   } else {
     const double delta = mesh.pitch_cone_angle1;
-    if (!(delta > 0 && delta < std::numbers::pi)) {
+    if (!(delta > 0 && delta < units::kPi)) {
       throw InputError(mesh.where, key + ".pitch_cone_angle1", "an angle in (0, 180) deg",
                        fmt::format("{} rad", delta));
     }

@@ -1,6 +1,6 @@
 #include "geardyn/fe/rigid_disk.hpp"
 
-#include <numbers>
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::fe {
 
@@ -27,8 +27,8 @@ DiskInertia annular_disk_inertia(double density, double outer_radius, double inn
                                  double thickness) {
   const double r2 = outer_radius * outer_radius + inner_radius * inner_radius;
   DiskInertia d;
-  d.mass = density * std::numbers::pi *
-           (outer_radius * outer_radius - inner_radius * inner_radius) * thickness;
+  d.mass = density * units::kPi * (outer_radius * outer_radius - inner_radius * inner_radius) *
+           thickness;
   d.polar = d.mass * r2 / 2;
   d.diametral = d.mass * (3 * r2 + thickness * thickness) / 12;
   return d;

@@ -2,8 +2,9 @@
 
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::fe {
 namespace {
@@ -69,9 +70,8 @@ BeamMatrices timoshenko_beam(const BeamProperties& p) {
 
   const double L = p.length;
   const double d_o = p.outer_diameter, d_i = p.inner_diameter;
-  const double pi = std::numbers::pi;
-  const double A = pi * (d_o * d_o - d_i * d_i) / 4;
-  const double I = pi * (std::pow(d_o, 4) - std::pow(d_i, 4)) / 64;
+  const double A = units::kPi * (d_o * d_o - d_i * d_i) / 4;
+  const double I = units::kPi * (std::pow(d_o, 4) - std::pow(d_i, 4)) / 64;
   const double J = 2 * I;
   const double E = p.youngs_modulus, G = p.shear_modulus, rho = p.density;
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/text.hpp"
 #include "geardyn/gear/ste.hpp"
 #include "geardyn/signal/half_power.hpp"
 
@@ -142,13 +143,11 @@ MeasuredResponse parse_measured_response_csv(std::string_view text, const std::s
 }
 
 MeasuredResponse read_measured_response_csv(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  const std::optional<std::string> text = try_read_file(path);
+  if (!text)
     throw InputError(SourceLocation{path.string(), 0, 0}, "measured_response",
                      "a readable CSV file", "a file that cannot be opened");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_measured_response_csv(buffer.str(), path.string());
+  return parse_measured_response_csv(*text, path.string());
 }
 
 PeakEstimate estimate_peak(std::span<const double> x, std::span<const double> amplitude,

@@ -2,7 +2,8 @@
 // Correlation of a computed forced response with a measured one (speed or frequency sweeps):
 // peak position, peak amplitude and quality factor Q by the half-power method, and the scaling
 // of the harmonic mesh force that makes the computed peak match the measured one.
-// Reference: /work/shared/references/000_9102d0c7b8f25356.txt sec. 5.2 (linear response
+// Reference: A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears Equipped
+// with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 5.2 (linear response
 // amplitude validation: resonance amplitudes scaled to the measured ones, the scale factor
 // giving the harmonic excitation; the resonance amplitude depends on torque, Q and contact
 // ratio). Half-power method: Ewins, Modal Testing, 2nd ed., sec. 4.3 (signal/half_power.hpp).

@@ -6,13 +6,13 @@
 #include <array>
 #include <cmath>
 #include <complex>
-#include <numbers>
 #include <utility>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 // Floquet multipliers must be this far inside the unit circle for a fixed point of the
@@ -149,7 +149,7 @@ class Solver {
     const std::size_t ns = ste.size();
     // Interval count: a multiple of the STE samples (Hold steps fall on interval boundaries),
     // at least min_points_per_period, and short against the shortest natural period.
-    const double shortest_natural_period = kTwoPi / std::sqrt(mesh.max_stiffness_n_m() / m_);
+    const double shortest_natural_period = units::kTwoPi / std::sqrt(mesh.max_stiffness_n_m() / m_);
     const double needed = std::max(static_cast<double>(o.min_points_per_period),
                                    o.points_per_natural_period * period_ / shortest_natural_period);
     const double per_sample = std::ceil(needed / static_cast<double>(ns));
@@ -519,7 +519,7 @@ double mesh_frequency_hz(double speed_rpm, int teeth) {
   if (!std::isfinite(speed_rpm) || speed_rpm < 0.0)
     throw InputError(SourceLocation{}, "speed_rpm", "a finite speed >= 0 rpm",
                      fmt::format("{}", speed_rpm));
-  return speed_rpm / 60.0 * teeth;
+  return units::rpm_to_hz(speed_rpm) * teeth;
 }
 
 void DynamicMeshOptions::validate() const {
@@ -574,13 +574,169 @@ DynamicMesh::DynamicMesh(SteCurve ste, DynamicMeshOptions options)
 }
 
 double DynamicMesh::natural_frequency_hz() const {
-  return std::sqrt(k_mean_ / options_.equivalent_mass_kg) / kTwoPi;
+  return std::sqrt(k_mean_ / options_.equivalent_mass_kg) / units::kTwoPi;
 }
 
 MeshState DynamicMesh::static_state() const {
   const double d0 = ste_.ste_m()[0] - ste_.geometric_te_m()[0];
   return {ste_.geometric_te_m()[0] + d0, 0.0};
 }
+
+namespace {
+
+// The infinite-inertia (quasi-static) response: F_d = F_s k(t) / k_mean with x = F_s / k_mean,
+// the gears turning at constant speed.
+void quasi_static_response(const SteCurve& ste, const DynamicMeshOptions& options, double x,
+                           double period, MeshResponse& r) {
+  // F_d = F_s k(t) / k_mean with x = F_s / k_mean: the gears turn at constant speed.
+  const std::size_t ns = ste.size();
+  const std::size_t sub = static_cast<std::size_t>(
+      std::ceil(static_cast<double>(options.min_points_per_period) / static_cast<double>(ns)));
+  const std::size_t n = ns * sub;
+  r.points_per_period = static_cast<int>(n);
+  r.period_cycles = 1;
+  r.force_max_n = -kInf;
+  r.force_min_n = kInf;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = static_cast<double>(i) / static_cast<double>(n);
+    const double k = options.static_force_n / (ste.ste_at(u) - ste.geometric_at(u));
+    r.time_s.push_back(u * period);
+    r.dte_m.push_back(x);
+    r.velocity_m_s.push_back(0.0);
+    r.contact_force_n.push_back(k * x);
+    r.force_n.push_back(k * x);
+  }
+  // Extrema of k(t) lie at the samples for both interpolations.
+  for (std::size_t j = 0; j < ns; ++j) {
+    const double k = options.static_force_n / (ste.ste_m()[j] - ste.geometric_te_m()[j]);
+    r.force_max_n = std::max(r.force_max_n, k * x);
+    r.force_min_n = std::min(r.force_min_n, k * x);
+  }
+  r.dte_mean_m = r.dte_max_m = r.dte_min_m = x;
+  r.dte_rms_m = 0.0;
+  r.force_mean_n = options.static_force_n;  // k_mean x by definition of k_mean
+  r.dynamic_factor = r.force_max_n / options.static_force_n;
+  r.contact_loss_fraction = 0.0;
+  r.back_contact_fraction = 0.0;
+  r.start_state = {x, 0.0};
+  r.status = Status::Ok;
+}
+
+// The search for a stable periodic steady state: cycles from the start state, with Newton steps
+// on the Poincaré map now and then.
+struct OrbitSearch {
+  int period_cycles = 0;  // 0: none found
+  State orbit_start;
+  double rejected_multiplier = kNaN;
+  std::string failure;
+  Status failure_status = Status::Ok;
+  int cycle = 0;
+};
+
+OrbitSearch search_periodic_orbit(const Solver& solver, const SteadyStateOptions& ss, State s,
+                                  MeshResponse& r) {
+  OrbitSearch o;
+  std::vector<State> history{s};  // Poincaré points, newest last
+  int next_newton = 1, newton_gap = 4;
+  while (o.cycle < ss.max_cycles && o.period_cycles == 0) {
+    const CycleRun run = solver.run_cycle(s, nullptr, nullptr, 0.0);
+    ++o.cycle;
+    if (run.status != Status::Ok) {
+      o.failure_status = run.status;
+      o.failure = run.why;
+      break;
+    }
+    r.poincare_change = solver.scaled_change(run.end, s);
+    history.push_back(run.end);
+    if (r.poincare_change < ss.tolerance) {
+      o.period_cycles = 1;
+      o.orbit_start = run.end;
+      break;
+    }
+    for (int p = 2; p <= ss.max_period && static_cast<std::size_t>(p) < history.size(); ++p) {
+      if (solver.scaled_change(history.back(),
+                               history[history.size() - 1 - static_cast<std::size_t>(p)]) <
+          ss.tolerance) {
+        o.period_cycles = p;
+        o.orbit_start = run.end;
+        break;
+      }
+    }
+    if (o.period_cycles > 0) break;
+    if (history.size() > static_cast<std::size_t>(ss.max_period) + 2)
+      history.erase(history.begin());
+
+    if (ss.newton && o.cycle >= next_newton) {
+      // Newton on G(y) = P(y) - y with G' = M - I, from the newest Poincaré point.
+      State y = run.end;
+      for (int it = 0; it < 12 && o.cycle < ss.max_cycles; ++it) {
+        const CycleRun ny = solver.run_cycle(y, nullptr, nullptr, 0.0);
+        ++o.cycle;
+        ++r.newton_iterations;
+        if (ny.status != Status::Ok) break;
+        const double change = solver.scaled_change(ny.end, y);
+        if (change < ss.tolerance) {
+          const double rho = spectral_radius(ny.monodromy);
+          if (rho < 1.0 - kStabilityMargin) {
+            o.period_cycles = 1;
+            o.orbit_start = y;
+            r.poincare_change = change;
+          } else {
+            o.rejected_multiplier = rho;
+          }
+          break;
+        }
+        const Mat2& m = ny.monodromy;
+        const double a = 1.0 - m.a, b = -m.b, c = -m.c, d = 1.0 - m.d;
+        const double det = a * d - b * c;
+        if (!(std::abs(det) > 1e-14)) break;
+        const double gx = ny.end.x - y.x, gv = ny.end.v - y.v;
+        y = State{y.x + (d * gx - b * gv) / det, y.v + (-c * gx + a * gv) / det};
+        if (!std::isfinite(y.x) || !std::isfinite(y.v)) break;
+      }
+      if (o.period_cycles > 0) break;
+      next_newton = o.cycle + newton_gap;
+      newton_gap = std::min(2 * newton_gap, 256);
+    }
+    s = run.end;
+  }
+  return o;
+}
+
+// Status and message when no periodic steady state was found.
+void report_no_orbit(const OrbitSearch& o, const SteadyStateOptions& ss, double mesh_frequency_hz,
+                     MeshResponse& r) {
+  r.status = o.failure_status != Status::Ok ? o.failure_status : Status::NotConverged;
+  if (o.failure_status == Status::Diverged) {
+    r.message = fmt::format(
+        "the response grows without bound at f_m = {:.6g} Hz after {} mesh "
+        "cycles: {}",
+        mesh_frequency_hz, o.cycle, o.failure);
+    if (!std::isnan(o.rejected_multiplier))
+      r.message += fmt::format(
+          "; the periodic solution is unstable (largest Floquet multiplier "
+          "|mu| = {:.6g}: parametric instability)",
+          o.rejected_multiplier);
+    r.message += "; add damping or leave this speed range";
+  } else if (o.failure_status != Status::Ok) {
+    r.message = fmt::format("f_m = {:.6g} Hz: {}", mesh_frequency_hz, o.failure);
+  } else {
+    r.message = fmt::format(
+        "no periodic steady state (period <= {} mesh cycles) after {} mesh cycles at f_m = "
+        "{:.6g} Hz; last Poincaré change {:.3g} (tolerance {:.3g})",
+        ss.max_period, o.cycle, mesh_frequency_hz, r.poincare_change, ss.tolerance);
+    if (!std::isnan(o.rejected_multiplier))
+      r.message += fmt::format(
+          "; a periodic solution exists but is not asymptotically stable "
+          "(largest Floquet multiplier |mu| = {:.6g})",
+          o.rejected_multiplier);
+    r.message +=
+        "; the response may be quasi-periodic or chaotic (contact loss) or too lightly "
+        "damped: raise max_cycles, max_period or the damping ratio";
+  }
+}
+
+}  // namespace
 
 MeshResponse DynamicMesh::solve(double mesh_frequency_hz, const MeshState* initial) const {
   if (!(std::isfinite(mesh_frequency_hz) && mesh_frequency_hz > 0.0))
@@ -591,39 +747,7 @@ MeshResponse DynamicMesh::solve(double mesh_frequency_hz, const MeshState* initi
   const double period = 1.0 / mesh_frequency_hz;
 
   if (options_.model == MeshModel::InfiniteInertia) {
-    // F_d = F_s k(t) / k_mean with x = F_s / k_mean: the gears turn at constant speed.
-    const std::size_t ns = ste_.size();
-    const std::size_t sub = static_cast<std::size_t>(
-        std::ceil(static_cast<double>(options_.min_points_per_period) / static_cast<double>(ns)));
-    const std::size_t n = ns * sub;
-    const double x = static_deflection_m();
-    r.points_per_period = static_cast<int>(n);
-    r.period_cycles = 1;
-    r.force_max_n = -kInf;
-    r.force_min_n = kInf;
-    for (std::size_t i = 0; i < n; ++i) {
-      const double u = static_cast<double>(i) / static_cast<double>(n);
-      const double k = options_.static_force_n / (ste_.ste_at(u) - ste_.geometric_at(u));
-      r.time_s.push_back(u * period);
-      r.dte_m.push_back(x);
-      r.velocity_m_s.push_back(0.0);
-      r.contact_force_n.push_back(k * x);
-      r.force_n.push_back(k * x);
-    }
-    // Extrema of k(t) lie at the samples for both interpolations.
-    for (std::size_t j = 0; j < ns; ++j) {
-      const double k = options_.static_force_n / (ste_.ste_m()[j] - ste_.geometric_te_m()[j]);
-      r.force_max_n = std::max(r.force_max_n, k * x);
-      r.force_min_n = std::min(r.force_min_n, k * x);
-    }
-    r.dte_mean_m = r.dte_max_m = r.dte_min_m = x;
-    r.dte_rms_m = 0.0;
-    r.force_mean_n = options_.static_force_n;  // k_mean x by definition of k_mean
-    r.dynamic_factor = r.force_max_n / options_.static_force_n;
-    r.contact_loss_fraction = 0.0;
-    r.back_contact_fraction = 0.0;
-    r.start_state = {x, 0.0};
-    r.status = Status::Ok;
+    quasi_static_response(ste_, options_, static_deflection_m(), period, r);
     return r;
   }
 
@@ -641,107 +765,13 @@ MeshResponse DynamicMesh::solve(double mesh_frequency_hz, const MeshState* initi
   State s = initial ? State{initial->x_m, initial->v_m_s} : State{static_state().x_m, 0.0};
   if (!std::isfinite(s.x) || !std::isfinite(s.v)) s = State{static_state().x_m, 0.0};
 
-  std::vector<State> history{s};  // Poincaré points, newest last
-  int period_cycles = 0;
-  State orbit_start;
-  double rejected_multiplier = kNaN;
-  int next_newton = 1, newton_gap = 4;
-  std::string failure;
-  Status failure_status = Status::Ok;
-  int cycle = 0;
-  while (cycle < ss.max_cycles && period_cycles == 0) {
-    const CycleRun run = solver.run_cycle(s, nullptr, nullptr, 0.0);
-    ++cycle;
-    if (run.status != Status::Ok) {
-      failure_status = run.status;
-      failure = run.why;
-      break;
-    }
-    r.poincare_change = solver.scaled_change(run.end, s);
-    history.push_back(run.end);
-    if (r.poincare_change < ss.tolerance) {
-      period_cycles = 1;
-      orbit_start = run.end;
-      break;
-    }
-    for (int p = 2; p <= ss.max_period && static_cast<std::size_t>(p) < history.size(); ++p) {
-      if (solver.scaled_change(history.back(),
-                               history[history.size() - 1 - static_cast<std::size_t>(p)]) <
-          ss.tolerance) {
-        period_cycles = p;
-        orbit_start = run.end;
-        break;
-      }
-    }
-    if (period_cycles > 0) break;
-    if (history.size() > static_cast<std::size_t>(ss.max_period) + 2)
-      history.erase(history.begin());
-
-    if (ss.newton && cycle >= next_newton) {
-      // Newton on G(y) = P(y) - y with G' = M - I, from the newest Poincaré point.
-      State y = run.end;
-      for (int it = 0; it < 12 && cycle < ss.max_cycles; ++it) {
-        const CycleRun ny = solver.run_cycle(y, nullptr, nullptr, 0.0);
-        ++cycle;
-        ++r.newton_iterations;
-        if (ny.status != Status::Ok) break;
-        const double change = solver.scaled_change(ny.end, y);
-        if (change < ss.tolerance) {
-          const double rho = spectral_radius(ny.monodromy);
-          if (rho < 1.0 - kStabilityMargin) {
-            period_cycles = 1;
-            orbit_start = y;
-            r.poincare_change = change;
-          } else {
-            rejected_multiplier = rho;
-          }
-          break;
-        }
-        const Mat2& m = ny.monodromy;
-        const double a = 1.0 - m.a, b = -m.b, c = -m.c, d = 1.0 - m.d;
-        const double det = a * d - b * c;
-        if (!(std::abs(det) > 1e-14)) break;
-        const double gx = ny.end.x - y.x, gv = ny.end.v - y.v;
-        y = State{y.x + (d * gx - b * gv) / det, y.v + (-c * gx + a * gv) / det};
-        if (!std::isfinite(y.x) || !std::isfinite(y.v)) break;
-      }
-      if (period_cycles > 0) break;
-      next_newton = cycle + newton_gap;
-      newton_gap = std::min(2 * newton_gap, 256);
-    }
-    s = run.end;
-  }
-  r.transient_cycles = cycle;
+  const OrbitSearch o = search_periodic_orbit(solver, ss, s, r);
+  const int period_cycles = o.period_cycles;
+  const State orbit_start = o.orbit_start;
+  r.transient_cycles = o.cycle;
 
   if (period_cycles == 0) {
-    r.status = failure_status != Status::Ok ? failure_status : Status::NotConverged;
-    if (failure_status == Status::Diverged) {
-      r.message = fmt::format(
-          "the response grows without bound at f_m = {:.6g} Hz after {} mesh "
-          "cycles: {}",
-          mesh_frequency_hz, cycle, failure);
-      if (!std::isnan(rejected_multiplier))
-        r.message += fmt::format(
-            "; the periodic solution is unstable (largest Floquet multiplier "
-            "|mu| = {:.6g}: parametric instability)",
-            rejected_multiplier);
-      r.message += "; add damping or leave this speed range";
-    } else if (failure_status != Status::Ok) {
-      r.message = fmt::format("f_m = {:.6g} Hz: {}", mesh_frequency_hz, failure);
-    } else {
-      r.message = fmt::format(
-          "no periodic steady state (period <= {} mesh cycles) after {} mesh cycles at f_m = "
-          "{:.6g} Hz; last Poincaré change {:.3g} (tolerance {:.3g})",
-          ss.max_period, cycle, mesh_frequency_hz, r.poincare_change, ss.tolerance);
-      if (!std::isnan(rejected_multiplier))
-        r.message += fmt::format(
-            "; a periodic solution exists but is not asymptotically stable "
-            "(largest Floquet multiplier |mu| = {:.6g})",
-            rejected_multiplier);
-      r.message +=
-          "; the response may be quasi-periodic or chaotic (contact loss) or too lightly "
-          "damped: raise max_cycles, max_period or the damping ratio";
-    }
+    report_no_orbit(o, ss, mesh_frequency_hz, r);
     return r;
   }
 
@@ -836,7 +866,7 @@ MeshSweepResult sweep_mesh_frequency(const DynamicMesh& mesh, const MeshSweepOpt
       previous = r.start_state;
       MeshSweepPoint p;
       p.mesh_frequency_hz = f[i];
-      p.speed_rpm = options.teeth > 0 ? 60.0 * f[i] / options.teeth : kNaN;
+      p.speed_rpm = options.teeth > 0 ? units::hz_to_rpm(f[i]) / options.teeth : kNaN;
       p.dte_mean_m = r.dte_mean_m;
       p.dte_rms_m = r.dte_rms_m;
       p.dte_max_m = r.dte_max_m;

@@ -1,6 +1,8 @@
 #pragma once
 // Dynamic mesh force of a gear pair reduced to one degree of freedom along the line of action
-// (DESIGN 4.5; Parker-type model, /work/shared/references/000_9102d0c7b8f25356.txt sec. 3.2):
+// (DESIGN 4.5; Parker-type model as in A. Durastante, "Simulation of the Dynamic Response of
+// Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
+// sec. 3.2):
 //
 //   m_e x'' + c x' + f_k(x, t) = F_s,
 //   f_k = k(t) (x - e_g(t))          when x - e_g > 0          (drive-side contact)

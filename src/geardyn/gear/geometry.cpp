@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 [[noreturn]] void fail(const GearPairSpec& spec, const std::string& field, std::string expected,
@@ -26,9 +26,9 @@ void require_positive(const GearPairSpec& spec, const std::string& field, double
 
 void validate_angles(const GearPairSpec& spec) {
   const double alpha = spec.pressure_angle_rad;
-  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 45.0 * kDeg)
+  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 45.0 * units::kRadPerDegree)
     fail(spec, "pressure_angle", "a normal pressure angle in (0, 45) deg",
-         num(alpha / kDeg) + " deg");
+         num(alpha / units::kRadPerDegree) + " deg");
   const double beta = spec.helix_angle_rad;
   if (!std::isfinite(beta)) fail(spec, "helix_angle", "a finite angle", num(beta));
   switch (spec.type) {
@@ -36,34 +36,37 @@ void validate_angles(const GearPairSpec& spec) {
     case GearType::StraightBevel:
       if (beta != 0.0)
         fail(spec, "helix_angle", fmt::format("0 for a {} gear", to_string(spec.type)),
-             num(beta / kDeg) + " deg",
+             num(beta / units::kRadPerDegree) + " deg",
              spec.type == GearType::Spur ? "use type \"helical\" for a helix angle"
                                          : "use type \"spiral_bevel\" for a spiral angle");
       break;
     case GearType::Helical:
-      if (beta <= 0.0 || beta >= 45.0 * kDeg)
+      if (beta <= 0.0 || beta >= 45.0 * units::kRadPerDegree)
         fail(spec, "helix_angle", "a helix angle in (0, 45) deg (the hand is given separately)",
-             num(beta / kDeg) + " deg", beta == 0.0 ? "use type \"spur\" for beta = 0" : "");
+             num(beta / units::kRadPerDegree) + " deg",
+             beta == 0.0 ? "use type \"spur\" for beta = 0" : "");
       break;
     case GearType::SpiralBevel:
-      if (beta <= 0.0 || beta >= 60.0 * kDeg)
-        fail(spec, "helix_angle", "a mean spiral angle in (0, 60) deg", num(beta / kDeg) + " deg",
+      if (beta <= 0.0 || beta >= 60.0 * units::kRadPerDegree)
+        fail(spec, "helix_angle", "a mean spiral angle in (0, 60) deg",
+             num(beta / units::kRadPerDegree) + " deg",
              beta == 0.0 ? "use type \"straight_bevel\" for beta = 0" : "");
       break;
     case GearType::Hypoid:
-      if (beta < 0.0 || beta >= 60.0 * kDeg)
+      if (beta < 0.0 || beta >= 60.0 * units::kRadPerDegree)
         fail(spec, "helix_angle", "the wheel's mean spiral angle in [0, 60) deg",
-             num(beta / kDeg) + " deg");
+             num(beta / units::kRadPerDegree) + " deg");
       break;
   }
   const double beta1 = spec.pinion_spiral_angle_rad;
   if (spec.type == GearType::Hypoid) {
-    if (!std::isfinite(beta1) || beta1 <= 0.0 || beta1 >= 70.0 * kDeg)
+    if (!std::isfinite(beta1) || beta1 <= 0.0 || beta1 >= 70.0 * units::kRadPerDegree)
       fail(spec, "pinion_spiral_angle", "the hypoid pinion's mean spiral angle in (0, 70) deg",
-           num(beta1 / kDeg) + " deg");
+           num(beta1 / units::kRadPerDegree) + " deg");
   } else if (!std::isnan(beta1)) {
     fail(spec, "pinion_spiral_angle", "no pinion spiral angle (it applies to hypoid gears only)",
-         num(beta1 / kDeg) + " deg", "for spiral bevel gears give the mean spiral angle only");
+         num(beta1 / units::kRadPerDegree) + " deg",
+         "for spiral bevel gears give the mean spiral angle only");
   }
 }
 
@@ -173,7 +176,10 @@ double inverse_involute(double inv_value) {
   return a;
 }
 
-GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
+namespace {
+
+// The checks of the specification that do not depend on the gear type.
+void check_spec(const GearPairSpec& spec) {
   if (spec.teeth_pinion <= 0)
     fail(spec, "teeth_pinion", "a positive tooth count", std::to_string(spec.teeth_pinion));
   if (spec.teeth_wheel <= 0)
@@ -201,7 +207,173 @@ GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
   if (!std::isfinite(spec.profile_shift_wheel))
     fail(spec, "profile_shift_wheel", "a finite value", num(spec.profile_shift_wheel));
   validate_angles(spec);
+}
 
+// Transverse geometry of a spur or helical pair; sets the moduli, the pitch radii and the helix
+// angles in g, beta and m_n.
+Transverse cylindrical_pair(const GearPairSpec& spec, bool internal, GearPairGeometry& g,
+                            double& beta, double& m_n) {
+  const int z1 = spec.teeth_pinion;
+  const int z2 = spec.teeth_wheel;
+  const double ha = spec.addendum_coefficient;
+  const double hf = spec.dedendum_coefficient;
+  const double x1 = spec.profile_shift_pinion;
+  const double x2 = spec.profile_shift_wheel;
+  const double alpha_n = spec.pressure_angle_rad;
+  Transverse t{};
+  if (!std::isnan(spec.outer_cone_distance_m))
+    fail(spec, "outer_cone_distance", "no outer cone distance (bevel gears only)",
+         num(spec.outer_cone_distance_m));
+  beta = spec.helix_angle_rad;
+  m_n = spec.module_m;
+  const double m_t = m_n / std::cos(beta);
+  const double alpha_t = std::atan(std::tan(alpha_n) / std::cos(beta));
+  const double z2s = internal ? -static_cast<double>(z2) : static_cast<double>(z2);
+  const double r1 = 0.5 * z1 * m_t;
+  const double r2s = 0.5 * z2s * m_t;
+  // Zero-backlash working pressure angle for the given profile shifts (ISO 21771 5.2).
+  const double inv_w0 = involute(alpha_t) + 2.0 * std::tan(alpha_n) * (x1 + x2) / (z1 + z2s);
+  if (inv_w0 <= 0.0 || inv_w0 > 1.0)
+    fail(spec, "profile_shift_pinion",
+         "profile shifts giving a working pressure angle between 0 and ~70 deg",
+         fmt::format("inv(alpha_wt) = {} for x1 + x2 = {}", num(inv_w0), num(x1 + x2)));
+  const double alpha_w0 = inverse_involute(inv_w0);
+  const double a0 = std::abs(r1 + r2s);  // reference centre distance
+  const double a_zero_backlash = a0 * std::cos(alpha_t) / std::cos(alpha_w0);
+  double alpha_wt = alpha_w0;
+  double a = a_zero_backlash;
+  if (!std::isnan(spec.centre_distance_m)) {
+    require_positive(spec, "centre_distance", spec.centre_distance_m);
+    a = spec.centre_distance_m;
+    const double c = a0 * std::cos(alpha_t) / a;
+    if (c >= 1.0)
+      fail(spec, "centre_distance",
+           fmt::format("a centre distance above a0 cos(alpha_t) = {} m",
+                       num(a0 * std::cos(alpha_t))),
+           num(a) + " m");
+    alpha_wt = std::acos(c);
+    // Profile-shift sum the given centre distance can take without backlash; more would make
+    // the teeth overlap. Signed tooth count makes the same inequality hold for internal gears.
+    const double x_sum_max =
+        (involute(alpha_wt) - involute(alpha_t)) * (z1 + z2s) / (2.0 * std::tan(alpha_n));
+    if (x1 + x2 > x_sum_max + 1e-9)
+      fail(spec, "centre_distance",
+           fmt::format("a centre distance leaving non-negative backlash for x1 + x2 = {} "
+                       "(zero-backlash centre distance {} m)",
+                       num(x1 + x2), num(a_zero_backlash)),
+           num(a) + " m",
+           internal ? "reduce the centre distance or the profile shifts"
+                    : "increase the centre distance or reduce the profile shifts");
+  }
+  t.r1 = r1;
+  t.r2 = std::abs(r2s);
+  t.rb1 = r1 * std::cos(alpha_t);
+  t.rb2 = t.r2 * std::cos(alpha_t);
+  t.ra1 = r1 + m_n * (ha + x1);
+  t.rf1 = r1 - m_n * (hf - x1);
+  t.ra2 = std::abs(r2s + m_n * (ha + x2));  // signed: d_a = d + 2 m_n (h_a* + x)
+  t.rf2 = std::abs(r2s - m_n * (hf - x2));
+  t.alpha_wt = alpha_wt;
+  t.a = a;
+  g.normal_module_m = m_n;
+  g.transverse_module_m = m_t;
+  g.transverse_pressure_angle_rad = alpha_t;
+  g.pinion.mean_pitch_radius_m = t.r1;
+  g.wheel.mean_pitch_radius_m = t.r2;
+  g.pinion.spiral_angle_rad = beta;
+  g.wheel.spiral_angle_rad = beta;
+  return t;
+}
+
+// Transverse geometry of the virtual cylindrical pair of a bevel or hypoid pair at mid face;
+// sets the moduli, the cone data and the spiral angles in g, beta, m_n and the virtual tooth
+// counts.
+Transverse bevel_pair(const GearPairSpec& spec, double u, GearPairGeometry& g, double& beta,
+                      double& m_n, double& zv1, double& zv2) {
+  const int z1 = spec.teeth_pinion;
+  const int z2 = spec.teeth_wheel;
+  const double ha = spec.addendum_coefficient;
+  const double hf = spec.dedendum_coefficient;
+  const double x1 = spec.profile_shift_pinion;
+  const double x2 = spec.profile_shift_wheel;
+  const double alpha_n = spec.pressure_angle_rad;
+  Transverse t{};
+  if (!std::isnan(spec.centre_distance_m))
+    fail(spec, "centre_distance", "no centre distance (cylindrical gears only)",
+         num(spec.centre_distance_m), "bevel gears are set by the shaft angle");
+  const double sigma = spec.shaft_angle_rad;
+  if (!std::isfinite(sigma) || sigma <= 0.0 || sigma >= units::kPi)
+    fail(spec, "shaft_angle", "a shaft angle in (0, 180) deg",
+         num(sigma / units::kRadPerDegree) + " deg");
+  if (std::abs(x1 + x2) > 1e-12)
+    fail(spec, "profile_shift_wheel",
+         fmt::format("x2 = -x1 = {} (bevel gears use balanced profile shift)", num(-x1)), num(x2));
+  const double delta1 = std::atan2(std::sin(sigma), u + std::cos(sigma));
+  const double delta2 = sigma - delta1;
+  if (delta2 >= 0.5 * units::kPi - 1e-9)
+    fail(spec, "shaft_angle",
+         "a wheel pitch cone angle below 90 deg (crown and internal bevel gears are not "
+         "supported)",
+         fmt::format("delta2 = {} deg", num(delta2 / units::kRadPerDegree)));
+  const double m_e = spec.module_m;
+  const double R_e = 0.5 * m_e * z1 / std::sin(delta1);
+  if (!std::isnan(spec.outer_cone_distance_m)) {
+    require_positive(spec, "outer_cone_distance", spec.outer_cone_distance_m);
+    if (std::abs(spec.outer_cone_distance_m - R_e) > 1e-6 * R_e)
+      fail(spec, "outer_cone_distance", fmt::format("m_e z1 / (2 sin delta1) = {} m", num(R_e)),
+           num(spec.outer_cone_distance_m) + " m",
+           "check the outer module, tooth counts and shaft angle");
+  }
+  const double b = spec.face_width_m;
+  if (b >= R_e)
+    fail(spec, "face_width",
+         fmt::format("a face width below the outer cone distance {} m", num(R_e)), num(b) + " m",
+         "bevel face widths are usually below R_e / 3");
+  const double R_m = R_e - 0.5 * b;
+  const double m_m = m_e * R_m / R_e;  // mid-face module (thesis 3.2)
+  const double beta2 = spec.helix_angle_rad;
+  const double beta1 = spec.type == GearType::Hypoid ? spec.pinion_spiral_angle_rad : beta2;
+  m_n = m_m * std::cos(beta2);  // mean normal module, common to both members
+  const double r_m2 = 0.5 * m_m * z2;
+  const double r_m1 = 0.5 * m_n / std::cos(beta1) * z1;
+  beta = 0.5 * (beta1 + beta2);
+  const double m_t = m_n / std::cos(beta);  // = m_m for bevel gears
+  const double alpha_t = std::atan(std::tan(alpha_n) / std::cos(beta));
+  zv1 = z1 / std::cos(delta1);
+  zv2 = z2 / std::cos(delta2);
+  t.r1 = 0.5 * zv1 * m_t;
+  t.r2 = 0.5 * zv2 * m_t;
+  t.rb1 = t.r1 * std::cos(alpha_t);
+  t.rb2 = t.r2 * std::cos(alpha_t);
+  t.ra1 = t.r1 + m_n * (ha + x1);
+  t.ra2 = t.r2 + m_n * (ha + x2);
+  t.rf1 = t.r1 - m_n * (hf - x1);
+  t.rf2 = t.r2 - m_n * (hf - x2);
+  t.alpha_wt = alpha_t;
+  t.a = t.r1 + t.r2;
+  g.normal_module_m = m_n;
+  g.transverse_module_m = m_t;
+  g.transverse_pressure_angle_rad = alpha_t;
+  g.outer_module_m = m_e;
+  g.mean_module_m = m_m;
+  g.outer_cone_distance_m = R_e;
+  g.mean_cone_distance_m = R_m;
+  g.pinion.mean_pitch_radius_m = r_m1;
+  g.wheel.mean_pitch_radius_m = r_m2;
+  g.pinion.pitch_cone_angle_rad = delta1;
+  g.wheel.pitch_cone_angle_rad = delta2;
+  g.pinion.spiral_angle_rad = beta1;
+  g.wheel.spiral_angle_rad = beta2;
+  return t;
+}
+
+}  // namespace
+
+GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
+  check_spec(spec);
+  const int z1 = spec.teeth_pinion;
+  const int z2 = spec.teeth_wheel;
+  const double u = static_cast<double>(z2) / z1;
   const bool bevel = is_bevel(spec.type);
   const bool internal = spec.mesh == MeshType::Internal;
   if (internal && bevel)
@@ -221,147 +393,13 @@ GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
   g.wheel.teeth = z2;
   g.pinion.profile_shift = spec.profile_shift_pinion;
   g.wheel.profile_shift = spec.profile_shift_wheel;
-  const double ha = spec.addendum_coefficient;
-  const double hf = spec.dedendum_coefficient;
-  const double x1 = spec.profile_shift_pinion;
-  const double x2 = spec.profile_shift_wheel;
   const double alpha_n = spec.pressure_angle_rad;
 
-  Transverse t{};
   double beta = 0.0;  // helix angle of the (virtual) cylindrical pair
   double m_n = 0.0;   // normal module of the (virtual) pair
   double zv1 = z1, zv2 = z2;
-
-  if (!bevel) {
-    if (!std::isnan(spec.outer_cone_distance_m))
-      fail(spec, "outer_cone_distance", "no outer cone distance (bevel gears only)",
-           num(spec.outer_cone_distance_m));
-    beta = spec.helix_angle_rad;
-    m_n = spec.module_m;
-    const double m_t = m_n / std::cos(beta);
-    const double alpha_t = std::atan(std::tan(alpha_n) / std::cos(beta));
-    const double z2s = internal ? -static_cast<double>(z2) : static_cast<double>(z2);
-    const double r1 = 0.5 * z1 * m_t;
-    const double r2s = 0.5 * z2s * m_t;
-    // Zero-backlash working pressure angle for the given profile shifts (ISO 21771 5.2).
-    const double inv_w0 = involute(alpha_t) + 2.0 * std::tan(alpha_n) * (x1 + x2) / (z1 + z2s);
-    if (inv_w0 <= 0.0 || inv_w0 > 1.0)
-      fail(spec, "profile_shift_pinion",
-           "profile shifts giving a working pressure angle between 0 and ~70 deg",
-           fmt::format("inv(alpha_wt) = {} for x1 + x2 = {}", num(inv_w0), num(x1 + x2)));
-    const double alpha_w0 = inverse_involute(inv_w0);
-    const double a0 = std::abs(r1 + r2s);  // reference centre distance
-    const double a_zero_backlash = a0 * std::cos(alpha_t) / std::cos(alpha_w0);
-    double alpha_wt = alpha_w0;
-    double a = a_zero_backlash;
-    if (!std::isnan(spec.centre_distance_m)) {
-      require_positive(spec, "centre_distance", spec.centre_distance_m);
-      a = spec.centre_distance_m;
-      const double c = a0 * std::cos(alpha_t) / a;
-      if (c >= 1.0)
-        fail(spec, "centre_distance",
-             fmt::format("a centre distance above a0 cos(alpha_t) = {} m",
-                         num(a0 * std::cos(alpha_t))),
-             num(a) + " m");
-      alpha_wt = std::acos(c);
-      // Profile-shift sum the given centre distance can take without backlash; more would make
-      // the teeth overlap. Signed tooth count makes the same inequality hold for internal gears.
-      const double x_sum_max =
-          (involute(alpha_wt) - involute(alpha_t)) * (z1 + z2s) / (2.0 * std::tan(alpha_n));
-      if (x1 + x2 > x_sum_max + 1e-9)
-        fail(spec, "centre_distance",
-             fmt::format("a centre distance leaving non-negative backlash for x1 + x2 = {} "
-                         "(zero-backlash centre distance {} m)",
-                         num(x1 + x2), num(a_zero_backlash)),
-             num(a) + " m",
-             internal ? "reduce the centre distance or the profile shifts"
-                      : "increase the centre distance or reduce the profile shifts");
-    }
-    t.r1 = r1;
-    t.r2 = std::abs(r2s);
-    t.rb1 = r1 * std::cos(alpha_t);
-    t.rb2 = t.r2 * std::cos(alpha_t);
-    t.ra1 = r1 + m_n * (ha + x1);
-    t.rf1 = r1 - m_n * (hf - x1);
-    t.ra2 = std::abs(r2s + m_n * (ha + x2));  // signed: d_a = d + 2 m_n (h_a* + x)
-    t.rf2 = std::abs(r2s - m_n * (hf - x2));
-    t.alpha_wt = alpha_wt;
-    t.a = a;
-    g.normal_module_m = m_n;
-    g.transverse_module_m = m_t;
-    g.transverse_pressure_angle_rad = alpha_t;
-    g.pinion.mean_pitch_radius_m = t.r1;
-    g.wheel.mean_pitch_radius_m = t.r2;
-    g.pinion.spiral_angle_rad = beta;
-    g.wheel.spiral_angle_rad = beta;
-  } else {
-    if (!std::isnan(spec.centre_distance_m))
-      fail(spec, "centre_distance", "no centre distance (cylindrical gears only)",
-           num(spec.centre_distance_m), "bevel gears are set by the shaft angle");
-    const double sigma = spec.shaft_angle_rad;
-    if (!std::isfinite(sigma) || sigma <= 0.0 || sigma >= std::numbers::pi)
-      fail(spec, "shaft_angle", "a shaft angle in (0, 180) deg", num(sigma / kDeg) + " deg");
-    if (std::abs(x1 + x2) > 1e-12)
-      fail(spec, "profile_shift_wheel",
-           fmt::format("x2 = -x1 = {} (bevel gears use balanced profile shift)", num(-x1)),
-           num(x2));
-    const double delta1 = std::atan2(std::sin(sigma), u + std::cos(sigma));
-    const double delta2 = sigma - delta1;
-    if (delta2 >= 0.5 * std::numbers::pi - 1e-9)
-      fail(spec, "shaft_angle",
-           "a wheel pitch cone angle below 90 deg (crown and internal bevel gears are not "
-           "supported)",
-           fmt::format("delta2 = {} deg", num(delta2 / kDeg)));
-    const double m_e = spec.module_m;
-    const double R_e = 0.5 * m_e * z1 / std::sin(delta1);
-    if (!std::isnan(spec.outer_cone_distance_m)) {
-      require_positive(spec, "outer_cone_distance", spec.outer_cone_distance_m);
-      if (std::abs(spec.outer_cone_distance_m - R_e) > 1e-6 * R_e)
-        fail(spec, "outer_cone_distance", fmt::format("m_e z1 / (2 sin delta1) = {} m", num(R_e)),
-             num(spec.outer_cone_distance_m) + " m",
-             "check the outer module, tooth counts and shaft angle");
-    }
-    const double b = spec.face_width_m;
-    if (b >= R_e)
-      fail(spec, "face_width",
-           fmt::format("a face width below the outer cone distance {} m", num(R_e)), num(b) + " m",
-           "bevel face widths are usually below R_e / 3");
-    const double R_m = R_e - 0.5 * b;
-    const double m_m = m_e * R_m / R_e;  // mid-face module (thesis 3.2)
-    const double beta2 = spec.helix_angle_rad;
-    const double beta1 = spec.type == GearType::Hypoid ? spec.pinion_spiral_angle_rad : beta2;
-    m_n = m_m * std::cos(beta2);  // mean normal module, common to both members
-    const double r_m2 = 0.5 * m_m * z2;
-    const double r_m1 = 0.5 * m_n / std::cos(beta1) * z1;
-    beta = 0.5 * (beta1 + beta2);
-    const double m_t = m_n / std::cos(beta);  // = m_m for bevel gears
-    const double alpha_t = std::atan(std::tan(alpha_n) / std::cos(beta));
-    zv1 = z1 / std::cos(delta1);
-    zv2 = z2 / std::cos(delta2);
-    t.r1 = 0.5 * zv1 * m_t;
-    t.r2 = 0.5 * zv2 * m_t;
-    t.rb1 = t.r1 * std::cos(alpha_t);
-    t.rb2 = t.r2 * std::cos(alpha_t);
-    t.ra1 = t.r1 + m_n * (ha + x1);
-    t.ra2 = t.r2 + m_n * (ha + x2);
-    t.rf1 = t.r1 - m_n * (hf - x1);
-    t.rf2 = t.r2 - m_n * (hf - x2);
-    t.alpha_wt = alpha_t;
-    t.a = t.r1 + t.r2;
-    g.normal_module_m = m_n;
-    g.transverse_module_m = m_t;
-    g.transverse_pressure_angle_rad = alpha_t;
-    g.outer_module_m = m_e;
-    g.mean_module_m = m_m;
-    g.outer_cone_distance_m = R_e;
-    g.mean_cone_distance_m = R_m;
-    g.pinion.mean_pitch_radius_m = r_m1;
-    g.wheel.mean_pitch_radius_m = r_m2;
-    g.pinion.pitch_cone_angle_rad = delta1;
-    g.wheel.pitch_cone_angle_rad = delta2;
-    g.pinion.spiral_angle_rad = beta1;
-    g.wheel.spiral_angle_rad = beta2;
-  }
+  const Transverse t = bevel ? bevel_pair(spec, u, g, beta, m_n, zv1, zv2)
+                             : cylindrical_pair(spec, internal, g, beta, m_n);
 
   check_contact(spec, t, internal, g.path_of_contact_m);
   g.helix_angle_rad = beta;
@@ -369,9 +407,9 @@ GearPairGeometry gear_pair_geometry(const GearPairSpec& spec) {
   g.working_pressure_angle_rad = t.alpha_wt;
   g.centre_distance_m = t.a;
   g.transverse_base_pitch_m =
-      std::numbers::pi * g.transverse_module_m * std::cos(g.transverse_pressure_angle_rad);
+      units::kPi * g.transverse_module_m * std::cos(g.transverse_pressure_angle_rad);
   g.transverse_contact_ratio = g.path_of_contact_m / g.transverse_base_pitch_m;
-  g.overlap_ratio = g.face_width_m * std::sin(beta) / (std::numbers::pi * m_n);
+  g.overlap_ratio = g.face_width_m * std::sin(beta) / (units::kPi * m_n);
   g.total_contact_ratio = g.transverse_contact_ratio + g.overlap_ratio;
 
   const double cb = std::cos(g.base_helix_angle_rad);
@@ -418,13 +456,13 @@ Table geometry_table(const std::vector<GearPairGeometry>& pairs) {
       ra.push_back(m.tip_radius_m);
       rf.push_back(m.root_radius_m);
       rw.push_back(m.working_pitch_radius_m);
-      delta.push_back(m.pitch_cone_angle_rad / kDeg);
-      beta.push_back(m.spiral_angle_rad / kDeg);
+      delta.push_back(m.pitch_cone_angle_rad / units::kRadPerDegree);
+      beta.push_back(m.spiral_angle_rad / units::kRadPerDegree);
       x.push_back(m.profile_shift);
       a.push_back(g.centre_distance_m);
       mn.push_back(g.normal_module_m);
       mt.push_back(g.transverse_module_m);
-      alpha_w.push_back(g.working_pressure_angle_rad / kDeg);
+      alpha_w.push_back(g.working_pressure_angle_rad / units::kRadPerDegree);
       ea.push_back(g.transverse_contact_ratio);
       eb.push_back(g.overlap_ratio);
       eg.push_back(g.total_contact_ratio);

@@ -3,7 +3,9 @@
 // pressure angle and centre distance, contact ratios. Cylindrical gears (spur, helical; external
 // and internal) follow ISO 21771; bevel and hypoid gears are replaced by their virtual
 // cylindrical ("equivalent spur") gears at mid face width, as in ISO 10300-1 and in the
-// damper-ring thesis (references/000, 3.2: mid-face module from the outer module).
+// damper-ring thesis (A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
+// Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 3.2: mid-face
+// module from the outer module).
 //
 // Cylindrical gears (ISO 21771:2007, 4-5):
 //   m_t = m_n / cos(beta),  tan(alpha_t) = tan(alpha_n) / cos(beta),
@@ -37,13 +39,13 @@
 // enlargement). The virtual pair uses the mean spiral angle (beta_1 + beta_2) / 2.
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 
@@ -82,8 +84,7 @@ struct GearPairSpec {
   /// Cylindrical gears: normal module m_n. Bevel gears: outer transverse module m_e (at the
   /// heel); hypoid: the wheel's outer transverse module. [m]
   double module_m = std::numeric_limits<double>::quiet_NaN();
-  double pressure_angle_rad =
-      std::numbers::pi / 9.0;  ///< normal pressure angle alpha_n of the rack
+  double pressure_angle_rad = units::kPi / 9.0;  ///< normal pressure angle alpha_n of the rack
   /// Helical: reference helix angle beta. Spiral bevel: mean spiral angle beta_m. Hypoid: the
   /// wheel's mean spiral angle. Must be 0 for spur and straight bevel gears.
   double helix_angle_rad = 0.0;
@@ -97,7 +98,7 @@ struct GearPairSpec {
   /// Cylindrical gears: working centre distance a (NaN: the zero-backlash value for x1 + x2).
   /// If given, it must leave non-negative backlash for the profile shifts.
   double centre_distance_m = std::numeric_limits<double>::quiet_NaN();
-  double shaft_angle_rad = 0.5 * std::numbers::pi;  ///< bevel / hypoid: Sigma in (0, pi)
+  double shaft_angle_rad = 0.5 * units::kPi;  ///< bevel / hypoid: Sigma in (0, pi)
   /// Bevel / hypoid: outer cone distance R_e (NaN: from m_e, z1 and delta1). If given it must
   /// agree with m_e z1 / (2 sin delta1) to 1e-6 relative.
   double outer_cone_distance_m = std::numeric_limits<double>::quiet_NaN();

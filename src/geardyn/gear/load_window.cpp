@@ -4,16 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/signal/fft.hpp"
 
 namespace geardyn::gear {
 namespace {
-
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 [[noreturn]] void fail(const std::string& key, std::string expected, std::string found,
                        std::string hint = {}) {
@@ -69,7 +66,8 @@ std::string order_rule(int order, int teeth, int h) {
 
 double tooth_load_window(double phi_rad, int teeth, double contact_ratio) {
   validate_window(teeth, contact_ratio);
-  return window_in_pitches(reduce_pitches(phi_rad * teeth / kTwoPi, teeth), contact_ratio - 1.0);
+  return window_in_pitches(reduce_pitches(phi_rad * teeth / units::kTwoPi, teeth),
+                           contact_ratio - 1.0);
 }
 
 Eigen::VectorXd tooth_load_window_samples(int samples, int teeth, double contact_ratio,
@@ -77,7 +75,7 @@ Eigen::VectorXd tooth_load_window_samples(int samples, int teeth, double contact
   validate_window(teeth, contact_ratio);
   if (samples < 1) fail("samples", "at least one sample per revolution", std::to_string(samples));
   if (!std::isfinite(shift_rad)) fail("shift", "a finite window shift [rad]", "non-finite");
-  const double shift_pitches = shift_rad * teeth / kTwoPi;
+  const double shift_pitches = shift_rad * teeth / units::kTwoPi;
   Eigen::VectorXd w(samples);
   for (int i = 0; i < samples; ++i) {
     // i N / n is exact whenever it is an integer (both factors are exact in double).
@@ -89,7 +87,7 @@ Eigen::VectorXd tooth_load_window_samples(int samples, int teeth, double contact
 
 std::complex<double> tooth_load_window_coefficient(int order, int teeth, double contact_ratio) {
   validate_window(teeth, contact_ratio);
-  const double pitch = kTwoPi / teeth;
+  const double pitch = units::kTwoPi / teeth;
   const double ramp = (contact_ratio - 1.0) * pitch;
   const double k = order;
   return std::polar(sinc(0.5 * k * pitch) * sinc(0.5 * k * ramp) / teeth,
@@ -185,11 +183,11 @@ Table tooth_load_table(const Eigen::Ref<const Eigen::VectorXd>& mesh_force_n, in
   Table t;
   t.name = "tooth_load";
   t.title = fmt::format("Load on one tooth over one revolution (N = {}, CR = {}, shift = {} deg)",
-                        teeth, contact_ratio, shift_rad * kRadToDeg);
+                        teeth, contact_ratio, shift_rad * (180.0 / units::kPi));
   std::vector<double> angle(n), angle_deg(n), force(n), window(n), tooth(n);
   for (int i = 0; i < n; ++i) {
-    angle[i] = kTwoPi * i / n;
-    angle_deg[i] = angle[i] * kRadToDeg;
+    angle[i] = units::kTwoPi * i / n;
+    angle_deg[i] = angle[i] * (180.0 / units::kPi);
     force[i] = mesh_force_n[i];
     window[i] = w[i];
     tooth[i] = mesh_force_n[i] * w[i];
@@ -217,7 +215,7 @@ Table order_spectrum_table(const Eigen::Ref<const Eigen::VectorXd>& tooth_force,
   for (const auto& h : harmonics) {
     order.push_back(h.order);
     amp.push_back(h.amplitude);
-    phase.push_back(h.phase_rad * kRadToDeg);
+    phase.push_back(h.phase_rad * (180.0 / units::kPi));
     rel.push_back(h.amplitude / static_force_n);
   }
   t.add("order", "", std::move(order));
@@ -244,12 +242,12 @@ Table harmonic_table(const Eigen::Ref<const Eigen::VectorXd>& tooth_force, int t
     order.push_back(c.order);
     rule.push_back(order_rule(c.order, teeth, c.nodal_diameter));
     amp.push_back(std::abs(c.tangential));
-    phase.push_back(std::arg(c.tangential) * kRadToDeg);
+    phase.push_back(std::arg(c.tangential) * (180.0 / units::kPi));
     rel.push_back(std::abs(c.tangential) / static_force_n);
     fr.push_back(std::abs(c.radial));
     fa.push_back(std::abs(c.axial));
-    pr.push_back(std::arg(c.radial) * kRadToDeg);
-    pa.push_back(std::arg(c.axial) * kRadToDeg);
+    pr.push_back(std::arg(c.radial) * (180.0 / units::kPi));
+    pa.push_back(std::arg(c.axial) * (180.0 / units::kPi));
   }
   t.add("nodal_diameter", "", std::move(nd));
   t.add("order", "", std::move(order));

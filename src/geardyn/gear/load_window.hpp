@@ -1,6 +1,7 @@
 #pragma once
-// Tooth-load window and engine-order harmonics (DESIGN 4.4; damper-ring thesis, references/000,
-// 1.3.3 and 3.3-3.4).
+// Tooth-load window and engine-order harmonics (DESIGN 4.4; the damper-ring thesis:
+// A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears Equipped with Damper
+// Rings", MSc thesis, Politecnico di Torino, 2018, sec. 1.3.3 and 3.3-3.4).
 //
 // A gear of N teeth turns by the pitch p = 2 pi / N per mesh cycle. One tooth carries load while
 // it passes the mesh, for about CR pitches. Its share of the mesh force is the window

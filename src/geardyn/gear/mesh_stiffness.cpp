@@ -4,7 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
@@ -100,7 +101,7 @@ IsoStiffness iso_mesh_stiffness(const GearPairGeometry& g, const IsoStiffnessOpt
   }
 
   // Basic rack factor; both members are cut by the same rack here, so C_B = C_B1 = C_B2.
-  const double alpha_pn_deg = g.normal_pressure_angle_rad * 180.0 / std::numbers::pi;
+  const double alpha_pn_deg = g.normal_pressure_angle_rad * 180.0 / units::kPi;
   s.basic_rack_factor =
       (1.0 + 0.5 * (1.2 - g.spec.dedendum_coefficient)) * (1.0 - 0.02 * (20.0 - alpha_pn_deg));
   s.helix_factor = std::cos(g.helix_angle_rad);
@@ -135,7 +136,7 @@ MeshStiffnessCurve time_varying_mesh_stiffness(const GearPairGeometry& g,
   const double path = g.path_of_contact_m;
   const double ramp = std::min((g.transverse_contact_ratio - 1.0) * p, 0.5 * path);
   c.double_zone_length_m = ramp;
-  c.mesh_period_rad = 2.0 * std::numbers::pi / g.pinion.teeth;
+  c.mesh_period_rad = units::kTwoPi / g.pinion.teeth;
   const PairLaw law(path, ramp);
   const double b = g.face_width_m;
   // Path-coordinate lag of the trailing face end behind the leading one.

@@ -6,9 +6,11 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
-#include <numbers>
 #include <sstream>
 #include <utility>
+
+#include "geardyn/core/text.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
@@ -38,9 +40,10 @@ bool parse_double(std::string_view s, double& value) {
   return ec == std::errc() && ptr == end && std::isfinite(value);
 }
 
-std::string shorten(std::string_view s) {
-  constexpr std::size_t kMax = 40;
-  std::string out = s.size() > kMax ? std::string(s.substr(0, kMax)) + "..." : std::string(s);
+// A cell or column name quoted in a message: at most 43 bytes, control and non-ASCII bytes
+// shown as '?'.
+std::string quoted_cell(std::string_view s) {
+  std::string out = shorten(s, 43);
   for (char& c : out)
     if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
   return "'" + out + "'";
@@ -55,7 +58,6 @@ struct ValueUnit {
 
 bool value_unit(std::string_view name, ValueUnit& unit) {
   const std::string u = lower(name);
-  constexpr double kPi = std::numbers::pi;
   if (u == "rad")
     unit = {1.0, true};
   else if (u == "mrad")
@@ -63,9 +65,9 @@ bool value_unit(std::string_view name, ValueUnit& unit) {
   else if (u == "urad")
     unit = {1e-6, true};
   else if (u == "deg")
-    unit = {kPi / 180.0, true};
+    unit = {units::kPi / 180.0, true};
   else if (u == "arcsec")
-    unit = {kPi / (180.0 * 3600.0), true};
+    unit = {units::kPi / (180.0 * 3600.0), true};
   else if (u == "m")
     unit = {1.0, false};
   else if (u == "mm")
@@ -193,7 +195,7 @@ NumericCsv parse_numeric_csv(std::string_view text, const std::string& file_name
         const std::string name(fields[i]);
         if (std::find(csv.names.begin(), csv.names.end(), name) != csv.names.end())
           throw InputError(where, name, "each column name once",
-                           "a repeated name " + shorten(name));
+                           "a repeated name " + quoted_cell(name));
         csv.names.push_back(name);
         csv.name_columns.push_back(columns[i]);
       }
@@ -208,7 +210,7 @@ NumericCsv parse_numeric_csv(std::string_view text, const std::string& file_name
         if (!parse_double(fields[i], row[i]))
           throw InputError(SourceLocation{file_name, line_number, columns[i]}, csv.names[i],
                            "a finite number",
-                           fields[i].empty() ? "an empty cell" : shorten(fields[i]));
+                           fields[i].empty() ? "an empty cell" : quoted_cell(fields[i]));
       csv.rows.push_back(std::move(row));
       csv.row_lines.push_back(line_number);
       csv.cell_columns.push_back(std::move(columns));
@@ -424,7 +426,8 @@ Header parse_header(const NumericCsv& csv) {
   else
     throw InputError(csv.at_header(0), "header[1]",
                      "angle_rad, angle_deg, time_s or time_ms as the first column",
-                     shorten(csv.names[0]), "the first column is the position in the mesh cycle");
+                     quoted_cell(csv.names[0]),
+                     "the first column is the position in the mesh cycle");
   bool plain_ste = false;
   for (std::size_t i = 1; i < csv.names.size(); ++i) {
     const std::string& name = csv.names[i];
@@ -442,7 +445,8 @@ Header parse_header(const NumericCsv& csv) {
       c.index = i;
       if (!value_unit(std::string_view(name).substr(13), c.unit))
         throw InputError(csv.at_header(i), name,
-                         fmt::format("geometric_te_<unit>, unit {}", kValueUnits), shorten(name));
+                         fmt::format("geometric_te_<unit>, unit {}", kValueUnits),
+                         quoted_cell(name));
       if (h.has_geometric)
         throw InputError(csv.at_header(i), name, "one geometric_te column", "a second one");
       h.has_geometric = true;
@@ -457,12 +461,12 @@ Header parse_header(const NumericCsv& csv) {
       if (!value_unit(rest.substr(0, at), c.unit))
         throw InputError(csv.at_header(i), name,
                          fmt::format("ste_<unit>[@<torque>Nm], unit {}", kValueUnits),
-                         shorten(name));
+                         quoted_cell(name));
       if (at != std::string_view::npos) {
         if (!parse_torque_label(rest.substr(at + 1), c.torque_nm))
           throw InputError(csv.at_header(i), name,
                            "a torque label such as @200Nm or @1.5kNm (>= 0)",
-                           shorten(rest.substr(at + 1)));
+                           quoted_cell(rest.substr(at + 1)));
         for (const ValueColumn& other : h.ste)
           if (other.torque_nm == c.torque_nm)
             throw InputError(csv.at_header(i), name, "each torque once",
@@ -475,7 +479,7 @@ Header parse_header(const NumericCsv& csv) {
     }
     throw InputError(csv.at_header(i), name,
                      "ste_<unit>[@<torque>Nm], geometric_te_<unit>, torque_nm or torque_knm",
-                     shorten(name), "the column names carry the quantity and its unit");
+                     quoted_cell(name), "the column names carry the quantity and its unit");
   }
   if (h.ste.empty())
     throw InputError(csv.at_header(0), "header", "at least one ste_<unit> column", "none");
@@ -509,7 +513,7 @@ std::vector<CycleData> read_cycle(const NumericCsv& csv, const Header& h, std::s
         throw InputError(csv.at_header(0), csv.names[0],
                          "the tooth count (SteReadOptions::teeth) with an angle abscissa", "none",
                          "one mesh period is 2 pi / teeth");
-      period = (h.abscissa == Abscissa::AngleRad ? 2.0 * std::numbers::pi : 360.0) / options.teeth;
+      period = (h.abscissa == Abscissa::AngleRad ? units::kTwoPi : 360.0) / options.teeth;
       break;
     case Abscissa::TimeS:
     case Abscissa::TimeMs:
@@ -639,13 +643,11 @@ SteTable parse_ste_csv(std::string_view text, const std::string& file_name,
 }
 
 SteTable read_ste_csv(const std::filesystem::path& path, const SteReadOptions& options) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
+  const std::optional<std::string> text = try_read_file(path);
+  if (!text)
     throw InputError(SourceLocation{path.string(), 0, 0}, "ste_file", "a readable CSV file",
                      "a file that cannot be opened");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_ste_csv(buffer.str(), path.string(), options);
+  return parse_ste_csv(*text, path.string(), options);
 }
 
 }  // namespace geardyn::gear

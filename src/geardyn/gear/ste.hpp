@@ -7,8 +7,10 @@
 // modifications, pitch errors): the part of e that is not elastic. Without it e_g = 0.
 // An angular STE (radians) becomes a length by multiplying with the base radius r_b of the gear
 // it refers to (the base radius of the equivalent spur gear for bevel gears).
-// Reference: /work/shared/references/000_9102d0c7b8f25356.txt, sec. 3.1-3.2 (the STE of one mesh
-// cycle, tangential component, scaled by the base radius, repeated periodically).
+// Reference: A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears Equipped
+// with Damper Rings", MSc thesis, Politecnico di Torino, 2018 (the damper-ring thesis),
+// sec. 3.1-3.2 (the STE of one mesh cycle, tangential component, scaled by the base radius,
+// repeated periodically).
 //
 // Conventions kept by every SteCurve:
 //   * n uniform samples over one mesh period, sample j at the cycle fraction j / n;

@@ -3,8 +3,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
 namespace {
@@ -12,7 +13,7 @@ namespace {
 void check_radius_angle(const char* what, double radius, double alpha) {
   if (!std::isfinite(radius) || radius <= 0.0)
     throw std::invalid_argument(fmt::format("{}: radius {} m is not > 0", what, radius));
-  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 0.5 * std::numbers::pi)
+  if (!std::isfinite(alpha) || alpha <= 0.0 || alpha >= 0.5 * units::kPi)
     throw std::invalid_argument(
         fmt::format("{}: pressure angle {} rad is outside (0, pi/2)", what, alpha));
 }
@@ -59,7 +60,7 @@ ToothForces spur_tooth_forces(double torque_nm, double pitch_radius_m, double pr
 ToothForces helical_tooth_forces(double torque_nm, double pitch_radius_m,
                                  double normal_pressure_angle_rad, double helix_angle_rad) {
   check_radius_angle("helical_tooth_forces", pitch_radius_m, normal_pressure_angle_rad);
-  if (!std::isfinite(helix_angle_rad) || std::abs(helix_angle_rad) >= 0.5 * std::numbers::pi)
+  if (!std::isfinite(helix_angle_rad) || std::abs(helix_angle_rad) >= 0.5 * units::kPi)
     throw std::invalid_argument(fmt::format(
         "helical_tooth_forces: helix angle {} rad outside (-pi/2, pi/2)", helix_angle_rad));
   ToothForces f;
@@ -74,11 +75,11 @@ ToothForces bevel_tooth_forces(double torque_nm, double mean_pitch_radius_m,
                                double pitch_cone_angle_rad, Flank loaded) {
   check_radius_angle("bevel_tooth_forces", mean_pitch_radius_m, normal_pressure_angle_rad);
   if (!std::isfinite(spiral_angle_rad) || spiral_angle_rad < 0.0 ||
-      spiral_angle_rad >= 0.5 * std::numbers::pi)
+      spiral_angle_rad >= 0.5 * units::kPi)
     throw std::invalid_argument(
         fmt::format("bevel_tooth_forces: spiral angle {} rad outside [0, pi/2)", spiral_angle_rad));
   if (!std::isfinite(pitch_cone_angle_rad) || pitch_cone_angle_rad <= 0.0 ||
-      pitch_cone_angle_rad >= 0.5 * std::numbers::pi)
+      pitch_cone_angle_rad >= 0.5 * units::kPi)
     throw std::invalid_argument(fmt::format(
         "bevel_tooth_forces: pitch cone angle {} rad outside (0, pi/2)", pitch_cone_angle_rad));
   const double ft = torque_nm / mean_pitch_radius_m;

@@ -11,11 +11,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/hbm/condensed_stability.hpp"
 
 namespace geardyn::hbm {
@@ -229,7 +229,7 @@ FloquetResult condensed_hill_stability(const CondensedHarmonicBalance& hb, const
     if (a.real() != b.real()) return a.real() > b.real();
     return a.imag() > b.imag();
   });
-  const double period = 2.0 * std::numbers::pi / omega;
+  const double period = units::kTwoPi / omega;
   out.exponents = lambda;
   out.multipliers = (lambda * period).array().exp().matrix();
   out.max_real_part = lambda[0].real();

@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <numbers>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/hbm/harmonic_basis.hpp"
 #include "geardyn/signal/fft.hpp"
 
@@ -30,7 +30,7 @@ HarmonicBasis::HarmonicBasis(int harmonics, int time_samples)
   Q_.resize(n_, size());
   P_.resize(size(), n_);
   for (int j = 0; j < n_; ++j) {
-    const double theta = 2.0 * std::numbers::pi * j / n_;
+    const double theta = units::kTwoPi * j / n_;
     Q_(j, 0) = 1.0;
     P_(0, j) = 1.0 / n_;
     for (int h = 1; h <= harmonics_; ++h) {

@@ -11,11 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <numeric>
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/hbm/harmonic_basis.hpp"
 #include "geardyn/hbm/stability.hpp"
 
@@ -88,35 +88,13 @@ double centroid(const Eigen::Ref<const Eigen::VectorXcd>& P, int dofs, int harmo
 
 }  // namespace
 
-FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
-                             const Eigen::MatrixXd& C, int harmonics, double omega,
-                             const HillOptions& options) {
-  options.validate();
-  const auto nd = static_cast<int>(M.rows());
-  if (harmonics < 0)
-    throw InputError({}, "hbm.hill_stability.harmonics", "H >= 0", std::to_string(harmonics));
-  if (!(omega > 0.0 && std::isfinite(omega)))
-    throw InputError({}, "hbm.hill_stability.omega", "a finite frequency > 0",
-                     fmt::format("{}", omega));
+namespace {
+
+// The Hill matrix A of the first-order eigenproblem.
+Eigen::MatrixXd hill_matrix(const Eigen::MatrixXd& J, const Eigen::FullPivLU<Eigen::MatrixXd>& lu,
+                            const Eigen::MatrixXd& C, int harmonics, double omega) {
+  const auto nd = static_cast<int>(C.rows());
   const int s = 2 * harmonics + 1, N = nd * s;
-  if (nd == 0 || M.cols() != nd || C.rows() != nd || C.cols() != nd || J.rows() != N ||
-      J.cols() != N)
-    throw InputError({}, "hbm.hill_stability",
-                     "square M, C of one size n_dof and J of size n_dof (2H + 1)",
-                     fmt::format("M {}x{}, C {}x{}, J {}x{} (H = {})", M.rows(), M.cols(), C.rows(),
-                                 C.cols(), J.rows(), J.cols(), harmonics));
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
-  if (!lu.isInvertible())
-    throw InputError({}, "hbm.hill_stability.M", "an invertible mass matrix",
-                     fmt::format("rank {} of {}", lu.rank(), nd),
-                     "condense massless DOFs out of the harmonic-balance system first");
-
-  FloquetResult out;
-  if (!J.allFinite() || !C.allFinite()) {
-    out.message = "J or C has non-finite entries";
-    return out;
-  }
-
   // First-order form of (1): A z = lambda z, z = [P; lambda P]. D2^-1 = M^-1 (x) I, so
   // D2^-1 J mixes block rows of J with M^-1, and D2^-1 D1 = (M^-1 C) (x) I + I (x) G with G the
   // +-2 n omega coupling of the (a_n, b_n) pair.
@@ -136,20 +114,12 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
       A(si, ci) += 2.0 * n * omega;
     }
   }
+  return A;
+}
 
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
-  if (es.info() != Eigen::Success) {
-    out.message =
-        fmt::format("the dense eigen-solve of the {0}x{0} Hill matrix did not converge", 2 * N);
-    return out;
-  }
-  const Eigen::VectorXcd lambda = es.eigenvalues();
-  const Eigen::MatrixXcd V = es.eigenvectors();
+// The eigenvalues ordered by |kappa|, ties broken as described inside.
+std::vector<int> central_order(const Eigen::VectorXcd& lambda, const std::vector<double>& kappa) {
   const auto n_all = static_cast<int>(lambda.size());
-  std::vector<double> kappa(static_cast<std::size_t>(n_all));
-  for (int j = 0; j < n_all; ++j)
-    kappa[static_cast<std::size_t>(j)] = std::abs(centroid(V.col(j).head(N), nd, harmonics));
-
   // Most central eigenvectors first. Ties in |kappa| are exact for real eigenvectors (kappa = 0
   // identically) and for blocks the truncation decouples (with H = 1 and an odd nonlinearity
   // the a_0 block carries a kappa = 0 pair of its own); they fall to the smallest |Im lambda|
@@ -174,6 +144,14 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                      });
     first = last;
   }
+  return order;
+}
+
+// The 2 n_dof exponents kept (indices into lambda), most central first; sets out.sorting_gap.
+std::vector<int> select_exponents(const std::vector<int>& order, const Eigen::VectorXcd& lambda,
+                                  const std::vector<double>& kappa, int nd, double omega,
+                                  const HillOptions& options, FloquetResult& out) {
+  const auto n_all = static_cast<int>(lambda.size());
   const double kind_band = options.kind_tolerance * omega;
   auto is_half = [&](Complex l) {
     return instability_kind(l, omega, options.kind_tolerance) ==
@@ -212,13 +190,65 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
     if (!used[static_cast<std::size_t>(j)])
       min_rejected = std::min(min_rejected, kappa[static_cast<std::size_t>(j)]);
   out.sorting_gap = min_rejected - max_accepted;
+  return accepted;
+}
+
+}  // namespace
+
+FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
+                             const Eigen::MatrixXd& C, int harmonics, double omega,
+                             const HillOptions& options) {
+  options.validate();
+  const auto nd = static_cast<int>(M.rows());
+  if (harmonics < 0)
+    throw InputError({}, "hbm.hill_stability.harmonics", "H >= 0", std::to_string(harmonics));
+  if (!(omega > 0.0 && std::isfinite(omega)))
+    throw InputError({}, "hbm.hill_stability.omega", "a finite frequency > 0",
+                     fmt::format("{}", omega));
+  const int s = 2 * harmonics + 1, N = nd * s;
+  if (nd == 0 || M.cols() != nd || C.rows() != nd || C.cols() != nd || J.rows() != N ||
+      J.cols() != N)
+    throw InputError({}, "hbm.hill_stability",
+                     "square M, C of one size n_dof and J of size n_dof (2H + 1)",
+                     fmt::format("M {}x{}, C {}x{}, J {}x{} (H = {})", M.rows(), M.cols(), C.rows(),
+                                 C.cols(), J.rows(), J.cols(), harmonics));
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
+  if (!lu.isInvertible())
+    throw InputError({}, "hbm.hill_stability.M", "an invertible mass matrix",
+                     fmt::format("rank {} of {}", lu.rank(), nd),
+                     "condense massless DOFs out of the harmonic-balance system first");
+
+  FloquetResult out;
+  if (!J.allFinite() || !C.allFinite()) {
+    out.message = "J or C has non-finite entries";
+    return out;
+  }
+
+  // First-order form of (1): A z = lambda z, z = [P; lambda P].
+  const Eigen::MatrixXd A = hill_matrix(J, lu, C, harmonics, omega);
+
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
+  if (es.info() != Eigen::Success) {
+    out.message =
+        fmt::format("the dense eigen-solve of the {0}x{0} Hill matrix did not converge", 2 * N);
+    return out;
+  }
+  const Eigen::VectorXcd lambda = es.eigenvalues();
+  const Eigen::MatrixXcd V = es.eigenvectors();
+  const auto n_all = static_cast<int>(lambda.size());
+  std::vector<double> kappa(static_cast<std::size_t>(n_all));
+  for (int j = 0; j < n_all; ++j)
+    kappa[static_cast<std::size_t>(j)] = std::abs(centroid(V.col(j).head(N), nd, harmonics));
+
+  const std::vector<int> order = central_order(lambda, kappa);
+  std::vector<int> accepted = select_exponents(order, lambda, kappa, nd, omega, options, out);
 
   std::sort(accepted.begin(), accepted.end(), [&lambda](int a, int b) {
     if (lambda[a].real() != lambda[b].real()) return lambda[a].real() > lambda[b].real();
     return lambda[a].imag() > lambda[b].imag();
   });
   const auto n_kept = static_cast<Eigen::Index>(accepted.size());
-  const double period = 2.0 * std::numbers::pi / omega;
+  const double period = units::kTwoPi / omega;
   out.exponents.resize(n_kept);
   out.multipliers.resize(n_kept);
   out.centroids.resize(n_kept);

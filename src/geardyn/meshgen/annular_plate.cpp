@@ -6,19 +6,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/meshgen/gmsh_session.hpp"
 
 namespace geardyn::meshgen {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr const char* kAnalysis = "annular_plate";
 
-bool is_full(const AnnularPlateParams& p) { return p.sector_angle >= 2.0 * kPi * (1 - 1e-12); }
+bool is_full(const AnnularPlateParams& p) { return p.sector_angle >= units::kTwoPi * (1 - 1e-12); }
 
 /// Patches of at most 90 degrees: the built-in kernel's circle arcs must stay below 180.
 int num_patches(const AnnularPlateParams& p) {
-  return std::max(1, static_cast<int>(std::ceil(p.sector_angle / (0.5 * kPi) - 1e-9)));
+  return std::max(1, static_cast<int>(std::ceil(p.sector_angle / (0.5 * units::kPi) - 1e-9)));
 }
 
 struct Divisions {
@@ -51,7 +51,7 @@ void validate(const AnnularPlateParams& p) {
   if (!(p.outer_radius > p.inner_radius) || !std::isfinite(p.outer_radius))
     fail("outer_radius", fmt::format("> inner_radius ({:.6g})", p.inner_radius), p.outer_radius);
   positive("thickness", p.thickness);
-  if (!(p.sector_angle > 0 && p.sector_angle <= 2.0 * kPi * (1 + 1e-12)))
+  if (!(p.sector_angle > 0 && p.sector_angle <= units::kTwoPi * (1 + 1e-12)))
     fail("sector_angle", "an angle in (0, 2 pi] rad", p.sector_angle);
   if (p.element_order != 1 && p.element_order != 2)
     fail("element_order", "1 or 2", p.element_order);
@@ -90,7 +90,7 @@ std::vector<int> surfaces_at_height(double z, double tol) {
 
 solid::Mesh build(const AnnularPlateParams& p, Progress& progress) {
   const bool full = is_full(p);
-  const double angle = full ? 2.0 * kPi : p.sector_angle;
+  const double angle = full ? units::kTwoPi : p.sector_angle;
   const int patches = full ? 4 : num_patches(p);
   const Divisions n = divisions(p);
   const double a = p.outer_radius, b = p.inner_radius, h = p.thickness;

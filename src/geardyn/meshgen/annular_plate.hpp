@@ -8,11 +8,11 @@
 // wedge15, mid-nodes on the circular arcs) for order 2. Thin plates need the quadratic elements
 // and at least two layers for accurate bending (locking-free enough for h/a ~ 1/30); see the
 // validation tests of the solid elements.
-#include <numbers>
 #include <string>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/solid/mesh.hpp"
 
 namespace geardyn::meshgen {
@@ -23,11 +23,11 @@ enum class PlateElementShape {
 };
 
 struct AnnularPlateParams {
-  double inner_radius = 0;                       ///< b [m], > 0
-  double outer_radius = 0;                       ///< a [m], > b
-  double thickness = 0;                          ///< h [m]
-  double sector_angle = 2.0 * std::numbers::pi;  ///< (0, 2 pi]; 2 pi: the full plate
-  int element_order = 2;                         ///< 1 or 2
+  double inner_radius = 0;              ///< b [m], > 0
+  double outer_radius = 0;              ///< a [m], > b
+  double thickness = 0;                 ///< h [m]
+  double sector_angle = units::kTwoPi;  ///< (0, 2 pi]; 2 pi: the full plate
+  int element_order = 2;                ///< 1 or 2
   PlateElementShape shape = PlateElementShape::Hex;
   double mesh_size = 0;     ///< target in-plane element size [m]; sets n_r and n_theta when those
                             ///< are 0: n_r = ceil((a - b) / size), n_theta = ceil(angle a / size)

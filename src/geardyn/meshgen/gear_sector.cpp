@@ -10,12 +10,12 @@
 #include <map>
 #include <set>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/meshgen/gmsh_session.hpp"
 
 namespace geardyn::meshgen {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr const char* kAnalysis = "gear_sector";
 
 class Checker {
@@ -52,7 +52,7 @@ Interval centred(double centre, double width) {
   return {centre - 0.5 * width, centre + 0.5 * width};
 }
 
-double sector_angle(const GearSectorParams& p) { return 2.0 * kPi / p.num_sectors; }
+double sector_angle(const GearSectorParams& p) { return units::kTwoPi / p.num_sectors; }
 
 }  // namespace
 
@@ -70,7 +70,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
   ToothGeometry g;
   if (t.profile == ToothProfile::Module) {
     check.positive("tooth.module", t.module);
-    if (!(t.pressure_angle > 0 && t.pressure_angle < kPi / 4))
+    if (!(t.pressure_angle > 0 && t.pressure_angle < units::kPi / 4))
       check.fail("tooth.pressure_angle", "an angle in (0, pi/4) rad", t.pressure_angle);
     check.positive("tooth.addendum_coefficient", t.addendum_coefficient);
     check.positive("tooth.dedendum_coefficient", t.dedendum_coefficient);
@@ -78,7 +78,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
     g.tip_radius = g.pitch_radius + t.addendum_coefficient * t.module;
     g.root_radius = g.pitch_radius - t.dedendum_coefficient * t.module;
     // Basic rack: thickness pi m / 2 at the pitch line, flanks inclined by the pressure angle.
-    const double s_p = 0.5 * kPi * t.module;
+    const double s_p = 0.5 * units::kPi * t.module;
     g.tip_thickness = s_p - 2.0 * t.addendum_coefficient * t.module * std::tan(t.pressure_angle);
     g.root_thickness = s_p + 2.0 * t.dedendum_coefficient * t.module * std::tan(t.pressure_angle);
     if (!(g.root_radius > 0))
@@ -108,7 +108,7 @@ ToothGeometry resolve_tooth(const GearSectorParams& p) {
   }
   // A tooth space must remain at the root (the sector faces cut through it); 2 % of the pitch
   // keeps the mesh there from degenerating into slivers.
-  const double root_pitch = 2.0 * kPi * g.root_radius / p.num_teeth;
+  const double root_pitch = 2.0 * units::kPi * g.root_radius / p.num_teeth;
   if (!(g.root_thickness < 0.98 * root_pitch))
     check.fail(
         t.profile == ToothProfile::Module ? "tooth.module" : "tooth.root_thickness",
@@ -464,18 +464,18 @@ int untangle_tets(solid::Mesh& mesh, double alpha) {
   }
 }
 
-solid::Mesh build(const GearSectorParams& p, Progress& progress) {
-  const ToothGeometry tooth = resolve_tooth(p);
-  const double alpha = sector_angle(p);
-  const double scale = tooth.tip_radius;
-  const double tol = 1e-7 * scale;
+// The gear (and ring) volumes of the sector, and the radius of the groove's contact face.
+struct SectorBodies {
+  std::vector<int> gear, ring;
+  double contact_radius = 0;
+};
+
+SectorBodies sector_bodies(const GearSectorParams& p, const ToothGeometry& tooth, double alpha) {
   const int teeth_per_sector = p.num_teeth / p.num_sectors;
-  const double size_tooth = p.mesh.tooth > 0 ? p.mesh.tooth : p.mesh.global;
-  const double size_groove = p.mesh.groove > 0 ? p.mesh.groove : p.mesh.global;
-
-  GmshSession session("geardyn_gear_sector");
-  progress.start("gear sector mesh", 4);
-
+  SectorBodies out;
+  std::vector<int>& gear = out.gear;
+  std::vector<int>& ring = out.ring;
+  double& contact_radius = out.contact_radius;
   // Blank: hub, web and rim (minus groove) half-sections, revolved by the sector angle.
   const double b = p.face_width;
   const int hub_face =
@@ -486,7 +486,6 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
                                              p.web_offset + 0.5 * p.web_thickness);
   gmsh::vectorpair rim_faces = {
       {2, add_section_rectangle(p.rim_inner_radius, tooth.root_radius, -0.5 * b, 0.5 * b)}};
-  double contact_radius = 0;
   if (p.groove) {
     const GrooveParams& g = *p.groove;
     contact_radius = p.rim_inner_radius + g.depth;
@@ -504,7 +503,7 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
 
   std::vector<int> tooth_volumes;
   for (int j = 0; j < teeth_per_sector; ++j)
-    tooth_volumes.push_back(add_tooth(tooth, (j + 0.5) * 2.0 * kPi / p.num_teeth, b));
+    tooth_volumes.push_back(add_tooth(tooth, (j + 0.5) * 2.0 * units::kPi / p.num_teeth, b));
 
   // One gear solid: fusing (rather than fragmenting) the blank pieces and the teeth leaves no
   // internal faces; a flat tet with its four corners on such a curved internal face (e.g. the
@@ -515,7 +514,6 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
   gmsh::vectorpair fused;
   std::vector<gmsh::vectorpair> fused_map;
   occ::fuse({{3, blank_volumes.front()}}, tools, fused, fused_map);
-  std::vector<int> gear, ring;
   for (const auto& [dim, tag] : fused)
     if (dim == 3) gear.push_back(tag);
   if (p.groove) {
@@ -542,8 +540,14 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
     throw NumericalError(kAnalysis,
                          "the boolean operations did not give separate gear and ring "
                          "bodies");
+  return out;
+}
 
-  const Eigen::Vector3d pitch_point = flank_point(tooth, kPi / p.num_teeth);
+// The excitation point (the pitch point of the first flank), embedded as a mesh node in the
+// flank face it lies on. Returns its Gmsh point tag.
+int embed_excitation_point(const GearSectorParams& p, const ToothGeometry& tooth,
+                           const std::vector<int>& gear, double tol) {
+  const Eigen::Vector3d pitch_point = flank_point(tooth, units::kPi / p.num_teeth);
   const int excitation_point = occ::addPoint(pitch_point.x(), pitch_point.y(), pitch_point.z());
   occ::synchronize();
 
@@ -561,67 +565,58 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
   }
   if (flank < 0) throw NumericalError(kAnalysis, "no tooth flank face holds the pitch point");
   gmsh::model::mesh::embed(0, {excitation_point}, 2, flank);
+  return excitation_point;
+}
 
-  // Periodic sector faces: right = R(alpha) left.
-  const std::vector<int> left = surfaces_on_half_plane(0.0, tol);
-  const std::vector<int> right = surfaces_on_half_plane(alpha, tol);
-  if (left.empty() || left.size() != right.size())
-    throw NumericalError(kAnalysis, fmt::format("found {} faces at theta = 0 and {} at theta = "
-                                                "2 pi / N; expected the same non-zero number",
-                                                left.size(), right.size()));
-  const std::vector<int> masters = match_left(left, right, alpha, tol);
-  const double c = std::cos(alpha), s = std::sin(alpha);
-  gmsh::model::mesh::setPeriodic(2, right, masters,
-                                 {c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
-
-  // Sizes at the geometric points, graded in between by Gmsh's interpolation.
-  {
-    gmsh::vectorpair all_points;
-    gmsh::model::getEntities(all_points, 0);
-    std::map<int, double> size;
-    for (const auto& [dim, tag] : all_points) size[tag] = p.mesh.global;
-    auto refine = [&](const std::vector<int>& points, double h) {
-      for (int t : points) size[t] = std::min(size[t], h);
-    };
-    std::vector<int> tooth_points;  // points on or outside the root circle
-    for (int t : points_of(gear)) {
-      double x0, y0, z0, x1, y1, z1;
-      gmsh::model::getBoundingBox(0, t, x0, y0, z0, x1, y1, z1);
-      if (std::hypot(x0, y0) >= tooth.root_radius - tol) tooth_points.push_back(t);
-    }
-    refine(tooth_points, size_tooth);
-    refine({excitation_point}, size_tooth);
-    if (p.groove) {
-      refine(points_of(ring), size_groove);
-      const Interval groove = centred(p.groove->axial_position, p.groove->width);
-      std::vector<int> groove_points;
-      for (const auto& [dim, tag] : all_points) {
-        double x0, y0, z0, x1, y1, z1;
-        gmsh::model::getBoundingBox(0, tag, x0, y0, z0, x1, y1, z1);
-        const double r = std::hypot(x0, y0);
-        if (r >= p.rim_inner_radius - tol && r <= contact_radius + tol && z0 >= groove.lo - tol &&
-            z0 <= groove.hi + tol)
-          groove_points.push_back(tag);
-      }
-      refine(groove_points, size_groove);
-    }
-    for (const auto& [tag, h] : size) gmsh::model::mesh::setSize({{0, tag}}, h);
+// Sizes at the geometric points, graded in between by Gmsh's interpolation.
+void set_point_sizes(const GearSectorParams& p, const ToothGeometry& tooth,
+                     const SectorBodies& bodies, int excitation_point, double tol) {
+  const std::vector<int>& gear = bodies.gear;
+  const std::vector<int>& ring = bodies.ring;
+  const double contact_radius = bodies.contact_radius;
+  const double size_tooth = p.mesh.tooth > 0 ? p.mesh.tooth : p.mesh.global;
+  const double size_groove = p.mesh.groove > 0 ? p.mesh.groove : p.mesh.global;
+  gmsh::vectorpair all_points;
+  gmsh::model::getEntities(all_points, 0);
+  std::map<int, double> size;
+  for (const auto& [dim, tag] : all_points) size[tag] = p.mesh.global;
+  auto refine = [&](const std::vector<int>& points, double h) {
+    for (int t : points) size[t] = std::min(size[t], h);
+  };
+  std::vector<int> tooth_points;  // points on or outside the root circle
+  for (int t : points_of(gear)) {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(0, t, x0, y0, z0, x1, y1, z1);
+    if (std::hypot(x0, y0) >= tooth.root_radius - tol) tooth_points.push_back(t);
   }
-  progress.update(1);
+  refine(tooth_points, size_tooth);
+  refine({excitation_point}, size_tooth);
+  if (p.groove) {
+    refine(points_of(ring), size_groove);
+    const Interval groove = centred(p.groove->axial_position, p.groove->width);
+    std::vector<int> groove_points;
+    for (const auto& [dim, tag] : all_points) {
+      double x0, y0, z0, x1, y1, z1;
+      gmsh::model::getBoundingBox(0, tag, x0, y0, z0, x1, y1, z1);
+      const double r = std::hypot(x0, y0);
+      if (r >= p.rim_inner_radius - tol && r <= contact_radius + tol && z0 >= groove.lo - tol &&
+          z0 <= groove.hi + tol)
+        groove_points.push_back(tag);
+    }
+    refine(groove_points, size_groove);
+  }
+  for (const auto& [tag, h] : size) gmsh::model::mesh::setSize({{0, tag}}, h);
+}
 
-  gmsh::option::setNumber("Mesh.ElementOrder", p.mesh.element_order);
-  gmsh::model::mesh::generate(3);
-  progress.update(3);
-
-  std::vector<GmshBody> bodies = {{"gear", 0, gear}};
-  if (p.groove) bodies.push_back({"ring", 1, ring});
-  GmshMeshExtraction extraction(kAnalysis, bodies, left, right, alpha, scale);
-  solid::Mesh mesh = std::move(extraction.mesh());
-  mesh.source = fmt::format("gear_sector(N={}, z={}, order {})", p.num_sectors, p.num_teeth,
-                            p.mesh.element_order);
-  mesh.materials.push_back(p.gear_material);
-  if (p.groove) mesh.materials.push_back(p.ring_material);
-
+// The node sets of the sector mesh: sector faces, bore, tooth tip, excitation point and (with a
+// groove) the contact faces and the ring's sector faces.
+void add_node_sets(solid::Mesh& mesh, const GmshMeshExtraction& extraction,
+                   const GearSectorParams& p, const ToothGeometry& tooth,
+                   const SectorBodies& bodies, const std::vector<int>& left,
+                   const std::vector<int>& right, int excitation_point, double tol) {
+  const std::vector<int>& gear = bodies.gear;
+  const std::vector<int>& ring = bodies.ring;
+  const double contact_radius = bodies.contact_radius;
   const std::vector<int> gear_surfaces = boundary_surfaces(gear);
   mesh.node_sets["left"] = extraction.body_nodes_on(0, 2, intersection(left, gear_surfaces));
   mesh.node_sets["right"] = extraction.body_nodes_on(0, 2, intersection(right, gear_surfaces));
@@ -644,6 +639,49 @@ solid::Mesh build(const GearSectorParams& p, Progress& progress) {
     mesh.node_sets["ring_right"] =
         extraction.body_nodes_on(1, 2, intersection(right, ring_surfaces));
   }
+}
+
+solid::Mesh build(const GearSectorParams& p, Progress& progress) {
+  const ToothGeometry tooth = resolve_tooth(p);
+  const double alpha = sector_angle(p);
+  const double scale = tooth.tip_radius;
+  const double tol = 1e-7 * scale;
+
+  GmshSession session("geardyn_gear_sector");
+  progress.start("gear sector mesh", 4);
+
+  const SectorBodies sector = sector_bodies(p, tooth, alpha);
+  const int excitation_point = embed_excitation_point(p, tooth, sector.gear, tol);
+
+  // Periodic sector faces: right = R(alpha) left.
+  const std::vector<int> left = surfaces_on_half_plane(0.0, tol);
+  const std::vector<int> right = surfaces_on_half_plane(alpha, tol);
+  if (left.empty() || left.size() != right.size())
+    throw NumericalError(kAnalysis, fmt::format("found {} faces at theta = 0 and {} at theta = "
+                                                "2 pi / N; expected the same non-zero number",
+                                                left.size(), right.size()));
+  const std::vector<int> masters = match_left(left, right, alpha, tol);
+  const double c = std::cos(alpha), s = std::sin(alpha);
+  gmsh::model::mesh::setPeriodic(2, right, masters,
+                                 {c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1});
+
+  set_point_sizes(p, tooth, sector, excitation_point, tol);
+  progress.update(1);
+
+  gmsh::option::setNumber("Mesh.ElementOrder", p.mesh.element_order);
+  gmsh::model::mesh::generate(3);
+  progress.update(3);
+
+  std::vector<GmshBody> bodies = {{"gear", 0, sector.gear}};
+  if (p.groove) bodies.push_back({"ring", 1, sector.ring});
+  GmshMeshExtraction extraction(kAnalysis, bodies, left, right, alpha, scale);
+  solid::Mesh mesh = std::move(extraction.mesh());
+  mesh.source = fmt::format("gear_sector(N={}, z={}, order {})", p.num_sectors, p.num_teeth,
+                            p.mesh.element_order);
+  mesh.materials.push_back(p.gear_material);
+  if (p.groove) mesh.materials.push_back(p.ring_material);
+
+  add_node_sets(mesh, extraction, p, tooth, sector, left, right, excitation_point, tol);
   if (const int moved = untangle_tets(mesh, alpha); moved > 0)
     mesh.source += fmt::format(", {} mid-edge nodes straightened to untangle curved tets", moved);
   progress.update(4);

@@ -47,12 +47,12 @@
 // its straight shape's) gets straight edges (mid-nodes at the edge midpoints, periodic partners
 // and contact twins moved alike); Mesh::source then says how many nodes moved. Deterministic:
 // the same parameters give the same mesh (see meshgen/gmsh_session.hpp).
-#include <numbers>
 #include <optional>
 #include <string>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/progress.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/solid/mesh.hpp"
 
 namespace geardyn::meshgen {
@@ -65,10 +65,10 @@ enum class ToothProfile {
 struct ToothParams {
   ToothProfile profile = ToothProfile::Module;
   // ToothProfile::Module
-  double module = 0;                                      ///< [m]
-  double pressure_angle = 20.0 * std::numbers::pi / 180;  ///< [rad]
-  double addendum_coefficient = 1.0;                      ///< tip radius = r_p + this * module
-  double dedendum_coefficient = 1.25;                     ///< root radius = r_p - this * module
+  double module = 0;                                ///< [m]
+  double pressure_angle = 20.0 * units::kPi / 180;  ///< [rad]
+  double addendum_coefficient = 1.0;                ///< tip radius = r_p + this * module
+  double dedendum_coefficient = 1.25;               ///< root radius = r_p - this * module
   // ToothProfile::Explicit
   double root_radius = 0;     ///< r_f [m] (= the rim's outer radius)
   double tip_radius = 0;      ///< r_a [m]

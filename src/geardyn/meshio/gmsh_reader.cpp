@@ -66,8 +66,8 @@ struct RawElement {
   std::vector<std::size_t> nodes;
 };
 
-solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
-  // Physical groups of every dimension.
+// Physical groups of every dimension.
+std::vector<PhysicalGroup> physical_groups() {
   std::vector<PhysicalGroup> groups;
   {
     gmsh::vectorpair dim_tags;
@@ -82,6 +82,12 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
       groups.push_back(std::move(g));
     }
   }
+  return groups;
+}
+
+// Every physical volume named in the options exists in the file.
+void check_volume_names(const std::vector<PhysicalGroup>& groups, const GmshReadOptions& options,
+                        const std::string& file) {
   std::set<std::string> volume_names;
   for (const PhysicalGroup& g : groups)
     if (g.dim == 3) volume_names.insert(g.name);
@@ -95,17 +101,19 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
                      available.empty() ? "the file has no physical volumes"
                                        : "available physical volumes: " + available);
   }
+}
 
-  // Material of each volume entity: the one of the listed physical volumes containing it.
-  std::vector<solid::Material> materials;
-  const auto material_index = [&](const solid::Material& m) {
-    for (std::size_t i = 0; i < materials.size(); ++i)
-      if (same_material(materials[i], m)) return static_cast<int>(i);
-    materials.push_back(m);
-    return static_cast<int>(materials.size()) - 1;
-  };
+// Material of each volume entity: the one of the listed physical volumes containing it.
+struct EntityMaterials {
   std::unordered_map<int, const solid::Material*> entity_material;
   std::unordered_map<int, std::string> entity_material_group;
+};
+
+EntityMaterials entity_materials(const std::vector<PhysicalGroup>& groups,
+                                 const GmshReadOptions& options, const std::string& file) {
+  EntityMaterials em;
+  std::unordered_map<int, const solid::Material*>& entity_material = em.entity_material;
+  std::unordered_map<int, std::string>& entity_material_group = em.entity_material_group;
   for (const PhysicalGroup& g : groups) {
     if (g.dim != 3) continue;
     const auto it = options.volume_materials.find(g.name);
@@ -121,8 +129,11 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
       entity_material_group.emplace(entity, g.name);
     }
   }
+  return em;
+}
 
-  // Volume elements, entity by entity.
+// Volume elements, entity by entity.
+std::vector<RawElement> volume_elements(const std::string& file) {
   std::vector<RawElement> raw;
   {
     gmsh::vectorpair volumes;
@@ -160,9 +171,13 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
     throw InputError(SourceLocation{file, 0, 0}, "elements",
                      "volume elements (tet4/10, hex8/20, prism6/15)", "none",
                      "mesh the volumes (gmsh -3) before saving");
+  return raw;
+}
 
-  // Node sets: all nodes of each group's entities: those classified on them or their boundaries,
-  // and those of their elements (a file may classify an element's nodes on other entities).
+// Node sets: all nodes of each group's entities: those classified on them or their boundaries,
+// and those of their elements (a file may classify an element's nodes on other entities).
+std::map<std::string, std::vector<std::size_t>> node_set_tags(
+    const std::vector<PhysicalGroup>& groups) {
   std::map<std::string, std::vector<std::size_t>> set_tags;
   for (const PhysicalGroup& g : groups) {
     std::vector<std::size_t>& tags = set_tags[g.name];
@@ -178,8 +193,14 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
         tags.insert(tags.end(), n.begin(), n.end());
     }
   }
+  return set_tags;
+}
 
-  // Nodes used by volume elements or physical groups, in tag order.
+// Nodes used by volume elements or physical groups, in tag order, and the node sets. Returns the
+// index of each node tag.
+std::unordered_map<std::size_t, int> add_nodes(
+    solid::Mesh& mesh, const std::vector<RawElement>& raw,
+    const std::map<std::string, std::vector<std::size_t>>& set_tags, const std::string& file) {
   std::unordered_map<std::size_t, Eigen::Vector3d> coord_of;
   {
     std::vector<std::size_t> tags;
@@ -195,8 +216,6 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
 
-  solid::Mesh mesh;
-  mesh.source = file;
   std::unordered_map<std::size_t, int> index;
   index.reserve(used.size());
   for (std::size_t tag : used) {
@@ -214,8 +233,22 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   }
+  return index;
+}
 
-  // Elements in tag order with their materials.
+// Elements in tag order (raw is sorted) with their materials.
+void add_elements(solid::Mesh& mesh, std::vector<RawElement>& raw,
+                  const std::unordered_map<std::size_t, int>& index, EntityMaterials& em,
+                  const GmshReadOptions& options, const std::string& file) {
+  std::unordered_map<int, const solid::Material*>& entity_material = em.entity_material;
+  std::unordered_map<int, std::string>& entity_material_group = em.entity_material_group;
+  std::vector<solid::Material> materials;
+  const auto material_index = [&](const solid::Material& m) {
+    for (std::size_t i = 0; i < materials.size(); ++i)
+      if (same_material(materials[i], m)) return static_cast<int>(i);
+    materials.push_back(m);
+    return static_cast<int>(materials.size()) - 1;
+  };
   std::sort(raw.begin(), raw.end(),
             [](const RawElement& a, const RawElement& b) { return a.tag < b.tag; });
   std::unordered_map<std::size_t, int> element_index;
@@ -250,8 +283,11 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
     mesh.elements.push_back(std::move(element));
   }
   mesh.materials = std::move(materials);
+}
 
-  // Element sets of physical volumes.
+// Element sets of physical volumes.
+void add_element_sets(solid::Mesh& mesh, const std::vector<RawElement>& raw,
+                      const std::vector<PhysicalGroup>& groups) {
   std::unordered_map<int, std::vector<int>> elements_of_entity;
   for (std::size_t i = 0; i < raw.size(); ++i)
     elements_of_entity[raw[i].entity].push_back(static_cast<int>(i));
@@ -266,6 +302,19 @@ solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
     std::sort(set.begin(), set.end());
     set.erase(std::unique(set.begin(), set.end()), set.end());
   }
+}
+
+solid::Mesh extract(const std::string& file, const GmshReadOptions& options) {
+  const std::vector<PhysicalGroup> groups = physical_groups();
+  check_volume_names(groups, options, file);
+  EntityMaterials em = entity_materials(groups, options, file);
+  std::vector<RawElement> raw = volume_elements(file);
+  const std::map<std::string, std::vector<std::size_t>> set_tags = node_set_tags(groups);
+  solid::Mesh mesh;
+  mesh.source = file;
+  const std::unordered_map<std::size_t, int> index = add_nodes(mesh, raw, set_tags, file);
+  add_elements(mesh, raw, index, em, options, file);
+  add_element_sets(mesh, raw, groups);
   return mesh;
 }
 

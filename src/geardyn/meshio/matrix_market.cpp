@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <unordered_set>
 
+#include "geardyn/core/text.hpp"
+
 namespace geardyn::meshio {
 namespace {
 
@@ -69,36 +71,40 @@ bool parse_double(std::string_view t, double& v) {
   return ec == std::errc() && ptr == t.data() + t.size();
 }
 
-std::string read_file(const fs::path& path, const char* what) {
+// The whole file; InputError when it does not exist or cannot be read.
+std::string read_existing_file(const fs::path& path, const char* what) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec))
     throw InputError(SourceLocation{path.string(), 0, 0}, "file",
                      fmt::format("an existing {}", what),
                      "'" + path.string() + "' does not exist or is not a file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (!in)
-    throw InputError(SourceLocation{path.string(), 0, 0}, "file", "a readable file",
-                     "'" + path.string() + "' cannot be read");
-  return content.str();
+  return read_file(path);
 }
 
 }  // namespace
 
-MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string& file) {
-  const std::vector<std::string_view> lines = split_lines(text);
-  const auto at = [&](std::size_t line, int column) {
+namespace {
+
+// Locates a diagnostic at a 0-based line and a 1-based column of the file.
+struct Locator {
+  const std::string& file;
+  SourceLocation operator()(std::size_t line, int column) const {
     return SourceLocation{file, static_cast<int>(line) + 1, column};
-  };
-  if (lines.empty())
-    throw InputError(at(0, 1), "header", "a Matrix Market header line", "an empty file");
-  // Header: %%MatrixMarket matrix <format> <field> <symmetry>
+  }
+};
+
+struct Header {
+  bool coordinate = true;
+  bool symmetric = false;
+};
+
+// Header: %%MatrixMarket matrix <format> <field> <symmetry>
+Header parse_header(const std::vector<std::string_view>& lines, const Locator& at) {
   const std::vector<Token> header = tokens_of(lines[0]);
   if (header.empty() || lower(header[0].text) != "%%matrixmarket")
     throw InputError(at(0, 1), "header",
                      "'%%MatrixMarket matrix coordinate real general' or similar",
-                     "'" + std::string(lines[0].substr(0, 60)) + "'");
+                     "'" + shorten(lines[0], 60) + "'");
   const auto header_word = [&](std::size_t k, const char* key,
                                std::initializer_list<const char*> allowed) {
     const std::string word = k < header.size() ? lower(header[k].text) : std::string();
@@ -119,19 +125,18 @@ MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string&
   if (header.size() > 5)
     throw InputError(at(0, header[5].column), "header", "5 words",
                      fmt::format("{}", header.size()));
+  return Header{coordinate, symmetric};
+}
 
-  std::size_t l = 1;
-  const auto skip_comments = [&] {
-    while (l < lines.size()) {
-      const std::vector<Token> t = tokens_of(lines[l]);
-      if (!t.empty() && t[0].text.front() != '%') return;
-      ++l;
-    }
-  };
-  skip_comments();
-  if (l >= lines.size())
-    throw InputError(at(lines.size() - 1, 0), "size", "a size line (rows columns [entries])",
-                     "end of file");
+// The size line at lines[l]: the order n and the number of entries the file must hold.
+struct SizeLine {
+  long long n = 0;
+  long long expected = 0;
+};
+
+SizeLine parse_size_line(const std::vector<std::string_view>& lines, std::size_t l, const Header& h,
+                         const Locator& at) {
+  const bool coordinate = h.coordinate, symmetric = h.symmetric;
   const std::vector<Token> size = tokens_of(lines[l]);
   const std::size_t size_tokens = coordinate ? 3 : 2;
   if (size.size() != size_tokens)
@@ -163,11 +168,16 @@ MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string&
         fmt::format("at most {} entries for a {} {}x{} matrix", symmetric ? n * (n + 1) / 2 : n * n,
                     symmetric ? "symmetric" : "general", n, n),
         std::to_string(dims[2]));
-  MatrixMarketMatrix result;
-  result.symmetric = symmetric;
-  result.size_line = at(l, 1);
-  ++l;
+  return SizeLine{n, expected};
+}
 
+// The entries from lines[l] on, as triplets (both triangles of a symmetric matrix).
+std::vector<Eigen::Triplet<double>> read_entries(std::string_view text,
+                                                 const std::vector<std::string_view>& lines,
+                                                 std::size_t l, const Header& h, const SizeLine& sl,
+                                                 const Locator& at) {
+  const bool coordinate = h.coordinate, symmetric = h.symmetric;
+  const long long n = sl.n, expected = sl.expected;
   std::vector<Eigen::Triplet<double>> triplets;
   // Reserve by what the file can hold, not by what its size line claims.
   const long long room = coordinate ? static_cast<long long>(lines.size() - l)
@@ -236,14 +246,44 @@ MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string&
     throw InputError(at(lines.size() - 1, 0), "entry",
                      fmt::format("{} entries (as the size line says)", expected),
                      fmt::format("{} before the end of the file", count));
-  result.matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  return triplets;
+}
+
+}  // namespace
+
+MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string& file) {
+  const std::vector<std::string_view> lines = split_lines(text);
+  const Locator at{file};
+  if (lines.empty())
+    throw InputError(at(0, 1), "header", "a Matrix Market header line", "an empty file");
+  const Header h = parse_header(lines, at);
+  std::size_t l = 1;
+  const auto skip_comments = [&] {
+    while (l < lines.size()) {
+      const std::vector<Token> t = tokens_of(lines[l]);
+      if (!t.empty() && t[0].text.front() != '%') return;
+      ++l;
+    }
+  };
+  skip_comments();
+  if (l >= lines.size())
+    throw InputError(at(lines.size() - 1, 0), "size", "a size line (rows columns [entries])",
+                     "end of file");
+  const SizeLine sl = parse_size_line(lines, l, h, at);
+  MatrixMarketMatrix result;
+  result.symmetric = h.symmetric;
+  result.size_line = at(l, 1);
+  ++l;
+
+  const std::vector<Eigen::Triplet<double>> triplets = read_entries(text, lines, l, h, sl, at);
+  result.matrix.resize(static_cast<Eigen::Index>(sl.n), static_cast<Eigen::Index>(sl.n));
   result.matrix.setFromTriplets(triplets.begin(), triplets.end());
   result.matrix.makeCompressed();
   return result;
 }
 
 MatrixMarketMatrix read_matrix_market(const fs::path& path) {
-  return parse_matrix_market(read_file(path, "Matrix Market file"), path.string());
+  return parse_matrix_market(read_existing_file(path, "Matrix Market file"), path.string());
 }
 
 std::vector<solid::DofInfo> parse_dof_map_csv(std::string_view text, const std::string& file) {

@@ -8,11 +8,12 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <numbers>
 #include <optional>
 #include <set>
 #include <sstream>
 
+#include "geardyn/core/text.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/meshio/element_ordering.hpp"
 
 namespace geardyn::meshio {
@@ -320,12 +321,10 @@ class DeckParser {
     if (std::find(include_stack_.begin(), include_stack_.end(), key) != include_stack_.end())
       throw InputError(where, "INCLUDE", "no INCLUDE cycle",
                        "'" + path.string() + "' includes itself (directly or indirectly)");
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream content;
-    content << in.rdbuf();
-    if (!in) throw InputError(where, "INCLUDE", "a readable file", "'" + path.string() + "'");
+    const std::optional<std::string> content = try_read_file(path);
+    if (!content) throw InputError(where, "INCLUDE", "a readable file", "'" + path.string() + "'");
     include_stack_.push_back(key);
-    parse_text(content.str(), path.string(), /*top=*/false, depth + 1);
+    parse_text(*content, path.string(), /*top=*/false, depth + 1);
     include_stack_.pop_back();
   }
 
@@ -474,7 +473,7 @@ struct CoordSystem {
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();  // columns: local x, y, z in global
 };
 
-double deg(double d) { return d * std::numbers::pi / 180.0; }
+double deg(double d) { return d * units::kPi / 180.0; }
 
 Eigen::Vector3d to_cartesian(char kind, const Eigen::Vector3d& p) {
   switch (kind) {
@@ -1270,13 +1269,7 @@ NastranDeck read_nastran(const std::filesystem::path& path, const NastranOptions
     throw InputError(SourceLocation{path.string(), 0, 0}, "file",
                      "an existing Nastran bulk data file",
                      "'" + path.string() + "' does not exist or is not a file");
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (!in)
-    throw InputError(SourceLocation{path.string(), 0, 0}, "file", "a readable file",
-                     "'" + path.string() + "' cannot be read");
-  return parse_nastran(content.str(), path.string(), options);
+  return parse_nastran(read_file(path), path.string(), options);
 }
 
 }  // namespace geardyn::meshio

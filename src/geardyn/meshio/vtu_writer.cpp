@@ -9,6 +9,7 @@
 #include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/text.hpp"
 
 namespace geardyn::meshio {
 
@@ -115,32 +116,6 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 
 namespace {
 
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&apos;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string vtu_text(const solid::Mesh& mesh, const std::vector<Field>& fields) {
   fmt::memory_buffer b;
   auto out = std::back_inserter(b);
@@ -157,7 +132,7 @@ std::string vtu_text(const solid::Mesh& mesh, const std::vector<Field>& fields) 
     fmt::format_to(out,
                    "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
                    "format=\"ascii\">\n",
-                   xml_escape(f.name), f.num_components);
+                   escape_xml(f.name), f.num_components);
     // Shortest representation that reads back to the same double.
     for (std::size_t i = 0; i < f.values.size(); ++i)
       fmt::format_to(out, "{}{}", f.values[i],
@@ -240,7 +215,7 @@ std::vector<std::filesystem::path> write_vtu_series(const std::filesystem::path&
     write_file_atomically(file, vtu_text(mesh, states[k]));
     written.push_back(file);
     fmt::format_to(out, "<DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", times[k],
-                   xml_escape(name));
+                   escape_xml(name));
   }
   fmt::format_to(out, "</Collection>\n</VTKFile>\n");
   write_file_atomically(pvd_path, fmt::to_string(b));

@@ -18,6 +18,8 @@
 #include <set>
 #include <sstream>
 
+#include "geardyn/core/text.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/schema.hpp"
 
 namespace geardyn::model {
@@ -85,11 +87,6 @@ SourceLocation location_of(const toml::source_region& r, const SourceLocation& f
   if (starts_with(*r.path, kSetPrefix) || starts_with(*r.path, kSweepPrefix))
     return {*r.path, 0, 0};
   return {*r.path, static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
-}
-
-std::string shorten(std::string_view s) {
-  if (s.size() <= 60) return std::string(s);
-  return std::string(s.substr(0, 57)) + "...";
 }
 
 std::string number_text(double x) {
@@ -360,6 +357,8 @@ struct Entry {
   SourceLocation value_where;
 };
 
+struct ChoiceState;
+
 class Reader {
  public:
   explicit Reader(const ModelDocument& doc) : doc_(doc), file_{doc.file_name(), 0, 0} {}
@@ -403,6 +402,12 @@ class Reader {
                    const SourceLocation& where, FieldValue& v) const;
   void read_section(const Section& sub, const Entry* entry, const std::string& path,
                     const SourceLocation& parent_where, void* parent) const;
+  std::string read_discriminator(const Section& s, const std::vector<Entry>& all,
+                                 const std::string& path, const SourceLocation& where,
+                                 TableContext& ctx) const;
+  void add_defaults(const Section& s, const std::string& variant,
+                    const std::vector<ChoiceState>& states, const std::string& path,
+                    const SourceLocation& where, TableContext& ctx) const;
 
   const ModelDocument& doc_;
   SourceLocation file_;
@@ -674,46 +679,10 @@ std::string alternatives_phrase(const Choice& c) {
   return out;
 }
 
-void Reader::read_table(const Section& s, const toml::table* table, const std::string& path,
-                        const SourceLocation& where, void* object) const {
-  const std::vector<Entry> all = entries(table, path);
-  TableContext ctx;
-  ctx.path = path;
-  ctx.section = s.title;
-  ctx.where = where;
-
-  // The discriminator decides which keys are allowed, so it is read first.
-  std::string variant;
-  if (!s.discriminator.empty()) {
-    const Field& d = *s.find_field(s.discriminator, "");
-    const std::string dpath = join_path(path, d.name);
-    auto it = std::find_if(all.begin(), all.end(), [&](const Entry& e) { return e.key == d.name; });
-    if (it != all.end()) {
-      ctx.values[d.name] = convert(d, *it->node, dpath, it->value_where);
-    } else if (const toml::node* def = Defaults::get(doc_.schema()).find(d)) {
-      ctx.values[d.name] = convert(d, *def, dpath, where);
-      ctx.values[d.name].given = false;
-    } else {
-      throw InputError(where, dpath, fmt::format("the key '{}' ({})", d.name, describe_type(d)),
-                       fmt::format("a {} table without it", s.title));
-    }
-    variant = ctx.values[d.name].text;
-  }
-
-  std::vector<std::pair<const Section*, const Entry*>> subsections;
-  for (const Entry& e : all) {
-    if (e.key == s.discriminator) continue;
-    const std::string kpath = join_path(path, e.key);
-    if (const Field* f = s.find_field(e.key, variant)) {
-      ctx.values[e.key] = convert(*f, *e.node, kpath, e.value_where);
-    } else if (const Section* sub = s.find_section(e.key, variant)) {
-      subsections.emplace_back(sub, &e);
-    } else {
-      unknown_key(s, variant, e.key, kpath, e.key_where);
-    }
-  }
-
-  // Alternatives.
+// The alternatives of s in play for the variant, with the one given (at most one each).
+std::vector<ChoiceState> choice_states(const Section& s, const std::string& variant,
+                                       const TableContext& ctx, const std::string& path,
+                                       const SourceLocation& where) {
   std::vector<ChoiceState> states;
   for (const auto& c : s.choices) {
     if (!c.only_in.empty() &&
@@ -741,6 +710,58 @@ void Reader::read_table(const Section& s, const toml::table* table, const std::s
                        "none of them");
     states.push_back(std::move(st));
   }
+  return states;
+}
+
+// Arrays tabulated against another key (bearing coefficients against speed_rpm): as many values
+// as that key has.
+void check_tabulated(const Section& s, const std::string& variant, const TableContext& ctx) {
+  for (const auto& [key, v] : ctx.values) {
+    const Field* f = s.find_field(key, variant);
+    if (!f || f->tabulated_by.empty() || !v.is_array) continue;
+    if (!ctx.has(f->tabulated_by))
+      throw InputError(v.where, v.path,
+                       fmt::format("a single value, since there is no '{}' to tabulate against",
+                                   f->tabulated_by),
+                       fmt::format("{} value{}", v.count, v.count == 1 ? "" : "s"),
+                       fmt::format("give '{}' = [...] with one speed per value", f->tabulated_by));
+    const std::size_t n = ctx.at(f->tabulated_by).count;
+    if (v.count != n)
+      throw InputError(
+          v.where, v.path,
+          fmt::format("{} value{}, one per '{}' entry", n, n == 1 ? "" : "s", f->tabulated_by),
+          fmt::format("{} value{}", v.count, v.count == 1 ? "" : "s"));
+  }
+}
+
+// The discriminator decides which keys are allowed, so it is read first. Returns the variant
+// ("" when s has no discriminator).
+std::string Reader::read_discriminator(const Section& s, const std::vector<Entry>& all,
+                                       const std::string& path, const SourceLocation& where,
+                                       TableContext& ctx) const {
+  std::string variant;
+  if (!s.discriminator.empty()) {
+    const Field& d = *s.find_field(s.discriminator, "");
+    const std::string dpath = join_path(path, d.name);
+    auto it = std::find_if(all.begin(), all.end(), [&](const Entry& e) { return e.key == d.name; });
+    if (it != all.end()) {
+      ctx.values[d.name] = convert(d, *it->node, dpath, it->value_where);
+    } else if (const toml::node* def = Defaults::get(doc_.schema()).find(d)) {
+      ctx.values[d.name] = convert(d, *def, dpath, where);
+      ctx.values[d.name].given = false;
+    } else {
+      throw InputError(where, dpath, fmt::format("the key '{}' ({})", d.name, describe_type(d)),
+                       fmt::format("a {} table without it", s.title));
+    }
+    variant = ctx.values[d.name].text;
+  }
+  return variant;
+}
+
+// Required keys and defaults of the keys not given.
+void Reader::add_defaults(const Section& s, const std::string& variant,
+                          const std::vector<ChoiceState>& states, const std::string& path,
+                          const SourceLocation& where, TableContext& ctx) const {
   // A key in an alternative is required only when its alternative is used, and takes its
   // default only when no other alternative is used.
   auto alternative_status = [&](std::string_view key) -> int {  // 1 used, -1 other used, 0 n/a
@@ -791,24 +812,35 @@ void Reader::read_table(const Section& s, const toml::table* table, const std::s
       ctx.values[f.name] = std::move(v);
     }
   }
+}
 
-  // Arrays tabulated against another key (bearing coefficients against speed_rpm).
-  for (const auto& [key, v] : ctx.values) {
-    const Field* f = s.find_field(key, variant);
-    if (!f || f->tabulated_by.empty() || !v.is_array) continue;
-    if (!ctx.has(f->tabulated_by))
-      throw InputError(v.where, v.path,
-                       fmt::format("a single value, since there is no '{}' to tabulate against",
-                                   f->tabulated_by),
-                       fmt::format("{} value{}", v.count, v.count == 1 ? "" : "s"),
-                       fmt::format("give '{}' = [...] with one speed per value", f->tabulated_by));
-    const std::size_t n = ctx.at(f->tabulated_by).count;
-    if (v.count != n)
-      throw InputError(
-          v.where, v.path,
-          fmt::format("{} value{}, one per '{}' entry", n, n == 1 ? "" : "s", f->tabulated_by),
-          fmt::format("{} value{}", v.count, v.count == 1 ? "" : "s"));
+void Reader::read_table(const Section& s, const toml::table* table, const std::string& path,
+                        const SourceLocation& where, void* object) const {
+  const std::vector<Entry> all = entries(table, path);
+  TableContext ctx;
+  ctx.path = path;
+  ctx.section = s.title;
+  ctx.where = where;
+
+  const std::string variant = read_discriminator(s, all, path, where, ctx);
+
+  std::vector<std::pair<const Section*, const Entry*>> subsections;
+  for (const Entry& e : all) {
+    if (e.key == s.discriminator) continue;
+    const std::string kpath = join_path(path, e.key);
+    if (const Field* f = s.find_field(e.key, variant)) {
+      ctx.values[e.key] = convert(*f, *e.node, kpath, e.value_where);
+    } else if (const Section* sub = s.find_section(e.key, variant)) {
+      subsections.emplace_back(sub, &e);
+    } else {
+      unknown_key(s, variant, e.key, kpath, e.key_where);
+    }
   }
+
+  const std::vector<ChoiceState> states = choice_states(s, variant, ctx, path, where);
+  add_defaults(s, variant, states, path, where, ctx);
+
+  check_tabulated(s, variant, ctx);
 
   // Store: the discriminator first (it prepares variant settings), then in declaration order.
   if (!s.discriminator.empty()) {
@@ -1108,7 +1140,6 @@ void Resolver::resolve_speeds() {
 }
 
 void Resolver::resolve_disks() {
-  constexpr double kPi = 3.14159265358979323846;
   for (std::size_t i = 0; i < m_.disks.size(); ++i) {
     Disk& d = m_.disks[i];
     check_node(fmt::format("disks[{}].node", i), d.node);
@@ -1118,7 +1149,7 @@ void Resolver::resolve_disks() {
     // Id = m (3 (ro^2 + ri^2) + h^2) / 12 (about a diameter through the centre of mass).
     const double rho = m_.find_material(d.material)->density;
     const double ro = d.outer_diameter / 2.0, ri = d.inner_diameter / 2.0, h = d.thickness;
-    d.mass = rho * kPi * (ro * ro - ri * ri) * h;
+    d.mass = rho * units::kPi * (ro * ro - ri * ri) * h;
     d.polar_inertia = d.mass * (ro * ro + ri * ri) / 2.0;
     d.diametral_inertia = d.mass * (3.0 * (ro * ro + ri * ri) + h * h) / 12.0;
   }
@@ -1204,15 +1235,14 @@ void Resolver::check_damping() {
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return m_.damping.bands[a].f_min < m_.damping.bands[b].f_min;
   });
-  constexpr double kToHz = 1.0 / (2.0 * 3.14159265358979323846);
   for (std::size_t k = 1; k < order.size(); ++k) {
     const DampingBand& lo = m_.damping.bands[order[k - 1]];
     const DampingBand& hi = m_.damping.bands[order[k]];
     if (hi.f_min < lo.f_max)
       fail(fmt::format("damping.bands[{}].f_min_hz", order[k]),
            fmt::format("a band that does not overlap damping.bands[{}] (which ends at {} Hz)",
-                       order[k - 1], number_text(lo.f_max * kToHz)),
-           fmt::format("{} Hz", number_text(hi.f_min * kToHz)));
+                       order[k - 1], number_text(lo.f_max * (1.0 / units::kTwoPi))),
+           fmt::format("{} Hz", number_text(hi.f_min * (1.0 / units::kTwoPi))));
   }
 }
 
@@ -1345,149 +1375,189 @@ Utf8 decode_utf8(std::string_view s, std::size_t i) {
   return {cp, n};
 }
 
-void check_text(std::string_view text, const std::string& file_name) {
+// The scan of check_text: a small state machine over the characters, tracking line and column.
+class TextCheck {
+ public:
+  TextCheck(std::string_view text, const std::string& file_name)
+      : text_(text), file_name_(file_name) {}
+
+  void run() {
+    for (std::size_t i = 0; i < text_.size();) {
+      const char c = text_[i];
+      const Utf8 u = decode_utf8(text_, i);
+      if (u.length == 0)
+        fail("valid UTF-8 text", fmt::format("the byte 0x{:02X}",
+                                             static_cast<unsigned>(static_cast<unsigned char>(c))));
+      std::size_t advance = u.length;
+      check_code_point(u);
+      const State was = state_;
+      if (state_ == State::Normal)
+        step_normal(i, c, advance);
+      else
+        step_inside(i, c, advance);
+      if (state_ == State::Normal) {
+        if (c == '\n') key_side_ = brackets_.empty() || brackets_.back() == '{';
+        if (was == State::Comment)
+          before_ = '\n';
+        else if (was != State::Normal)
+          before_ = '"';  // a string ended
+        else if (c != ' ' && c != '\t' && c != '\r')
+          before_ = c;
+      }
+      move_position(i, advance);
+      i += advance;
+    }
+  }
+
+ private:
   enum class State { Normal, Comment, Basic, Literal, MultiBasic, MultiLiteral };
-  State state = State::Normal;
-  int line = 1, column = 1;
-  bool continued_line = false;  // inside """: after a line-ending backslash, before content
-  char before = '\n';           // outside strings and comments: the last non-blank character
-  // Outside strings: the open brackets, and whether a key (not a value) is expected; a dotted
-  // key may continue with a quoted part (a."b"), a value may not (x = 0."b").
-  std::string brackets;
-  bool key_side = true;
-  auto fail = [&](std::string expected, std::string found) {
-    throw InputError({file_name, line, column}, "(syntax)", std::move(expected), std::move(found));
-  };
-  auto starts = [&](std::size_t i, std::string_view what) {
-    return text.compare(i, what.size(), what) == 0;
-  };
+
+  [[noreturn]] void fail(std::string expected, std::string found) const {
+    throw InputError({file_name_, line_, column_}, "(syntax)", std::move(expected),
+                     std::move(found));
+  }
+
+  bool starts(std::size_t i, std::string_view what) const {
+    return text_.compare(i, what.size(), what) == 0;
+  }
+
   // TOML escapes are ASCII (\n, \t, \", \\, \uXXXX, ... or a line-ending backslash). toml++
   // 3.3 classifies the character after a backslash with a whitespace table that has undefined
   // behaviour for some non-ASCII code points (e.g. U+FEFD), so those are refused here first.
-  auto escape_must_be_ascii = [&](std::size_t backslash, std::size_t k) {
-    if (k >= text.size() || static_cast<unsigned char>(text[k]) < 0x80) return;
-    const Utf8 next = decode_utf8(text, k);
-    column += static_cast<int>(k - backslash);  // the characters in between are ASCII
+  void escape_must_be_ascii(std::size_t backslash, std::size_t k) {
+    if (k >= text_.size() || static_cast<unsigned char>(text_[k]) < 0x80) return;
+    const Utf8 next = decode_utf8(text_, k);
+    column_ += static_cast<int>(k - backslash);  // the characters in between are ASCII
     fail(
         "an escape sequence after the backslash (\\b \\t \\n \\f \\r \\\" \\\\ \\uXXXX "
         "\\UXXXXXXXX, or a line-ending backslash)",
         next.length == 0
             ? std::string("invalid UTF-8")
             : fmt::format("the character U+{:04X}", static_cast<unsigned>(next.code_point)));
-  };
-  for (std::size_t i = 0; i < text.size();) {
-    const char c = text[i];
-    const Utf8 u = decode_utf8(text, i);
-    if (u.length == 0)
-      fail("valid UTF-8 text",
-           fmt::format("the byte 0x{:02X}", static_cast<unsigned>(static_cast<unsigned char>(c))));
-    std::size_t advance = u.length;
-    if (u.code_point >= 0x80) {
-      if (state == State::Normal)
-        fail("valid TOML: non-ASCII characters only inside strings and comments",
-             fmt::format("the character U+{:04X}", static_cast<unsigned>(u.code_point)));
-      if (state == State::MultiBasic && continued_line)
-        fail(
-            "an ASCII character first on a line continued with a backslash (a limitation of "
-            "the TOML reader)",
-            fmt::format("the character U+{:04X}", static_cast<unsigned>(u.code_point)));
+  }
+
+  // Non-ASCII characters: only inside strings and comments, and not first on a continued line.
+  void check_code_point(const Utf8& u) const {
+    if (u.code_point < 0x80) return;
+    if (state_ == State::Normal)
+      fail("valid TOML: non-ASCII characters only inside strings and comments",
+           fmt::format("the character U+{:04X}", static_cast<unsigned>(u.code_point)));
+    if (state_ == State::MultiBasic && continued_line_)
+      fail(
+          "an ASCII character first on a line continued with a backslash (a limitation of "
+          "the TOML reader)",
+          fmt::format("the character U+{:04X}", static_cast<unsigned>(u.code_point)));
+  }
+
+  // Outside strings and comments.
+  void step_normal(std::size_t i, char c, std::size_t& advance) {
+    if (c == '#') {
+      state_ = State::Comment;
+    } else if (c == '\\') {
+      // Never valid outside a string; toml++ 3.3 classifies the character after it with the
+      // table that has undefined behaviour for some non-ASCII code points (found by fuzzing).
+      fail("valid TOML: a backslash only inside a \"...\" string",
+           "a backslash outside any string");
+    } else if ((c == '"' || c == '\'') &&
+               (std::string_view("=[,{.\n").find(before_) == std::string_view::npos ||
+                (before_ == '.' && !key_side_))) {
+      // TOML starts a string only there (after '.' only in a dotted key); toml++ 3.3 would
+      // scan a quote after a bare value (x = 0x"..." or x = 0."...") as part of that value,
+      // classifying its characters with the table that has undefined behaviour for some
+      // non-ASCII code points (found by fuzzing).
+      fail("valid TOML: a string only after '=', ',', '[', '{', a key's '.' or first on a line",
+           fmt::format("a quote after '{}'", before_));
+    } else if (c == '=') {
+      key_side_ = false;
+    } else if (c == '[' || c == '{') {
+      brackets_.push_back(c);
+      if (c == '{') key_side_ = true;
+    } else if ((c == ']' || c == '}') && !brackets_.empty()) {
+      brackets_.pop_back();
+    } else if (c == ',' && !brackets_.empty() && brackets_.back() == '{') {
+      key_side_ = true;
+    } else if (starts(i, "\"\"\"")) {
+      state_ = State::MultiBasic;
+      advance = 3;
+    } else if (starts(i, "'''")) {
+      state_ = State::MultiLiteral;
+      advance = 3;
+    } else if (c == '"') {
+      state_ = State::Basic;
+    } else if (c == '\'') {
+      state_ = State::Literal;
     }
-    const State was = state;
-    switch (state) {
+  }
+
+  // Inside a comment or a string.
+  void step_inside(std::size_t i, char c, std::size_t& advance) {
+    switch (state_) {
       case State::Normal:
-        if (c == '#') {
-          state = State::Comment;
-        } else if (c == '\\') {
-          // Never valid outside a string; toml++ 3.3 classifies the character after it with the
-          // table that has undefined behaviour for some non-ASCII code points (found by fuzzing).
-          fail("valid TOML: a backslash only inside a \"...\" string",
-               "a backslash outside any string");
-        } else if ((c == '"' || c == '\'') &&
-                   (std::string_view("=[,{.\n").find(before) == std::string_view::npos ||
-                    (before == '.' && !key_side))) {
-          // TOML starts a string only there (after '.' only in a dotted key); toml++ 3.3 would
-          // scan a quote after a bare value (x = 0x"..." or x = 0."...") as part of that value,
-          // classifying its characters with the table that has undefined behaviour for some
-          // non-ASCII code points (found by fuzzing).
-          fail("valid TOML: a string only after '=', ',', '[', '{', a key's '.' or first on a line",
-               fmt::format("a quote after '{}'", before));
-        } else if (c == '=') {
-          key_side = false;
-        } else if (c == '[' || c == '{') {
-          brackets.push_back(c);
-          if (c == '{') key_side = true;
-        } else if ((c == ']' || c == '}') && !brackets.empty()) {
-          brackets.pop_back();
-        } else if (c == ',' && !brackets.empty() && brackets.back() == '{') {
-          key_side = true;
-        } else if (starts(i, "\"\"\"")) {
-          state = State::MultiBasic;
-          advance = 3;
-        } else if (starts(i, "'''")) {
-          state = State::MultiLiteral;
-          advance = 3;
-        } else if (c == '"') {
-          state = State::Basic;
-        } else if (c == '\'') {
-          state = State::Literal;
-        }
         break;
       case State::Comment:
-        if (c == '\n') state = State::Normal;
+        if (c == '\n') state_ = State::Normal;
         break;
       case State::Basic:
-        if (c == '\\' && i + 1 < text.size() && text[i + 1] != '\n') {
+        if (c == '\\' && i + 1 < text_.size() && text_[i + 1] != '\n') {
           escape_must_be_ascii(i, i + 1);
           advance = 2;
         } else if (c == '"' || c == '\n')
-          state = State::Normal;
+          state_ = State::Normal;
         break;
       case State::Literal:
-        if (c == '\'' || c == '\n') state = State::Normal;
+        if (c == '\'' || c == '\n') state_ = State::Normal;
         break;
       case State::MultiBasic:
         if (c == '\\') {
           std::size_t k = i + 1;
-          while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r')) ++k;
+          while (k < text_.size() && (text_[k] == ' ' || text_[k] == '\t' || text_[k] == '\r')) ++k;
           escape_must_be_ascii(i, k);
-          if (k < text.size() && text[k] == '\n')
-            continued_line = true;
-          else if (k < text.size() && static_cast<unsigned char>(text[k]) < 0x80)
+          if (k < text_.size() && text_[k] == '\n')
+            continued_line_ = true;
+          else if (k < text_.size() && static_cast<unsigned char>(text_[k]) < 0x80)
             advance = 2;
         } else if (starts(i, "\"\"\"")) {
-          state = State::Normal;
-          continued_line = false;
+          state_ = State::Normal;
+          continued_line_ = false;
           advance = 3;
         } else if (c != ' ' && c != '\t' && c != '\r' && c != '\n') {
-          continued_line = false;
+          continued_line_ = false;
         }
         break;
       case State::MultiLiteral:
         if (starts(i, "'''")) {
-          state = State::Normal;
+          state_ = State::Normal;
           advance = 3;
         }
         break;
     }
-    if (state == State::Normal) {
-      if (c == '\n') key_side = brackets.empty() || brackets.back() == '{';
-      if (was == State::Comment)
-        before = '\n';
-      else if (was != State::Normal)
-        before = '"';  // a string ended
-      else if (c != ' ' && c != '\t' && c != '\r')
-        before = c;
-    }
-    for (std::size_t k = 0; k < advance && i + k < text.size(); ++k) {
-      if (text[i + k] == '\n') {
-        ++line;
-        column = 1;
-      } else if ((static_cast<unsigned char>(text[i + k]) & 0xC0) != 0x80) {
-        ++column;
+  }
+
+  void move_position(std::size_t i, std::size_t advance) {
+    for (std::size_t k = 0; k < advance && i + k < text_.size(); ++k) {
+      if (text_[i + k] == '\n') {
+        ++line_;
+        column_ = 1;
+      } else if ((static_cast<unsigned char>(text_[i + k]) & 0xC0) != 0x80) {
+        ++column_;
       }
     }
-    i += advance;
   }
+
+  std::string_view text_;
+  const std::string& file_name_;
+  State state_ = State::Normal;
+  int line_ = 1, column_ = 1;
+  bool continued_line_ = false;  // inside """: after a line-ending backslash, before content
+  char before_ = '\n';           // outside strings and comments: the last non-blank character
+  // Outside strings: the open brackets, and whether a key (not a value) is expected; a dotted
+  // key may continue with a quoted part (a."b"), a value may not (x = 0."b").
+  std::string brackets_;
+  bool key_side_ = true;
+};
+
+void check_text(std::string_view text, const std::string& file_name) {
+  TextCheck(text, file_name).run();
 }
 
 }  // namespace
@@ -1509,11 +1579,9 @@ ModelDocument parse_document(const std::string& text, const std::string& file_na
 }
 
 ModelDocument load_document(const std::string& path, const Section& schema) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_document(text.str(), path, schema);
+  const std::optional<std::string> text = try_read_file(path);
+  if (!text) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
+  return parse_document(*text, path, schema);
 }
 
 void apply_override(ModelDocument& document, const std::string& assignment) {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <ctime>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <set>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 
@@ -243,11 +243,11 @@ std::string describe_motion(const Eigen::VectorXd& phi, const std::vector<solid:
 
 }  // namespace
 
-ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
-                               const std::vector<solid::DofInfo>& dofs,
-                               const std::vector<int>& master_dofs,
-                               const CraigBamptonOptions& options, const std::string& source_sha256,
-                               const std::string& geardyn_version, Progress& progress) {
+namespace {
+
+// The checks of the options and of the matrices.
+void check_input(const SparseMatrix& K, const SparseMatrix& M,
+                 const std::vector<solid::DofInfo>& dofs, const CraigBamptonOptions& options) {
   if (auto problems = options.validate(); !problems.empty()) {
     std::string found;
     for (const auto& p : problems) found += (found.empty() ? "" : "; ") + p;
@@ -267,10 +267,20 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
                        "Craig-Bampton needs symmetric K and M (no gyroscopic or circulatory "
                        "terms); reduce those separately with the same transformation");
   }
+}
 
-  // Partition.
+// Masters and interior DOFs, and the index of each DOF in its group.
+struct DofPartition {
+  std::vector<bool> is_master;
+  std::vector<int> local;
+  std::vector<int> interior;
+};
+
+DofPartition partition_dofs(Eigen::Index n, const std::vector<solid::DofInfo>& dofs,
+                            const std::vector<int>& master_dofs) {
   std::vector<bool> is_master(static_cast<std::size_t>(n), false);
   std::vector<int> local(static_cast<std::size_t>(n), -1);
+  std::vector<int> interior;
   for (std::size_t k = 0; k < master_dofs.size(); ++k) {
     const int g = master_dofs[k];
     if (g < 0 || g >= n)
@@ -283,12 +293,131 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
     is_master[static_cast<std::size_t>(g)] = true;
     local[static_cast<std::size_t>(g)] = static_cast<int>(k);
   }
-  std::vector<int> interior;
   for (Eigen::Index g = 0; g < n; ++g)
     if (!is_master[static_cast<std::size_t>(g)]) {
       local[static_cast<std::size_t>(g)] = static_cast<int>(interior.size());
       interior.push_back(static_cast<int>(g));
     }
+  return DofPartition{std::move(is_master), std::move(local), std::move(interior)};
+}
+
+// Fixed-interface modes (into lambda and Phi); with none wanted, the lowest one alone, to test
+// for free motions. Returns the free-motion threshold on the eigenvalues.
+double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
+                             const std::vector<solid::DofInfo>& interior_info,
+                             const CraigBamptonOptions& options, ReducedComponent& rc,
+                             Eigen::VectorXd& lambda, Eigen::MatrixXd& Phi) {
+  const auto ni = static_cast<Eigen::Index>(interior_info.size());
+  const bool band = !std::isnan(options.frequency_max_hz);
+  eig::SymmetricEigenOptions eo;
+  eo.dense_limit = options.dense_limit;
+  eo.krylov = options.krylov;
+  if (band) {
+    const double omega = units::kTwoPi * options.frequency_max_hz;
+    eo.band_max = omega * omega;
+    // Below zero as well, so that a free motion computed at -1e-12 is caught, not skipped.
+    eo.band_min = -eo.band_max;
+    eo.n_modes = static_cast<int>(std::min<Eigen::Index>(20, ni));
+  } else {
+    eo.n_modes = std::max(options.n_modes, 1);
+  }
+  const double threshold = options.mechanism_tolerance * spectrum_scale(Kp.ii, Mp.ii);
+  const auto er = eig::solve_symmetric(Kp.ii, Mp.ii, eo);
+  // A free motion first: it also spoils convergence and residuals, and is the real cause.
+  if (er.status == Status::Singular ||
+      (er.eigenvalues.size() > 0 && er.eigenvalues[0] <= threshold))
+    throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+  if (er.status != Status::Ok)
+    throw NumericalError(
+        "craig_bampton",
+        fmt::format("fixed-interface modes of the {} interior DOFs: {}", ni, er.brief_report()));
+  if (band && er.eigenvalues.size() == 0) {
+    // No mode below the cut-off: the band result says nothing about free motions.
+    eig::SymmetricEigenOptions check = eo;
+    check.band_min = check.band_max = eig::kNaN;
+    check.n_modes = 1;
+    const auto lowest = eig::solve_symmetric(Kp.ii, Mp.ii, check);
+    if (lowest.status == Status::Singular ||
+        (lowest.eigenvalues.size() > 0 && lowest.eigenvalues[0] <= threshold))
+      throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+    if (lowest.status != Status::Ok)
+      throw NumericalError("craig_bampton", "lowest fixed-interface mode (mechanism check): " +
+                                                lowest.brief_report());
+  }
+  rc.provenance.solver_report = er.brief_report();
+  if (band || options.n_modes > 0) {
+    lambda = er.eigenvalues;
+    Phi = er.eigenvectors;
+  } else {
+    rc.provenance.solver_report = "mechanism check only: " + rc.provenance.solver_report;
+  }
+  return threshold;
+}
+
+// Constraint modes (into Psi): one Cholesky factorisation of K_ii, block solves.
+void constraint_modes(const Blocks& Kp, const Blocks& Mp,
+                      const std::vector<solid::DofInfo>& interior_info, double threshold,
+                      const CraigBamptonOptions& options, Progress& progress,
+                      Eigen::MatrixXd& Psi) {
+  const Eigen::Index nb = Psi.cols();
+  linalg::SymmetricFactorization factorization;
+  const Status fs = factorization.compute(Kp.ii);
+  if (fs != Status::Ok || factorization.kind() != linalg::FactorizationKind::Cholesky)
+    throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+  const Eigen::Index bs = options.block_size;
+  const auto n_blocks = static_cast<std::size_t>((nb + bs - 1) / bs);
+  progress.start("craig_bampton: constraint modes", n_blocks);
+  for (Eigen::Index c0 = 0, block = 0; c0 < nb; c0 += bs, ++block) {
+    const Eigen::Index w = std::min(bs, nb - c0);
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd(Kp.ib.middleCols(c0, w));
+    Psi.middleCols(c0, w) = -factorization.solve(rhs);
+    progress.update(static_cast<std::size_t>(block + 1));
+  }
+  progress.finish();
+}
+
+// T^T A T by blocks, T = [I 0; Psi Phi] (see craig_bampton).
+Eigen::MatrixXd project(const Blocks& A, const Eigen::MatrixXd& Psi, const Eigen::MatrixXd& Phi,
+                        const CraigBamptonOptions& options) {
+  const Eigen::Index nb = Psi.cols(), ni = Psi.rows(), nm = Phi.cols();
+  const Eigen::Index m = nb + nm;
+  const SparseMatrix bi = A.ib.transpose();
+  Eigen::MatrixXd R(m, m);
+  const Eigen::Index bs = options.block_size;
+  for (Eigen::Index c0 = 0; c0 < nb; c0 += bs) {
+    const Eigen::Index w = std::min(bs, nb - c0);
+    Eigen::MatrixXd top = Eigen::MatrixXd(A.bb.middleCols(c0, w));
+    Eigen::MatrixXd low = Eigen::MatrixXd(A.ib.middleCols(c0, w));
+    if (ni > 0) {
+      top += bi * Psi.middleCols(c0, w);
+      low += A.ii * Psi.middleCols(c0, w);
+    }
+    R.block(0, c0, nb, w) = top + Psi.transpose() * low;
+    if (nm > 0) R.block(nb, c0, nm, w) = Phi.transpose() * low;
+  }
+  if (nm > 0) {
+    const Eigen::MatrixXd low = A.ii * Phi;
+    R.block(0, nb, nb, nm) = bi * Phi + Psi.transpose() * low;
+    R.block(nb, nb, nm, nm) = Phi.transpose() * low;
+  }
+  const Eigen::MatrixXd Rt = R.transpose();
+  return Eigen::MatrixXd(0.5 * (R + Rt));
+}
+
+}  // namespace
+
+ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
+                               const std::vector<solid::DofInfo>& dofs,
+                               const std::vector<int>& master_dofs,
+                               const CraigBamptonOptions& options, const std::string& source_sha256,
+                               const std::string& geardyn_version, Progress& progress) {
+  check_input(K, M, dofs, options);
+  const Eigen::Index n = K.rows();
+
+  const DofPartition dp = partition_dofs(n, dofs, master_dofs);
+  const std::vector<bool>& is_master = dp.is_master;
+  const std::vector<int>& local = dp.local;
+  const std::vector<int>& interior = dp.interior;
   const auto nb = static_cast<Eigen::Index>(master_dofs.size());
   const auto ni = static_cast<Eigen::Index>(interior.size());
   const bool band = !std::isnan(options.frequency_max_hz);
@@ -331,65 +460,9 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
                         describe_dof(interior_info[static_cast<std::size_t>(j)]), kd[j]),
             "make it a master, constrain it or remove it from the model");
 
-    // Fixed-interface modes; with none wanted, the lowest one alone, to test for free motions.
-    eig::SymmetricEigenOptions eo;
-    eo.dense_limit = options.dense_limit;
-    eo.krylov = options.krylov;
-    if (band) {
-      const double omega = 2.0 * std::numbers::pi * options.frequency_max_hz;
-      eo.band_max = omega * omega;
-      // Below zero as well, so that a free motion computed at -1e-12 is caught, not skipped.
-      eo.band_min = -eo.band_max;
-      eo.n_modes = static_cast<int>(std::min<Eigen::Index>(20, ni));
-    } else {
-      eo.n_modes = std::max(options.n_modes, 1);
-    }
-    const double threshold = options.mechanism_tolerance * spectrum_scale(Kp.ii, Mp.ii);
-    const auto er = eig::solve_symmetric(Kp.ii, Mp.ii, eo);
-    // A free motion first: it also spoils convergence and residuals, and is the real cause.
-    if (er.status == Status::Singular ||
-        (er.eigenvalues.size() > 0 && er.eigenvalues[0] <= threshold))
-      throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
-    if (er.status != Status::Ok)
-      throw NumericalError(
-          "craig_bampton",
-          fmt::format("fixed-interface modes of the {} interior DOFs: {}", ni, er.brief_report()));
-    if (band && er.eigenvalues.size() == 0) {
-      // No mode below the cut-off: the band result says nothing about free motions.
-      eig::SymmetricEigenOptions check = eo;
-      check.band_min = check.band_max = eig::kNaN;
-      check.n_modes = 1;
-      const auto lowest = eig::solve_symmetric(Kp.ii, Mp.ii, check);
-      if (lowest.status == Status::Singular ||
-          (lowest.eigenvalues.size() > 0 && lowest.eigenvalues[0] <= threshold))
-        throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
-      if (lowest.status != Status::Ok)
-        throw NumericalError("craig_bampton", "lowest fixed-interface mode (mechanism check): " +
-                                                  lowest.brief_report());
-    }
-    rc.provenance.solver_report = er.brief_report();
-    if (band || options.n_modes > 0) {
-      lambda = er.eigenvalues;
-      Phi = er.eigenvectors;
-    } else {
-      rc.provenance.solver_report = "mechanism check only: " + rc.provenance.solver_report;
-    }
+    const double threshold = fixed_interface_modes(Kp, Mp, interior_info, options, rc, lambda, Phi);
 
-    // Constraint modes: one Cholesky factorisation of K_ii, block solves.
-    linalg::SymmetricFactorization factorization;
-    const Status fs = factorization.compute(Kp.ii);
-    if (fs != Status::Ok || factorization.kind() != linalg::FactorizationKind::Cholesky)
-      throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
-    const Eigen::Index bs = options.block_size;
-    const auto n_blocks = static_cast<std::size_t>((nb + bs - 1) / bs);
-    progress.start("craig_bampton: constraint modes", n_blocks);
-    for (Eigen::Index c0 = 0, block = 0; c0 < nb; c0 += bs, ++block) {
-      const Eigen::Index w = std::min(bs, nb - c0);
-      const Eigen::MatrixXd rhs = Eigen::MatrixXd(Kp.ib.middleCols(c0, w));
-      Psi.middleCols(c0, w) = -factorization.solve(rhs);
-      progress.update(static_cast<std::size_t>(block + 1));
-    }
-    progress.finish();
+    constraint_modes(Kp, Mp, interior_info, threshold, options, progress, Psi);
   } else {
     rc.provenance.solver_report = "no interior DOFs";
   }
@@ -400,36 +473,12 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
   // The interior row block of K T is formed a column block at a time, so no n_interior x m
   // temporary beyond Psi itself is needed.
   const Eigen::Index nm = Phi.cols();
-  const Eigen::Index m = nb + nm;
-  auto project = [&](const Blocks& A) {
-    const SparseMatrix bi = A.ib.transpose();
-    Eigen::MatrixXd R(m, m);
-    const Eigen::Index bs = options.block_size;
-    for (Eigen::Index c0 = 0; c0 < nb; c0 += bs) {
-      const Eigen::Index w = std::min(bs, nb - c0);
-      Eigen::MatrixXd top = Eigen::MatrixXd(A.bb.middleCols(c0, w));
-      Eigen::MatrixXd low = Eigen::MatrixXd(A.ib.middleCols(c0, w));
-      if (ni > 0) {
-        top += bi * Psi.middleCols(c0, w);
-        low += A.ii * Psi.middleCols(c0, w);
-      }
-      R.block(0, c0, nb, w) = top + Psi.transpose() * low;
-      if (nm > 0) R.block(nb, c0, nm, w) = Phi.transpose() * low;
-    }
-    if (nm > 0) {
-      const Eigen::MatrixXd low = A.ii * Phi;
-      R.block(0, nb, nb, nm) = bi * Phi + Psi.transpose() * low;
-      R.block(nb, nb, nm, nm) = Phi.transpose() * low;
-    }
-    const Eigen::MatrixXd Rt = R.transpose();
-    return Eigen::MatrixXd(0.5 * (R + Rt));
-  };
-  rc.K = project(Kp);
-  rc.M = project(Mp);
+  rc.K = project(Kp, Psi, Phi, options);
+  rc.M = project(Mp, Psi, Phi, options);
   rc.n_modal = static_cast<int>(nm);
   rc.fixed_interface_hz.resize(nm);
   for (Eigen::Index k = 0; k < nm; ++k)
-    rc.fixed_interface_hz[k] = std::sqrt(std::max(lambda[k], 0.0)) / (2.0 * std::numbers::pi);
+    rc.fixed_interface_hz[k] = std::sqrt(std::max(lambda[k], 0.0)) / units::kTwoPi;
   rc.Psi = std::move(Psi);
   rc.Phi = std::move(Phi);
   return rc;

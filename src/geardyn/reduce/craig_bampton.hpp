@@ -11,7 +11,9 @@
 // rather than being assumed away. Guyan reduction is the case with no modes.
 // Sources: R. R. Craig, M. C. C. Bampton, "Coupling of substructures for dynamic analyses",
 // AIAA J. 6 (1968) 1313-1319; R. J. Guyan, "Reduction of stiffness and mass matrices", AIAA J.
-// 3 (1965) 380; the damper-ring thesis in /work/shared/references (chapter 2.2.1, its [1], [4]).
+// 3 (1965) 380; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
+// Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018 (chapter 2.2.1, its [1],
+// [4]).
 //
 // Cost: one sparse Cholesky factorisation of K_ii, solved with n_masters right-hand sides in
 // blocks; one shift-invert Lanczos run (eig::solve_symmetric) on (K_ii, M_ii); dense work

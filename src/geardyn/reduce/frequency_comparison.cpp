@@ -4,15 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::reduce {
 
-double frequency_hz(double lambda) {
-  return std::sqrt(std::max(lambda, 0.0)) / (2.0 * std::numbers::pi);
-}
+double frequency_hz(double lambda) { return std::sqrt(std::max(lambda, 0.0)) / units::kTwoPi; }
 
 double frequency_error_pct(double full_hz, double reduced_hz, double floor_hz) {
   return 100.0 * (reduced_hz - full_hz) / std::max(full_hz, floor_hz);

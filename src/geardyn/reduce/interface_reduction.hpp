@@ -14,8 +14,9 @@
 // interface modes are required: the six rigid-body motions of a free component live on the
 // interface and must survive (thesis chapter 2.2.3; it takes about a third of the CB mode count).
 // Source: D.-M. Tran, "Component mode synthesis methods using interface modes. Application to
-// structures with cyclic symmetry", Computers & Structures 79 (2001) 209-222 (the damper-ring
-// thesis' reference [11], /work/shared/references, chapter 2.2.3).
+// structures with cyclic symmetry", Computers & Structures 79 (2001) 209-222 (reference [11] of
+// A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears Equipped with Damper
+// Rings", MSc thesis, Politecnico di Torino, 2018, chapter 2.2.3).
 //
 // Scalar = double, or std::complex<double> for the Hermitian pairs of a cyclic harmonic
 // (DESIGN.md §4.3). Dense throughout: meant for reduced models (sizes up to a few thousand).

@@ -23,26 +23,7 @@ using nlohmann::json;
 
 // Plotly renders its strings (titles, labels, legend, hover) as a small HTML subset and decodes
 // character references, so escaping & < > shows the text literally.
-std::string plotly_text(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
+std::string plotly_text(std::string_view text) { return escape_html_content(text); }
 
 // JSON placed inside a <script> element: '<' only occurs inside JSON strings, where \u003c is the
 // same character, so no "</script>" or "<!--" can end or confuse the element.
@@ -456,33 +437,6 @@ std::string table_html(const Table& table, const std::string& analysis_name,
 
 }  // namespace
 
-std::string escape_html(std::string_view text) {
-  std::string out;
-  out.reserve(text.size() + text.size() / 8);
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string escape_script_text(std::string_view js) {
   // A "</script" in any letter case would end the element early; "<\/script" means the same
   // inside JS strings and regular expressions, the only places it can occur. plotly.js 2.35 has
@@ -505,35 +459,13 @@ std::string escape_script_text(std::string_view js) {
   return out;
 }
 
-std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& outputs,
-                        const ReportOptions& options) {
-  if (options.display_digits < 1 || options.display_digits > 17)
-    throw std::invalid_argument(fmt::format(
-        "report: display_digits must be between 1 and 17, got {}", options.display_digits));
-  const std::string model_name = info.model_path.empty() ? std::string("(no model file)")
-                                                         : info.model_path.filename().string();
-  std::size_t n_failed = 0;
-  double total_time = 0.0;
-  for (const auto& o : outputs) {
-    if (o.status != Status::Ok) ++n_failed;
-    if (std::isfinite(o.run_time_s)) total_time += o.run_time_s;
-  }
+namespace {
+
+// The page header: model, status badge, hash, start, time and command line.
+void append_page_header(std::string& out, const RunInfo& info,
+                        const std::vector<AnalysisOutput>& outputs, const std::string& model_name,
+                        const std::string& started, double total_time, std::size_t n_failed) {
   const bool all_ok = n_failed == 0;
-  const std::string started = format_utc_iso8601(info.start_time);
-
-  std::string out;
-  out.reserve(plotly_js().size() + 256 * 1024);
-  out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-  out += fmt::format("<meta name=\"generator\" content=\"geardyn {}\">\n", escape_html(kVersion));
-  out += fmt::format("<title>{} — geardyn report</title>\n", escape_html(model_name));
-  out += "<style>";
-  out += kStyle;
-  out += "</style>\n<script>\n";
-  out += escape_script_text(plotly_js());
-  out += "\n</script>\n</head>\n<body>\n";
-
-  // Header
   out += "<header class=\"page\">\n";
   out += fmt::format("<h1>{} <span class=\"badge {}\">{}</span></h1>\n", escape_html(model_name),
                      all_ok ? "ok" : "bad",
@@ -553,8 +485,10 @@ std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& 
     out +=
         fmt::format("<dt>Command</dt><dd><code>{}</code></dd>\n", escape_html(info.command_line));
   out += "</dl>\n</header>\n";
+}
 
-  // Table of contents
+// The table of contents: one link per analysis with its status.
+void append_contents(std::string& out, const std::vector<AnalysisOutput>& outputs) {
   out +=
       "<div class=\"layout\">\n<nav class=\"toc\" "
       "aria-label=\"Contents\">\n<h2>Analyses</h2>\n<ol>\n";
@@ -567,66 +501,105 @@ std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& 
   }
   if (outputs.empty()) out += "<li class=\"empty\">No analyses ran.</li>\n";
   out += "</ol>\n</nav>\n<main>\n";
+}
+
+// The section of analysis a (0-based): status, notes, files, plots (their figures appended to
+// figures) and tables; the caller closes the section.
+void append_section(std::string& out, const AnalysisOutput& o, std::size_t a,
+                    const ReportOptions& options, json& figures) {
+  const char* state =
+      o.status == Status::Ok ? "" : (is_incomplete(o.status) ? " warned" : " failed");
+  out += fmt::format("<section class=\"analysis{}\" id=\"analysis-{}\">\n", state, a + 1);
+  out += fmt::format(
+      "<div class=\"section-head\"><h2>{}</h2><span class=\"type\">{}</span>{}<span "
+      "class=\"runtime\">run time {}</span></div>\n",
+      escape_html(o.name), escape_html(o.type), badge(o.status), format_duration(o.run_time_s));
+  if (o.status != Status::Ok) {
+    out += fmt::format(
+        "<div class=\"alert{}\" role=\"alert\"><div class=\"alert-title\">{}</div><pre "
+        "class=\"alert-message\">{}</pre></div>\n",
+        is_incomplete(o.status) ? " warn" : "",
+        is_incomplete(o.status)
+            ? fmt::format("Incomplete result ({})", escape_html(to_string(o.status)))
+            : fmt::format("This analysis failed ({})", escape_html(to_string(o.status))),
+        escape_html(o.message.empty() ? "(no message)" : o.message));
+  } else if (!o.message.empty()) {
+    out += fmt::format("<div class=\"notes\"><p>{}</p></div>\n", escape_html(o.message));
+  }
+  if (!o.notes.empty()) {
+    out += "<div class=\"notes\"><h3>How far to trust this result</h3><ul>\n";
+    for (const auto& note : o.notes) out += fmt::format("<li>{}</li>\n", escape_html(note));
+    out += "</ul></div>\n";
+  }
+  if (!o.files.empty()) {
+    out += "<div class=\"notes\"><h3>Files</h3><ul>\n";
+    for (const auto& f : o.files)
+      out += fmt::format("<li><a href=\"{0}/{1}\"><code>{0}/{1}</code></a>: {2}</li>\n",
+                         escape_html(o.name), escape_html(f.file_name), escape_html(f.description));
+    out += "</ul></div>\n";
+  }
+  if (!o.plots.empty()) {
+    out += "<div class=\"plots\">\n";
+    for (std::size_t p = 0; p < o.plots.size(); ++p) {
+      const Plot& plot = o.plots[p];
+      const std::string id = fmt::format("plot-{}-{}", a + 1, p + 1);
+      bool thinned = false;
+      figures.push_back(plot_figure(plot, id, options, thinned));
+      out += fmt::format(
+          "<figure class=\"plot-card{}\"><div class=\"geardyn-plot\" id=\"{}\" "
+          "data-plot-name=\"{}\"></div>",
+          plot.equal_aspect ? " equal" : "", id, escape_html(plot.name));
+      if (thinned)
+        out += fmt::format(
+            "<figcaption>Long traces are thinned to at most {} points for display (peaks kept); "
+            "the tables hold every point.</figcaption>",
+            options.max_points_per_trace);
+      out += "</figure>\n";
+    }
+    out += "</div>\n";
+  }
+  for (const Table& table : o.tables) out += table_html(table, o.name, options);
+  if (o.plots.empty() && o.tables.empty() && o.status == Status::Ok)
+    out += "<p class=\"empty\">This analysis produced no tables or plots.</p>\n";
+}
+
+}  // namespace
+
+std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& outputs,
+                        const ReportOptions& options) {
+  if (options.display_digits < 1 || options.display_digits > 17)
+    throw std::invalid_argument(fmt::format(
+        "report: display_digits must be between 1 and 17, got {}", options.display_digits));
+  const std::string model_name = info.model_path.empty() ? std::string("(no model file)")
+                                                         : info.model_path.filename().string();
+  std::size_t n_failed = 0;
+  double total_time = 0.0;
+  for (const auto& o : outputs) {
+    if (o.status != Status::Ok) ++n_failed;
+    if (std::isfinite(o.run_time_s)) total_time += o.run_time_s;
+  }
+  const std::string started = format_utc_iso8601(info.start_time);
+
+  std::string out;
+  out.reserve(plotly_js().size() + 256 * 1024);
+  out += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  out += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  out += fmt::format("<meta name=\"generator\" content=\"geardyn {}\">\n", escape_html(kVersion));
+  out += fmt::format("<title>{} — geardyn report</title>\n", escape_html(model_name));
+  out += "<style>";
+  out += kStyle;
+  out += "</style>\n<script>\n";
+  out += escape_script_text(plotly_js());
+  out += "\n</script>\n</head>\n<body>\n";
+
+  append_page_header(out, info, outputs, model_name, started, total_time, n_failed);
+
+  append_contents(out, outputs);
 
   // Sections
   json figures = json::array();
   for (std::size_t a = 0; a < outputs.size(); ++a) {
-    const auto& o = outputs[a];
-    const char* state =
-        o.status == Status::Ok ? "" : (is_incomplete(o.status) ? " warned" : " failed");
-    out += fmt::format("<section class=\"analysis{}\" id=\"analysis-{}\">\n", state, a + 1);
-    out += fmt::format(
-        "<div class=\"section-head\"><h2>{}</h2><span class=\"type\">{}</span>{}<span "
-        "class=\"runtime\">run time {}</span></div>\n",
-        escape_html(o.name), escape_html(o.type), badge(o.status), format_duration(o.run_time_s));
-    if (o.status != Status::Ok) {
-      out += fmt::format(
-          "<div class=\"alert{}\" role=\"alert\"><div class=\"alert-title\">{}</div><pre "
-          "class=\"alert-message\">{}</pre></div>\n",
-          is_incomplete(o.status) ? " warn" : "",
-          is_incomplete(o.status)
-              ? fmt::format("Incomplete result ({})", escape_html(to_string(o.status)))
-              : fmt::format("This analysis failed ({})", escape_html(to_string(o.status))),
-          escape_html(o.message.empty() ? "(no message)" : o.message));
-    } else if (!o.message.empty()) {
-      out += fmt::format("<div class=\"notes\"><p>{}</p></div>\n", escape_html(o.message));
-    }
-    if (!o.notes.empty()) {
-      out += "<div class=\"notes\"><h3>How far to trust this result</h3><ul>\n";
-      for (const auto& note : o.notes) out += fmt::format("<li>{}</li>\n", escape_html(note));
-      out += "</ul></div>\n";
-    }
-    if (!o.files.empty()) {
-      out += "<div class=\"notes\"><h3>Files</h3><ul>\n";
-      for (const auto& f : o.files)
-        out +=
-            fmt::format("<li><a href=\"{0}/{1}\"><code>{0}/{1}</code></a>: {2}</li>\n",
-                        escape_html(o.name), escape_html(f.file_name), escape_html(f.description));
-      out += "</ul></div>\n";
-    }
-    if (!o.plots.empty()) {
-      out += "<div class=\"plots\">\n";
-      for (std::size_t p = 0; p < o.plots.size(); ++p) {
-        const Plot& plot = o.plots[p];
-        const std::string id = fmt::format("plot-{}-{}", a + 1, p + 1);
-        bool thinned = false;
-        figures.push_back(plot_figure(plot, id, options, thinned));
-        out += fmt::format(
-            "<figure class=\"plot-card{}\"><div class=\"geardyn-plot\" id=\"{}\" "
-            "data-plot-name=\"{}\"></div>",
-            plot.equal_aspect ? " equal" : "", id, escape_html(plot.name));
-        if (thinned)
-          out += fmt::format(
-              "<figcaption>Long traces are thinned to at most {} points for display (peaks kept); "
-              "the tables hold every point.</figcaption>",
-              options.max_points_per_trace);
-        out += "</figure>\n";
-      }
-      out += "</div>\n";
-    }
-    for (const Table& table : o.tables) out += table_html(table, o.name, options);
-    if (o.plots.empty() && o.tables.empty() && o.status == Status::Ok)
-      out += "<p class=\"empty\">This analysis produced no tables or plots.</p>\n";
+    append_section(out, outputs[a], a, options, figures);
     out += "</section>\n";
   }
   if (outputs.empty())

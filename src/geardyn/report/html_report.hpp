@@ -10,6 +10,7 @@
 
 #include "geardyn/core/run_info.hpp"
 #include "geardyn/core/table.hpp"
+#include "geardyn/core/text.hpp"  // escape_html
 
 namespace geardyn::report {
 
@@ -31,10 +32,6 @@ struct ReportOptions {
 /// if `options.display_digits` is outside 1..17.
 std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& outputs,
                         const ReportOptions& options = {});
-
-/// `text` with & < > " ' replaced by character references, safe in element text and in
-/// quoted attribute values.
-std::string escape_html(std::string_view text);
 
 /// JavaScript made safe to place inside a <script> element: every "</script" (any letter case)
 /// becomes "<\/script"; everything else is copied unchanged.

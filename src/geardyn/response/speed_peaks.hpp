@@ -7,8 +7,9 @@
 // measured in frequency (Q = omega_r / (omega_2 - omega_1) = 1 / (2 zeta) for a lightly damped,
 // isolated mode) as long as the natural frequency does not change with speed across the band
 // (rotors: gyroscopic and speed-dependent bearing terms make the two differ slightly).
-// Reference: Ewins, Modal Testing, 2nd ed., 2000, sec. 4.3; damper-ring thesis
-// (/work/shared/references/000, sec. 2.3.1, half-power Q-factor).
+// Reference: Ewins, Modal Testing, 2nd ed., 2000, sec. 4.3; A. Durastante, "Simulation of the
+// Dynamic Response of Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di
+// Torino, 2018 (the damper-ring thesis), sec. 2.3.1, half-power Q-factor.
 #include <Eigen/Dense>
 #include <limits>
 #include <string>

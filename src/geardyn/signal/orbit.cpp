@@ -1,7 +1,8 @@
 #include "geardyn/signal/orbit.hpp"
 
 #include <cmath>
-#include <numbers>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::signal {
 
@@ -26,9 +27,8 @@ Orbit orbit_from_phasors(std::complex<double> X, std::complex<double> Y) {
     angle = std::arg(backward);
   else
     angle = 0.5 * (std::arg(forward) + std::arg(backward));
-  constexpr double pi = std::numbers::pi;
-  angle = std::remainder(angle, pi);  // in [-pi/2, pi/2]
-  if (angle <= -0.5 * pi) angle += pi;
+  angle = std::remainder(angle, units::kPi);  // in [-pi/2, pi/2]
+  if (angle <= -0.5 * units::kPi) angle += units::kPi;
   o.inclination = angle;
 
   constexpr double kStraightTolerance = 1e-9;

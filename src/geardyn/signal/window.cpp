@@ -2,9 +2,10 @@
 
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
+
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::signal {
 namespace {
@@ -24,9 +25,8 @@ Eigen::VectorXd cosine_sum(const std::array<double, N>& a, int n) {
     double value = 0.0;
     for (std::size_t k = 0; k < N; ++k) {
       const double sign = (k % 2 == 0) ? 1.0 : -1.0;
-      value +=
-          sign * a[k] *
-          std::cos(2.0 * std::numbers::pi * static_cast<double>(k) * j / static_cast<double>(n));
+      value += sign * a[k] *
+               std::cos(units::kTwoPi * static_cast<double>(k) * j / static_cast<double>(n));
     }
     w[j] = value;
   }
@@ -35,7 +35,7 @@ Eigen::VectorXd cosine_sum(const std::array<double, N>& a, int n) {
 
 double sinc(double x) {
   if (std::abs(x) < 1e-12) return 1.0;
-  return std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
+  return std::sin(units::kPi * x) / (units::kPi * x);
 }
 
 // Large-n amplitude response of a coherent-gain corrected cosine-sum window to a sinusoid

@@ -492,14 +492,11 @@ int SolidSystem::node_dof(int node, int component) const {
   return d < 0 ? -1 : reduced_index[static_cast<std::size_t>(d)];
 }
 
-SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  if (options.threads < 0) {
-    throw InputError({}, "assembly.threads", "a thread count >= 0 (0: all cores)",
-                     fmt::format("{}", options.threads));
-  }
-  validate(mesh);
-  Builder b(mesh);
+namespace {
+
+// Numbers every node's DOFs, applies constraints and rigid elements, expands the dependencies and
+// numbers the remaining (reduced) DOFs. Returns the number of reduced DOFs.
+int number_dofs(Builder& b, const Mesh& mesh) {
   const int n_nodes = mesh.num_nodes();
   b.node_dofs = node_dof_counts(mesh);
   b.node_offset.assign(static_cast<std::size_t>(n_nodes), 0);
@@ -548,6 +545,13 @@ SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
   for (std::size_t d = 0; d < n_all; ++d) {
     if (!b.constrained[d] && !b.is_dependent[d]) b.reduced[d] = n_red++;
   }
+  return n_red;
+}
+
+// Node adjacency over coupling groups (elements, point masses, springs), through the master
+// nodes of each node (the owners of the reduced DOFs in the expansions of its DOFs).
+std::vector<std::vector<int>> node_adjacency(const Builder& b, const Mesh& mesh, int n_red) {
+  const int n_nodes = mesh.num_nodes();
   // Node that owns each reduced DOF.
   std::vector<int> owner(static_cast<std::size_t>(n_red));
   for (int i = 0; i < n_nodes; ++i) {
@@ -602,76 +606,77 @@ SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
       couple({s.node1, s.node2});
     }
   }
-  // K is allocated once, compressed, with its final pattern; M shares it.
-  SolidSystem sys;
-  Eigen::SparseMatrix<double>& K = sys.K;
-  K.resize(n_red, n_red);
-  {
-    std::vector<int> outer(static_cast<std::size_t>(n_red) + 1, 0);
-    // Reduced DOFs of each node are contiguous: [first_red[i], first_red[i] + count_red[i]).
-    std::vector<int> first_red(static_cast<std::size_t>(n_nodes), 0),
-        count_red(static_cast<std::size_t>(n_nodes), 0);
-    for (int i = 0; i < n_nodes; ++i) {
-      const auto s = static_cast<std::size_t>(i);
-      first_red[s] = -1;
-      for (int k = 0; k < b.node_dofs[s]; ++k) {
-        const int r = b.reduced[static_cast<std::size_t>(b.node_offset[s] + k)];
-        if (r < 0) continue;
-        if (first_red[s] < 0) first_red[s] = r;
-        ++count_red[s];
-      }
-    }
-    std::size_t nnz = 0;
-    for (auto& adj : adjacency) {
-      std::sort(adj.begin(), adj.end());
-      adj.erase(std::unique(adj.begin(), adj.end()), adj.end());
-    }
-    for (int i = 0; i < n_nodes; ++i) {
-      const auto s = static_cast<std::size_t>(i);
-      if (count_red[s] == 0) continue;
-      std::size_t rows = 0;
-      for (int a : adjacency[s])
-        rows += static_cast<std::size_t>(count_red[static_cast<std::size_t>(a)]);
-      for (int k = 0; k < count_red[s]; ++k) {
-        outer[static_cast<std::size_t>(first_red[s] + k) + 1] = static_cast<int>(rows);
-      }
-      nnz += rows * static_cast<std::size_t>(count_red[s]);
-    }
-    if (nnz > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
-      throw InputError({}, mesh.source.empty() ? std::string("mesh") : mesh.source,
-                       "a model with fewer than 2^31 stiffness non-zeros",
-                       fmt::format("{} non-zeros", nnz), "reduce the mesh size");
-    }
-    for (int c = 0; c < n_red; ++c) {
-      outer[static_cast<std::size_t>(c) + 1] += outer[static_cast<std::size_t>(c)];
-    }
-    K.resizeNonZeros(static_cast<Eigen::Index>(nnz));
-    std::copy(outer.begin(), outer.end(), K.outerIndexPtr());
-    int* inner = K.innerIndexPtr();
-    for (int i = 0; i < n_nodes; ++i) {
-      const auto s = static_cast<std::size_t>(i);
-      for (int k = 0; k < count_red[s]; ++k) {
-        int pos = outer[static_cast<std::size_t>(first_red[s] + k)];
-        for (int a : adjacency[s]) {
-          const auto sa = static_cast<std::size_t>(a);
-          for (int j = 0; j < count_red[sa]; ++j) inner[pos++] = first_red[sa] + j;
-        }
-      }
-    }
-    adjacency.clear();
-    adjacency.shrink_to_fit();
-  }
-  std::fill_n(K.valuePtr(), K.nonZeros(), 0.0);
-  Eigen::SparseMatrix<double>& M = sys.M;
-  if (options.mass) M = K;
-  const Pattern pattern{K.outerIndexPtr(), K.innerIndexPtr()};
-  double* kv = K.valuePtr();
-  double* mv = options.mass ? M.valuePtr() : nullptr;
-  std::vector<double> element_volume(mesh.elements.size(), 0.0);
+  return adjacency;
+}
 
-  // Element loop. Thread t owns the columns [lo_t, hi_t) and integrates every element that has a
-  // column there (elements on a boundary between ranges are integrated twice): no two threads
-  // write the same value, and the result does not depend on the thread count.
+// Allocates K once, compressed, with its final pattern (the adjacency is consumed).
+void allocate_pattern(Eigen::SparseMatrix<double>& K, const Builder& b, const Mesh& mesh,
+                      std::vector<std::vector<int>>& adjacency, int n_red) {
+  const int n_nodes = mesh.num_nodes();
+  K.resize(n_red, n_red);
+  std::vector<int> outer(static_cast<std::size_t>(n_red) + 1, 0);
+  // Reduced DOFs of each node are contiguous: [first_red[i], first_red[i] + count_red[i]).
+  std::vector<int> first_red(static_cast<std::size_t>(n_nodes), 0),
+      count_red(static_cast<std::size_t>(n_nodes), 0);
+  for (int i = 0; i < n_nodes; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    first_red[s] = -1;
+    for (int k = 0; k < b.node_dofs[s]; ++k) {
+      const int r = b.reduced[static_cast<std::size_t>(b.node_offset[s] + k)];
+      if (r < 0) continue;
+      if (first_red[s] < 0) first_red[s] = r;
+      ++count_red[s];
+    }
+  }
+  std::size_t nnz = 0;
+  for (auto& adj : adjacency) {
+    std::sort(adj.begin(), adj.end());
+    adj.erase(std::unique(adj.begin(), adj.end()), adj.end());
+  }
+  for (int i = 0; i < n_nodes; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    if (count_red[s] == 0) continue;
+    std::size_t rows = 0;
+    for (int a : adjacency[s])
+      rows += static_cast<std::size_t>(count_red[static_cast<std::size_t>(a)]);
+    for (int k = 0; k < count_red[s]; ++k) {
+      outer[static_cast<std::size_t>(first_red[s] + k) + 1] = static_cast<int>(rows);
+    }
+    nnz += rows * static_cast<std::size_t>(count_red[s]);
+  }
+  if (nnz > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw InputError({}, mesh.source.empty() ? std::string("mesh") : mesh.source,
+                     "a model with fewer than 2^31 stiffness non-zeros",
+                     fmt::format("{} non-zeros", nnz), "reduce the mesh size");
+  }
+  for (int c = 0; c < n_red; ++c) {
+    outer[static_cast<std::size_t>(c) + 1] += outer[static_cast<std::size_t>(c)];
+  }
+  K.resizeNonZeros(static_cast<Eigen::Index>(nnz));
+  std::copy(outer.begin(), outer.end(), K.outerIndexPtr());
+  int* inner = K.innerIndexPtr();
+  for (int i = 0; i < n_nodes; ++i) {
+    const auto s = static_cast<std::size_t>(i);
+    for (int k = 0; k < count_red[s]; ++k) {
+      int pos = outer[static_cast<std::size_t>(first_red[s] + k)];
+      for (int a : adjacency[s]) {
+        const auto sa = static_cast<std::size_t>(a);
+        for (int j = 0; j < count_red[sa]; ++j) inner[pos++] = first_red[sa] + j;
+      }
+    }
+  }
+  adjacency.clear();
+  adjacency.shrink_to_fit();
+}
+
+// Element loop. Thread t owns the columns [lo_t, hi_t) and integrates every element that has a
+// column there (elements on a boundary between ranges are integrated twice): no two threads
+// write the same value, and the result does not depend on the thread count. Returns the volume
+// of each element.
+std::vector<double> assemble_elements(const Builder& b, const Mesh& mesh,
+                                      const AssemblyOptions& options, const Pattern& pattern,
+                                      int n_red, double* kv, double* mv) {
+  std::vector<double> element_volume(mesh.elements.size(), 0.0);
   int threads = options.threads == 0
                     ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))
                     : options.threads;
@@ -721,92 +726,96 @@ SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
     if (err) std::rethrow_exception(err);
   }
   progress.finish();
+  return element_volume;
+}
 
-  // Point masses and springs (few; serial).
-  {
-    LocalExpansion e;
-    std::vector<int> all_dofs;
-    for (const PointMass& p : mesh.point_masses) {
-      if (!options.mass) break;
-      const int nd = b.node_dofs[static_cast<std::size_t>(p.node)];
-      all_dofs.clear();
-      for (int c = 0; c < nd; ++c) all_dofs.push_back(b.dof(p.node, c));
-      Eigen::MatrixXd Mp = Eigen::MatrixXd::Zero(nd, nd);
-      Mp.topLeftCorner(3, 3) = p.mass * Eigen::Matrix3d::Identity();
-      if (nd == 6) {
-        const Eigen::Matrix3d S = skew(p.offset);
-        Mp.block(0, 3, 3, 3) = -p.mass * S;
-        Mp.block(3, 0, 3, 3) = p.mass * S;
-        Mp.block(3, 3, 3, 3) =
-            p.inertia + p.mass * (p.offset.squaredNorm() * Eigen::Matrix3d::Identity() -
-                                  p.offset * p.offset.transpose());
-      }
-      e.build(b, all_dofs);
-      scatter(pattern, e, Mp, mv, 0, n_red);
+// Point masses and springs (few; serial).
+void add_point_masses_and_springs(const Builder& b, const Mesh& mesh,
+                                  const AssemblyOptions& options, const Pattern& pattern, int n_red,
+                                  double* kv, double* mv) {
+  LocalExpansion e;
+  std::vector<int> all_dofs;
+  for (const PointMass& p : mesh.point_masses) {
+    if (!options.mass) break;
+    const int nd = b.node_dofs[static_cast<std::size_t>(p.node)];
+    all_dofs.clear();
+    for (int c = 0; c < nd; ++c) all_dofs.push_back(b.dof(p.node, c));
+    Eigen::MatrixXd Mp = Eigen::MatrixXd::Zero(nd, nd);
+    Mp.topLeftCorner(3, 3) = p.mass * Eigen::Matrix3d::Identity();
+    if (nd == 6) {
+      const Eigen::Matrix3d S = skew(p.offset);
+      Mp.block(0, 3, 3, 3) = -p.mass * S;
+      Mp.block(3, 0, 3, 3) = p.mass * S;
+      Mp.block(3, 3, 3, 3) =
+          p.inertia + p.mass * (p.offset.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                p.offset * p.offset.transpose());
     }
-    for (const Spring& s : mesh.springs) {
-      all_dofs = {b.dof(s.node1, s.component1)};
-      Eigen::MatrixXd Ks(1, 1);
-      Ks(0, 0) = s.stiffness;
-      if (s.node2 != -1) {
-        all_dofs.push_back(b.dof(s.node2, s.component2));
-        Ks.resize(2, 2);
-        Ks << s.stiffness, -s.stiffness, -s.stiffness, s.stiffness;
-      }
-      e.build(b, all_dofs);
-      scatter(pattern, e, Ks, kv, 0, n_red);
+    e.build(b, all_dofs);
+    scatter(pattern, e, Mp, mv, 0, n_red);
+  }
+  for (const Spring& s : mesh.springs) {
+    all_dofs = {b.dof(s.node1, s.component1)};
+    Eigen::MatrixXd Ks(1, 1);
+    Ks(0, 0) = s.stiffness;
+    if (s.node2 != -1) {
+      all_dofs.push_back(b.dof(s.node2, s.component2));
+      Ks.resize(2, 2);
+      Ks << s.stiffness, -s.stiffness, -s.stiffness, s.stiffness;
     }
+    e.build(b, all_dofs);
+    scatter(pattern, e, Ks, kv, 0, n_red);
   }
+}
 
-  sys.node_dofs = b.node_dofs;
-  sys.node_offset = b.node_offset;
-  sys.num_elements = mesh.num_elements();
-  for (std::size_t k = 0; k < mesh.elements.size(); ++k) {
-    sys.volume += element_volume[k];
-    sys.solid_mass +=
-        element_volume[k] * mesh.materials[static_cast<std::size_t>(mesh.elements[k].material)].rho;
-  }
-
-  // DOFs with no stiffness and no mass at all.
+// DOFs with no stiffness and no mass at all: removed from K and M (when the options ask for
+// it). Returns the final index of each reduced DOF (-1: removed) and sets n_final.
+std::vector<int> remove_unconnected(SolidSystem& sys, const AssemblyOptions& options,
+                                    const Pattern& pattern, int n_red, const double* kv,
+                                    const double* mv, int& n_final) {
   std::vector<int> final_index(static_cast<std::size_t>(n_red));
-  int n_final = 0;
-  {
-    std::vector<char> remove(static_cast<std::size_t>(n_red), 0);
-    if (options.remove_unconnected_dofs) {
-      for (int c = 0; c < n_red; ++c) {
-        bool empty = true;
-        for (int k = pattern.outer[c]; k < pattern.outer[c + 1] && empty; ++k) {
-          empty = kv[k] == 0 && (mv == nullptr || mv[k] == 0);
-        }
-        remove[static_cast<std::size_t>(c)] = empty;
-      }
-    }
+  n_final = 0;
+  std::vector<char> remove(static_cast<std::size_t>(n_red), 0);
+  if (options.remove_unconnected_dofs) {
     for (int c = 0; c < n_red; ++c) {
-      final_index[static_cast<std::size_t>(c)] =
-          remove[static_cast<std::size_t>(c)] ? -1 : n_final++;
-    }
-    if (n_final < n_red) {
-      // Drop the removed columns and rows (all their values are zero) from K and M.
-      auto compact = [&](const Eigen::SparseMatrix<double>& A) {
-        std::vector<Eigen::Triplet<double>> t;
-        t.reserve(static_cast<std::size_t>(A.nonZeros()));
-        for (int c = 0; c < n_red; ++c) {
-          const int fc = final_index[static_cast<std::size_t>(c)];
-          if (fc < 0) continue;
-          for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
-            const int fr = final_index[static_cast<std::size_t>(it.row())];
-            if (fr >= 0) t.emplace_back(fr, fc, it.value());
-          }
-        }
-        Eigen::SparseMatrix<double> B(n_final, n_final);
-        B.setFromTriplets(t.begin(), t.end());
-        return B;
-      };
-      K = compact(K);
-      if (options.mass) M = compact(M);
+      bool empty = true;
+      for (int k = pattern.outer[c]; k < pattern.outer[c + 1] && empty; ++k) {
+        empty = kv[k] == 0 && (mv == nullptr || mv[k] == 0);
+      }
+      remove[static_cast<std::size_t>(c)] = empty;
     }
   }
+  for (int c = 0; c < n_red; ++c) {
+    final_index[static_cast<std::size_t>(c)] = remove[static_cast<std::size_t>(c)] ? -1 : n_final++;
+  }
+  if (n_final < n_red) {
+    // Drop the removed columns and rows (all their values are zero) from K and M.
+    const int n_kept = n_final;
+    auto compact = [&](const Eigen::SparseMatrix<double>& A) {
+      std::vector<Eigen::Triplet<double>> t;
+      t.reserve(static_cast<std::size_t>(A.nonZeros()));
+      for (int c = 0; c < n_red; ++c) {
+        const int fc = final_index[static_cast<std::size_t>(c)];
+        if (fc < 0) continue;
+        for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+          const int fr = final_index[static_cast<std::size_t>(it.row())];
+          if (fr >= 0) t.emplace_back(fr, fc, it.value());
+        }
+      }
+      Eigen::SparseMatrix<double> B(n_kept, n_kept);
+      B.setFromTriplets(t.begin(), t.end());
+      return B;
+    };
+    sys.K = compact(sys.K);
+    if (options.mass) sys.M = compact(sys.M);
+  }
+  return final_index;
+}
 
+// The recovery matrix (all DOFs from the final ones), the reduced index of every DOF and the
+// description of the final and the removed DOFs.
+void describe_dofs(SolidSystem& sys, const Builder& b, const Mesh& mesh,
+                   const std::vector<int>& final_index, int n_final) {
+  const auto n_all = static_cast<std::size_t>(b.n_all);
   sys.reduced_index.assign(n_all, -1);
   std::vector<Eigen::Triplet<double>> rec;
   rec.reserve(b.exp_terms.size());
@@ -824,7 +833,7 @@ SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
   sys.recovery.setFromTriplets(rec.begin(), rec.end());
 
   sys.dofs.resize(static_cast<std::size_t>(n_final));
-  for (int i = 0; i < n_nodes; ++i) {
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
     const auto s = static_cast<std::size_t>(i);
     for (int k = 0; k < b.node_dofs[s]; ++k) {
       const auto d = static_cast<std::size_t>(b.node_offset[s] + k);
@@ -836,6 +845,47 @@ SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
       }
     }
   }
+}
+
+}  // namespace
+
+SolidSystem assemble(const Mesh& mesh, const AssemblyOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (options.threads < 0) {
+    throw InputError({}, "assembly.threads", "a thread count >= 0 (0: all cores)",
+                     fmt::format("{}", options.threads));
+  }
+  validate(mesh);
+  Builder b(mesh);
+  const int n_red = number_dofs(b, mesh);
+  std::vector<std::vector<int>> adjacency = node_adjacency(b, mesh, n_red);
+  // K is allocated once, compressed, with its final pattern; M shares it.
+  SolidSystem sys;
+  Eigen::SparseMatrix<double>& K = sys.K;
+  allocate_pattern(K, b, mesh, adjacency, n_red);
+  std::fill_n(K.valuePtr(), K.nonZeros(), 0.0);
+  Eigen::SparseMatrix<double>& M = sys.M;
+  if (options.mass) M = K;
+  const Pattern pattern{K.outerIndexPtr(), K.innerIndexPtr()};
+  double* kv = K.valuePtr();
+  double* mv = options.mass ? M.valuePtr() : nullptr;
+  const std::vector<double> element_volume =
+      assemble_elements(b, mesh, options, pattern, n_red, kv, mv);
+  add_point_masses_and_springs(b, mesh, options, pattern, n_red, kv, mv);
+
+  sys.node_dofs = b.node_dofs;
+  sys.node_offset = b.node_offset;
+  sys.num_elements = mesh.num_elements();
+  for (std::size_t k = 0; k < mesh.elements.size(); ++k) {
+    sys.volume += element_volume[k];
+    sys.solid_mass +=
+        element_volume[k] * mesh.materials[static_cast<std::size_t>(mesh.elements[k].material)].rho;
+  }
+
+  int n_final = 0;
+  const std::vector<int> final_index =
+      remove_unconnected(sys, options, pattern, n_red, kv, mv, n_final);
+  describe_dofs(sys, b, mesh, final_index, n_final);
   sys.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return sys;
 }

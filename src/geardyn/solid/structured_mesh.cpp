@@ -5,10 +5,10 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <string>
 #include <vector>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/solid/elements.hpp"
 
 namespace geardyn::solid {
@@ -202,11 +202,10 @@ Mesh annular_sector_mesh(double r_inner, double r_outer, double thickness, doubl
   if (!(thickness > 0) || !std::isfinite(thickness)) {
     throw InputError({}, "sector.thickness", "a thickness > 0", fmt::format("{}", thickness));
   }
-  constexpr double kTwoPi = 2 * std::numbers::pi;
-  if (!(angle_rad > 0) || angle_rad > kTwoPi * (1 + 1e-12)) {
+  if (!(angle_rad > 0) || angle_rad > units::kTwoPi * (1 + 1e-12)) {
     throw InputError({}, "sector.angle", "an angle in (0, 2 pi] rad", fmt::format("{}", angle_rad));
   }
-  const bool closed = angle_rad >= kTwoPi * (1 - 1e-12);
+  const bool closed = angle_rad >= units::kTwoPi * (1 - 1e-12);
   if (closed && n_theta < 3) {
     throw InputError({}, "sector.n_theta", "at least 3 cells around a closed annulus",
                      fmt::format("{}", n_theta));
@@ -214,7 +213,7 @@ Mesh annular_sector_mesh(double r_inner, double r_outer, double thickness, doubl
   Block block;
   block.n = {n_radial, n_theta, n_thick};
   block.periodic_j = closed;
-  const double angle = closed ? kTwoPi : angle_rad;
+  const double angle = closed ? units::kTwoPi : angle_rad;
   block.map = [=](double u, double v, double w) {
     const double r = r_inner + (r_outer - r_inner) * u;
     const double theta = angle * v;

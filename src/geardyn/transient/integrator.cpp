@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "geardyn/transient/tangent_solver.hpp"
@@ -91,9 +92,10 @@ bool factor_tangent(SecondOrderSystem& system, TangentSolver& solver, double t,
 
 }  // namespace
 
-IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions& options,
-                             Eigen::VectorXd& q, Eigen::VectorXd& v, const StepObserver& observer,
-                             Progress& progress) {
+namespace {
+
+void check_input(SecondOrderSystem& system, const IntegratorOptions& options,
+                 const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
   if (const auto problems = options.validate(); !problems.empty()) {
     std::string text = "invalid integrator options:";
     for (const auto& p : problems) text += " " + p + ";";
@@ -107,6 +109,119 @@ IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions&
   if (options.initial_acceleration && options.initial_acceleration->size() != n)
     throw std::invalid_argument(fmt::format("initial acceleration has size {}, expected {}",
                                             options.initial_acceleration->size(), n));
+}
+
+struct Failure {
+  Status status;
+  std::string message;
+};
+
+// The initial acceleration: given, or from M a_0 = -r(t_0, q_0, v_0, 0).
+std::optional<Failure> initial_acceleration(SecondOrderSystem& system,
+                                            const IntegratorOptions& options, double t,
+                                            const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                            Eigen::VectorXd& a, IntegrationSummary& summary) {
+  const int n = system.size();
+  Eigen::VectorXd r(n);
+  if (options.initial_acceleration) {
+    a = *options.initial_acceleration;
+    summary.consistent_initial_acceleration = false;
+    return std::nullopt;
+  }
+  // M a_0 = -r(t_0, q_0, v_0, 0): the tangent with c_m = 1, c_c = c_k = 0 is M.
+  TangentSolver mass_solver;
+  if (!factor_tangent(system, mass_solver, t, q, v, 1.0, 0.0, 0.0))
+    return Failure{Status::Singular,
+                   fmt::format("initial acceleration at t = {} s: the mass matrix could not be "
+                               "factorised ({}); every unconstrained DOF needs mass (add rotary "
+                               "inertia or a small point mass, or constrain the DOF)",
+                               t, mass_solver.failure())};
+  system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
+  ++summary.residual_evaluations;
+  mass_solver.solve(-r, a);
+  return std::nullopt;
+}
+
+// Work vectors of a step: the state at t_{n+1-af}, the residual and the correction.
+struct StepWork {
+  Eigen::VectorXd qa, va, aa, r, dq;
+};
+
+// Newton iterations of one step on (q1, v1, a1) from the predictor.
+struct Iterations {
+  bool converged = false;
+  double previous_correction = 0.0;
+  int iteration = 0;
+};
+
+// Newton (modified: the factor is kept while the corrections shrink fast enough) on the step
+// from (q, v, a) at t_n to (q1, v1, a1) at t1.
+std::optional<Failure> newton_iterations(SecondOrderSystem& system,
+                                         const IntegratorOptions& options,
+                                         const SchemeParameters& p, int step, double t1,
+                                         const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                         const Eigen::VectorXd& a, Eigen::VectorXd& q1,
+                                         Eigen::VectorXd& v1, Eigen::VectorXd& a1, StepWork& w,
+                                         TangentSolver& solver, bool& need_factor, double q_scale,
+                                         IntegrationSummary& summary, Iterations& it) {
+  const double h = options.time_step;
+  const double ta = t1 - p.alpha_f * h;  // t_{n+1-af} = (1 - af) t_{n+1} + af t_n
+  const double c_m = (1.0 - p.alpha_m) / (p.beta * h * h);
+  const double c_c = (1.0 - p.alpha_f) * p.gamma / (p.beta * h);
+  const double c_k = 1.0 - p.alpha_f;
+  const double dv_dq = p.gamma / (p.beta * h);
+  const double da_dq = 1.0 / (p.beta * h * h);
+  while (it.iteration < options.max_newton_iterations) {
+    w.qa = (1.0 - p.alpha_f) * q1 + p.alpha_f * q;
+    w.va = (1.0 - p.alpha_f) * v1 + p.alpha_f * v;
+    w.aa = (1.0 - p.alpha_m) * a1 + p.alpha_m * a;
+    system.residual(ta, w.qa, w.va, w.aa, w.r);
+    ++summary.residual_evaluations;
+    if (!w.r.allFinite())
+      return Failure{Status::Diverged,
+                     fmt::format("non-finite residual at step {} (t = {:.6g} s, h = {:.3g} s); "
+                                 "usually the time step is too large for the nonlinearity",
+                                 step, t1, h)};
+    if (need_factor) {
+      if (!factor_tangent(system, solver, ta, w.qa, w.va, c_m, c_c, c_k))
+        return Failure{Status::Singular,
+                       fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
+                                   "unconstrained rigid-body motion without mass",
+                                   step, t1, solver.failure())};
+      ++summary.factorizations;
+      summary.solver = solver.description();
+      need_factor = false;
+    }
+    solver.solve(-w.r, w.dq);
+    q1 += w.dq;
+    v1 += dv_dq * w.dq;
+    a1 += da_dq * w.dq;
+    ++it.iteration;
+    if (summary.linear_time_invariant) {  // exact tangent, linear equations: one correction
+      it.converged = true;
+      break;
+    }
+    const double correction = w.dq.lpNorm<Eigen::Infinity>();
+    const double scale = std::max(q_scale, q1.lpNorm<Eigen::Infinity>());
+    if (correction <= options.newton_tolerance * scale || correction == 0.0) {
+      it.converged = true;
+      break;
+    }
+    // Modified Newton: keep the factor while the corrections shrink fast enough.
+    if (it.iteration > 1 && correction > options.refactor_ratio * it.previous_correction)
+      need_factor = true;
+    it.previous_correction = correction;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions& options,
+                             Eigen::VectorXd& q, Eigen::VectorXd& v, const StepObserver& observer,
+                             Progress& progress) {
+  check_input(system, options, q, v);
+  const int n = system.size();
 
   const SchemeParameters p = options.parameters();
   const double h = options.time_step;
@@ -126,94 +241,38 @@ IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions&
   };
 
   double t = options.start_time;
-  Eigen::VectorXd a(n), r(n), dq(n);
+  Eigen::VectorXd a(n);
   progress.start("time integration", static_cast<std::size_t>(options.num_steps));
 
-  if (options.initial_acceleration) {
-    a = *options.initial_acceleration;
-    summary.consistent_initial_acceleration = false;
-  } else {
-    // M a_0 = -r(t_0, q_0, v_0, 0): the tangent with c_m = 1, c_c = c_k = 0 is M.
-    TangentSolver mass_solver;
-    if (!factor_tangent(system, mass_solver, t, q, v, 1.0, 0.0, 0.0))
-      return fail(Status::Singular,
-                  fmt::format("initial acceleration at t = {} s: the mass matrix could not be "
-                              "factorised ({}); every unconstrained DOF needs mass (add rotary "
-                              "inertia or a small point mass, or constrain the DOF)",
-                              t, mass_solver.failure()));
-    system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
-    ++summary.residual_evaluations;
-    mass_solver.solve(-r, a);
-  }
+  if (auto failure = initial_acceleration(system, options, t, q, v, a, summary))
+    return fail(failure->status, std::move(failure->message));
   if (!all_finite(q, v, a))
     return fail(Status::Diverged,
                 fmt::format("the initial state at t = {} s has non-finite entries", t));
   if (observer) observer(0, t, q, v, a);
-
-  const double c_m = (1.0 - p.alpha_m) / (p.beta * h * h);
-  const double c_c = (1.0 - p.alpha_f) * p.gamma / (p.beta * h);
-  const double c_k = 1.0 - p.alpha_f;
-  const double dv_dq = p.gamma / (p.beta * h);
-  const double da_dq = 1.0 / (p.beta * h * h);
 
   TangentSolver solver;
   bool need_factor = true;
   double q_scale = q.lpNorm<Eigen::Infinity>();
   double largest_state = state_size(q, v, a, h);
 
-  Eigen::VectorXd q1(n), v1(n), a1(n), qa(n), va(n), aa(n);
+  Eigen::VectorXd q1(n), v1(n), a1(n);
+  StepWork w{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n),
+             Eigen::VectorXd(n)};
   for (int step = 1; step <= options.num_steps; ++step) {
     const double t1 = options.start_time + step * h;
-    const double ta = t1 - p.alpha_f * h;  // t_{n+1-af} = (1 - af) t_{n+1} + af t_n
     // Predictor: constant acceleration.
     a1 = a;
     q1 = q + h * v + (h * h * (0.5 - p.beta)) * a + (h * h * p.beta) * a1;
     v1 = v + (h * (1.0 - p.gamma)) * a + (h * p.gamma) * a1;
 
-    bool converged = false;
-    double previous_correction = 0.0;
-    int iteration = 0;
-    while (iteration < options.max_newton_iterations) {
-      qa = (1.0 - p.alpha_f) * q1 + p.alpha_f * q;
-      va = (1.0 - p.alpha_f) * v1 + p.alpha_f * v;
-      aa = (1.0 - p.alpha_m) * a1 + p.alpha_m * a;
-      system.residual(ta, qa, va, aa, r);
-      ++summary.residual_evaluations;
-      if (!r.allFinite())
-        return fail(Status::Diverged,
-                    fmt::format("non-finite residual at step {} (t = {:.6g} s, h = {:.3g} s); "
-                                "usually the time step is too large for the nonlinearity",
-                                step, t1, h));
-      if (need_factor) {
-        if (!factor_tangent(system, solver, ta, qa, va, c_m, c_c, c_k))
-          return fail(Status::Singular,
-                      fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
-                                  "unconstrained rigid-body motion without mass",
-                                  step, t1, solver.failure()));
-        ++summary.factorizations;
-        summary.solver = solver.description();
-        need_factor = false;
-      }
-      solver.solve(-r, dq);
-      q1 += dq;
-      v1 += dv_dq * dq;
-      a1 += da_dq * dq;
-      ++iteration;
-      if (summary.linear_time_invariant) {  // exact tangent, linear equations: one correction
-        converged = true;
-        break;
-      }
-      const double correction = dq.lpNorm<Eigen::Infinity>();
-      const double scale = std::max(q_scale, q1.lpNorm<Eigen::Infinity>());
-      if (correction <= options.newton_tolerance * scale || correction == 0.0) {
-        converged = true;
-        break;
-      }
-      // Modified Newton: keep the factor while the corrections shrink fast enough.
-      if (iteration > 1 && correction > options.refactor_ratio * previous_correction)
-        need_factor = true;
-      previous_correction = correction;
-    }
+    Iterations it;
+    if (auto failure = newton_iterations(system, options, p, step, t1, q, v, a, q1, v1, a1, w,
+                                         solver, need_factor, q_scale, summary, it))
+      return fail(failure->status, std::move(failure->message));
+    const int iteration = it.iteration;
+    const double previous_correction = it.previous_correction;
+    const bool converged = it.converged;
     summary.newton_iterations += iteration;
     summary.max_iterations_in_step = std::max(summary.max_iterations_in_step, iteration);
     if (!converged)
