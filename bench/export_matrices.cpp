@@ -20,6 +20,7 @@
 #include <string>
 
 #include "bench_sector.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/meshgen/gear_sector.hpp"
 #include "geardyn/meshio/matrix_market.hpp"
@@ -81,7 +82,7 @@ int main(int argc, char** argv) {
     std::string freqs;
     for (Eigen::Index i = 0; i < r.eigenvalues.size(); ++i)
       freqs += fmt::format("{}{:.17g}", i ? ", " : "",
-                           std::sqrt(std::max(r.eigenvalues[i], 0.0)) / (2 * std::numbers::pi));
+                           units::rad_per_s_to_hz(std::sqrt(std::max(r.eigenvalues[i], 0.0))));
     std::ofstream json(folder / "sector.json");
     json << fmt::format(
         "{{\n  \"mesh\": \"gear sector 1/10, z = 40, m = 4.5 mm, tet10, global size {} m, tooth "

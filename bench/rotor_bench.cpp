@@ -10,6 +10,7 @@
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace {
 
@@ -91,7 +92,7 @@ void BM_Modal(benchmark::State& state) {
   const auto system = assembly::build_system(m);
   analyses::ModalSettings settings;
   settings.n_modes = 10;
-  settings.speed = 3000 * 2 * std::numbers::pi / 60;
+  settings.speed = units::rpm_to_rad_per_s(3000.0);
   for (auto _ : state)
     benchmark::DoNotOptimize(
         analyses::run_modal(m, settings, analyses::Context("modal").with_system(&system)));
@@ -104,7 +105,7 @@ void BM_Campbell100(benchmark::State& state) {
   const auto system = assembly::build_system(m);
   analyses::CampbellSettings settings;
   settings.n_modes = 6;
-  for (int i = 0; i < 100; ++i) settings.speeds.push_back(i * 100.0 * 2 * std::numbers::pi / 60);
+  for (int i = 0; i < 100; ++i) settings.speeds.push_back(units::rpm_to_rad_per_s(i * 100.0));
   for (auto _ : state)
     benchmark::DoNotOptimize(
         analyses::run_campbell(m, settings, analyses::Context("campbell").with_system(&system)));
@@ -122,8 +123,8 @@ void BM_Frf10k(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
   const auto system = assembly::build_system(m);
   analyses::HarmonicSettings settings;
-  settings.f_min = 2 * std::numbers::pi * 1.0;
-  settings.f_max = 2 * std::numbers::pi * 2000.0;
+  settings.f_min = units::hz_to_rad_per_s(1.0);
+  settings.f_max = units::hz_to_rad_per_s(2000.0);
   settings.n_points = 10000;
   settings.adaptive = false;
   settings.input_node = "s." + std::to_string(state.range(0) / 4);
@@ -143,7 +144,7 @@ void BM_Unbalance1k(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));
   const auto system = assembly::build_system(m);
   analyses::UnbalanceSettings settings;
-  for (int i = 1; i <= 1000; ++i) settings.speeds.push_back(i * 10.0 * 2 * std::numbers::pi / 60);
+  for (int i = 1; i <= 1000; ++i) settings.speeds.push_back(units::rpm_to_rad_per_s(i * 10.0));
   for (auto _ : state)
     benchmark::DoNotOptimize(
         analyses::run_unbalance(m, settings, analyses::Context("unbalance").with_system(&system)));

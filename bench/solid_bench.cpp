@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "bench_sector.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/cyclic/cyclic_symmetry.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -122,8 +123,8 @@ void BM_SectorModes30(benchmark::State& state) {
   state.counters["solves"] = r.operations;
   state.counters["max_residual"] = r.max_residual();
   if (r.eigenvalues.size() == 30) {
-    state.counters["f7_hz"] = std::sqrt(r.eigenvalues[6]) / (2 * std::numbers::pi);
-    state.counters["f30_hz"] = std::sqrt(r.eigenvalues[29]) / (2 * std::numbers::pi);
+    state.counters["f7_hz"] = units::rad_per_s_to_hz(std::sqrt(r.eigenvalues[6]));
+    state.counters["f30_hz"] = units::rad_per_s_to_hz(std::sqrt(r.eigenvalues[29]));
   }
 }
 BENCHMARK(BM_SectorModes30)

@@ -2,7 +2,8 @@
 // solver against the direct sparse solve on the same model, its convergence as modes are added,
 // and the load vector of the mesh force.
 //
-// Model: examples/geared_rotor_hcf/model.toml (after Wang et al., Chinese J. Aeronautics 2020):
+// Model: examples/geared_rotor_hcf/model.toml (after Hong, Jiang, Xu, Ma, Chinese J. Aeronautics
+// 2020):
 //
 //     support_A        support_B
 //        |  bearing_1      |  bearing_2
