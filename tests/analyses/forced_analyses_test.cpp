@@ -32,6 +32,7 @@
 #include "geardyn/reduce/craig_bampton.hpp"
 #include "geardyn/response/cyclic_forced_response.hpp"
 #include "geardyn/response/rotor_mesh_response.hpp"
+#include "support/output_tables.hpp"
 
 namespace geardyn {
 namespace {
@@ -345,9 +346,7 @@ q_factor = 30
 }
 
 const Table& table_named(const AnalysisOutput& out, const std::string& name) {
-  for (const Table& t : out.tables)
-    if (t.name == name) return t;
-  throw std::logic_error("no table " + name);
+  return geardyn::test::table(out, name);
 }
 
 // Section 7 of the issue: a measured curve overlaid and compared. The "measurement" here is the

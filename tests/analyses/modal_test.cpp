@@ -11,6 +11,7 @@
 
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/error.hpp"
+#include "support/output_tables.hpp"
 #include "support/rotor_models.hpp"
 
 namespace geardyn::analyses {
@@ -19,17 +20,8 @@ namespace {
 using C = model::Component;
 constexpr double kPi = std::numbers::pi;
 
-std::vector<std::string> column_names(const Table& t) {
-  std::vector<std::string> names;
-  for (const auto& c : t.columns) names.push_back(c.name);
-  return names;
-}
-
-const Table& table(const AnalysisOutput& out, const std::string& name) {
-  for (const auto& t : out.tables)
-    if (t.name == name) return t;
-  throw std::out_of_range("no table " + name);
-}
+using test::column_names;
+using test::table;
 
 // A uniform shaft on two stiff bearings (lateral DOFs only): the output has one mode-shape plot
 // for the shaft with one trace per shown mode and one point per station, and the mode_shapes

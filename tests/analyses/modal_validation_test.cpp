@@ -9,6 +9,7 @@
 #include "geardyn/analyses/modal.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/error.hpp"
+#include "support/output_tables.hpp"
 #include "support/rotor_models.hpp"
 
 namespace geardyn::analyses {
@@ -17,17 +18,8 @@ namespace {
 using C = model::Component;
 constexpr double kPi = std::numbers::pi;
 
-std::vector<std::string> column_names(const Table& t) {
-  std::vector<std::string> names;
-  for (const auto& c : t.columns) names.push_back(c.name);
-  return names;
-}
-
-const Table& table(const AnalysisOutput& out, const std::string& name) {
-  for (const auto& t : out.tables)
-    if (t.name == name) return t;
-  throw std::out_of_range("no table " + name);
-}
+using test::column_names;
+using test::table;
 
 // Jeffcott rotor (Jeffcott, Phil. Mag. 37 (1919) 304; Friswell et al., Dynamics of Rotating
 // Machines, CUP 2010, sec. 3.3): point mass m = 10 kg on an isotropic support k = 1e6 N/m with

@@ -1,6 +1,6 @@
 #pragma once
-// Helpers of the gearan tests: model files with their CSV inputs in a fresh folder, tables of an
-// AnalysisOutput by name.
+// Helpers of the gear-analysis tests: model files with their CSV inputs in a fresh folder, tables
+// of an AnalysisOutput by name.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/model/parse.hpp"
+#include "support/output_tables.hpp"
 
 namespace geardyn::analyses::test {
 
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 
 /// A fresh folder under the build tree for one test's files.
 inline fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(GEARDYN_BINARY_DIR) / "tests" / "gearan" / "runs" / name;
+  const fs::path dir = fs::path(GEARDYN_BINARY_DIR) / "tests" / "gear_analyses" / "runs" / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -34,11 +35,7 @@ inline model::Model load(const fs::path& dir, const std::string& text) {
   return analyses::load_model(write_file(dir / "model.toml", text).string());
 }
 
-inline const Table& table(const AnalysisOutput& out, const std::string& name) {
-  for (const Table& t : out.tables)
-    if (t.name == name) return t;
-  throw std::out_of_range("no table " + name);
-}
+using geardyn::test::table;
 
 /// Row of a table whose text column `key` equals `value` and text column `key2` equals `value2`.
 inline std::size_t row_where(const Table& t, const std::string& key, const std::string& value,
