@@ -111,5 +111,54 @@ TEST(Sweep, APointThatFailsIsReportedNotDropped) {
   EXPECT_THROW(run_sweep(doc, settings, null_progress()), InputError);
 }
 
+// A sweep of an analysis without a rotor (a gear pair alone: no shafts, no nodes) over an
+// integer key. The total contact ratio of a standard spur pair (no profile shift, addendum m)
+// has the closed form eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin alpha) /
+// (pi m cos alpha), ra = m (z / 2 + 1), rb = m z cos(alpha) / 2, a = m (z1 + z2) / 2 (ISO 21771;
+// any gear text). The geometry is evaluated in closed form too, so 1e-12 relative allows only
+// round-off.
+TEST(Sweep, AGearPairWithoutARotorIsSweptOverItsTeeth) {
+  const char* model = R"(version = 1
+[[gear_pairs]]
+name = "spur"
+teeth1 = 20
+teeth2 = 40
+module = 0.003
+face_width = 0.02
+torque = 100
+[[analyses]]
+name = "pair"
+type = "gear_pair"
+[[analyses]]
+name = "teeth_sweep"
+type = "sweep"
+parameter = "gear_pairs[0].teeth1"
+values = [17, 20, 25, 31]
+analysis = "pair"
+outputs = [{ quantity = "contact_ratio" }]
+)";
+  const auto doc = analyses::parse_document(model, "gear_sweep.toml");
+  const model::Model m = model::build_model(doc);
+  const auto& settings = m.analyses[1].settings_of<analyses::SweepSettings>();
+  ASSERT_EQ(settings.outputs.size(), 1u);
+  EXPECT_EQ(settings.outputs[0].label, "contact_ratio_1");  // the pair's number (mode = 1)
+  const SweepResult r = run_sweep(doc, settings, null_progress());
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  const double mod = 0.003, z2 = 40.0, alpha = 20.0 * std::numbers::pi / 180.0;
+  for (std::size_t i = 0; i < r.values.size(); ++i) {
+    ASSERT_EQ(r.point_status[i], Status::Ok) << r.point_message[i];
+    const double z1 = r.values[i];
+    auto leg = [&](double z) {
+      const double ra = mod * (z / 2.0 + 1.0), rb = mod * z * std::cos(alpha) / 2.0;
+      return std::sqrt(ra * ra - rb * rb);
+    };
+    const double a = mod * (z1 + z2) / 2.0;
+    const double exact =
+        (leg(z1) + leg(z2) - a * std::sin(alpha)) / (std::numbers::pi * mod * std::cos(alpha));
+    EXPECT_NEAR(r.outputs[0][i], exact, 1e-12 * exact) << "z1 = " << z1;
+  }
+  EXPECT_LT(r.outputs[0][0], r.outputs[0][3]);  // more teeth, longer path of contact
+}
+
 }  // namespace
 }  // namespace geardyn::analyses
