@@ -87,6 +87,19 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   info.model_sha256 = io::sha256_file(options.model_path);
   for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
 
+  // The results folder is checked (and its staging folder made) before anything is computed:
+  // a folder geardyn may not replace, or one it cannot create, is bad input found at once, not
+  // after every analysis has run.
+  std::unique_ptr<io::ResultsWriter> writer;
+  try {
+    writer = std::make_unique<io::ResultsWriter>(outdir, info);
+  } catch (const std::exception& e) {
+    throw InputError({options.model_path, 0, 0}, "--output",
+                     "a results folder geardyn can write (new, empty, or an earlier geardyn "
+                     "results folder)",
+                     e.what());
+  }
+
   // Solid components are read, generated and checked before anything runs: a bad mesh is bad
   // input (exit 2), found before any result is written.
   // Gear pairs (geometry, contact ratio, STE files) and measured files likewise.
@@ -139,7 +152,9 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   }
 
   const std::string html = report::render_html(info, outputs);
-  io::write_results(outdir, info, outputs, html);
+  for (const auto& out : outputs) writer->add(out);
+  writer->add_report(html);
+  writer->commit();
   std::printf("\nResults: %s\nReport: %s\n", fs::absolute(outdir).string().c_str(),
               fs::absolute(outdir / "report.html").string().c_str());
   return failed ? 1 : 0;

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -48,5 +49,13 @@ int main(int argc, char** argv) {
   } catch (const geardyn::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;
+  } catch (const std::exception& e) {
+    // Anything else (a numerical failure outside an analysis, an I/O error writing results):
+    // a message and exit 1, never an abort.
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  } catch (...) {
+    std::fprintf(stderr, "error: an unknown exception\n");
+    return 1;
   }
 }

@@ -166,6 +166,31 @@ TEST(Cli, MissingFileAndBadOverrideAreBadInput) {
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
 }
 
+TEST(Cli, AnOutputThatCannotBeReplacedIsRefusedBeforeAnythingRuns) {
+  // -o naming a file, or a folder with a user's files and no geardyn manifest: bad input (exit
+  // 2) found before any analysis computes, and what is there stays untouched.
+  const fs::path base = fresh_dir("refused_output");
+  fs::create_directories(base);
+  const fs::path file = base / "results.txt";
+  std::ofstream(file) << "a user's file\n";
+  const fs::path folder = base / "postprocessing";
+  fs::create_directories(folder);
+  std::ofstream(folder / "plot.py") << "print('mine')\n";
+  const std::string model = kSource + "/examples/friswell_5_9_1/model.toml";
+  for (const fs::path& out : {file, folder}) {
+    const ProcessResult r = run("run " + model + " -o " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--output"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(out.string()), std::string::npos) << r.err;
+    EXPECT_EQ(r.out.find("[modal]"), std::string::npos) << "an analysis ran: " << r.out;
+  }
+  EXPECT_TRUE(fs::is_regular_file(file));
+  EXPECT_TRUE(fs::is_regular_file(folder / "plot.py"));
+  for (const auto& entry : fs::directory_iterator(base))
+    EXPECT_EQ(entry.path().string().find(".tmp-"), std::string::npos)
+        << "staging folder left: " << entry.path();
+}
+
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
   const ProcessResult r =

@@ -1019,7 +1019,11 @@ AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSett
 
 FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
                        const Context& context) {
-  return run_harmonic(model, settings, context, AdaptiveGridOptions{});
+  // The sample budget grows with the requested grid: frequency_count may be anything the schema
+  // allows (up to 1e6), with as many samples again for the adaptive refinement.
+  AdaptiveGridOptions options;
+  options.max_points = std::max(options.max_points, 2 * settings.n_points);
+  return run_harmonic(model, settings, context, options);
 }
 
 }  // namespace geardyn::analyses

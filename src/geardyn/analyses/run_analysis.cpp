@@ -29,6 +29,14 @@ bool changes_solids(const std::vector<std::string>& overrides) {
   return false;
 }
 
+/// The outcome of an analysis that failed with `message`.
+Outcome failed(std::string message) {
+  Outcome out;
+  out.output.status = Status::Failed;
+  out.output.message = std::move(message);
+  return out;
+}
+
 /// The analysis on its variant of the model (its `set` entries applied to the document).
 Outcome run_variant(const model::Model& model, const model::Analysis& analysis,
                     const Context& context) {
@@ -54,12 +62,10 @@ Outcome run_variant(const model::Model& model, const model::Analysis& analysis,
     out.output.notes.push_back(
         fmt::format("Model variant for this analysis: {}.", fmt::join(analysis.overrides, ", ")));
     return out;
-  } catch (const NumericalError& e) {
-    Outcome out;
+  } catch (const NumericalError& e) {  // building the variant's system
+    Outcome out = failed(e.what());
     out.output.name = analysis.name;
     out.output.type = analysis.type;
-    out.output.status = Status::Failed;
-    out.output.message = e.what();
     return out;
   }
 }
@@ -74,9 +80,15 @@ Outcome run_analysis(const model::Model& model, const model::Analysis& analysis,
   try {
     out = type_of(analysis).run(model, analysis, context);
   } catch (const NumericalError& e) {
-    out = Outcome{};
-    out.output.status = Status::Failed;
-    out.output.message = e.what();
+    out = failed(e.what());
+  } catch (const InputError&) {
+    throw;  // bad input: the whole run stops with exit 2 before writing results
+  } catch (const std::exception& e) {
+    // An error no check anticipated must not take the finished analyses down with it.
+    out =
+        failed(fmt::format("{} (an error geardyn's checks did not anticipate; the other "
+                           "analyses ran; please report it with the model file)",
+                           e.what()));
   }
   out.output.name = analysis.name;
   out.output.type = analysis.type;
