@@ -223,6 +223,13 @@ TEST_F(ResultsWriterTest, KilledProcessLeavesNoCompleteOutdir) {
   EXPECT_EQ(left[0].rfind("results.tmp-", 0), 0u) << left[0];
   EXPECT_FALSE(fs::exists(base_ / left[0] / "manifest.json"));
   EXPECT_TRUE(fs::exists(base_ / left[0] / "modal" / "modes.csv"));
+
+  // The next run into the same folder removes the dead run's staging folder; the staging folder
+  // of a live process (pid 1 always exists) may be another run's and stays.
+  fs::create_directories(base_ / "results.tmp-1");
+  write_results(outdir_, info_, {modal_output()}, "");
+  EXPECT_TRUE(fs::exists(outdir_ / "manifest.json"));
+  EXPECT_EQ(leftovers(outdir_), std::vector<std::string>{"results.tmp-1"});
 }
 
 TEST_F(ResultsWriterTest, RefusesToReplaceAForeignFolder) {

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>  // AT_FDCWD for renameat2
 #include <fmt/format.h>
+#include <signal.h>  // kill(pid, 0): is the process that made a staging folder alive?
 #include <unistd.h>
 
 #include <cerrno>
@@ -32,6 +33,27 @@ fs::path sibling(const fs::path& outdir, const std::string& suffix) {
 }
 
 std::string errno_text(int error) { return std::strerror(error); }
+
+// Removes the staging folders `OUTDIR.tmp-<pid>` that runs killed before their commit left
+// behind: those of processes that no longer exist (a live one may be another run writing).
+// Best effort: what cannot be removed stays, and the run goes on.
+void remove_stale_staging(const fs::path& outdir) {
+  const fs::path any = sibling(outdir, ".tmp-");
+  const fs::path parent = any.parent_path().empty() ? fs::path(".") : any.parent_path();
+  const std::string prefix = any.filename().string();
+  std::error_code ec;
+  for (fs::directory_iterator it(parent, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+    const std::string digits = name.substr(prefix.size());
+    if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const auto pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid()) continue;                      // ours: handled by the caller
+    if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    std::error_code remove_ec;
+    fs::remove_all(it->path(), remove_ec);
+  }
+}
 
 void write_file(const fs::path& file, std::string_view contents) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
@@ -86,6 +108,7 @@ ResultsWriter::ResultsWriter(fs::path outdir, RunInfo info)
   if (info_.model_sha256.empty() && !info_.model_path.empty())
     info_.model_sha256 = sha256_file(info_.model_path);
 
+  remove_stale_staging(outdir_);
   std::error_code ec;
   if (fs::exists(fs::symlink_status(staging_, ec))) {
     fs::remove_all(staging_, ec);  // left by an earlier process with our pid

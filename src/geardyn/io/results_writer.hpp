@@ -27,7 +27,8 @@ inline constexpr int kManifestVersion = 1;
 class ResultsWriter {
  public:
   /// Prepares the staging folder `OUTDIR.tmp-<pid>` (creating OUTDIR's parent folders if needed,
-  /// removing a leftover staging folder of the same name). Throws std::runtime_error naming the
+  /// removing a leftover staging folder of the same name, and the staging folders of earlier
+  /// runs into OUTDIR whose process no longer exists). Throws std::runtime_error naming the
   /// path when OUTDIR exists but cannot be replaced safely: it is not a folder, or it is a
   /// non-empty folder without a geardyn manifest.json (so that `-o ~` never deletes a home).
   ResultsWriter(std::filesystem::path outdir, RunInfo info);
