@@ -232,6 +232,24 @@ TEST_F(ResultsWriterTest, KilledProcessLeavesNoCompleteOutdir) {
   EXPECT_EQ(leftovers(outdir_), std::vector<std::string>{"results.tmp-1"});
 }
 
+TEST_F(ResultsWriterTest, ASecondWriterOfTheSameFolderIsRefused) {
+  // Two runs into one folder: the second is refused at once (not both "ok" with one run's
+  // results gone); once the first is done, the folder is free again.
+  {
+    ResultsWriter first(outdir_, info_);
+    try {
+      ResultsWriter second(outdir_, info_);
+      ADD_FAILURE() << "a second writer was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("another geardyn run"), std::string::npos) << e.what();
+    }
+    first.add(modal_output());
+    first.commit();
+  }
+  EXPECT_TRUE(fs::exists(outdir_ / "manifest.json"));
+  EXPECT_NO_THROW(write_results(outdir_, info_, {modal_output()}, ""));
+}
+
 TEST_F(ResultsWriterTest, RefusesToReplaceAForeignFolder) {
   fs::create_directories(outdir_);
   std::ofstream(outdir_ / "precious.txt") << "not geardyn's";

@@ -2,7 +2,8 @@
 
 #include <fcntl.h>  // AT_FDCWD for renameat2
 #include <fmt/format.h>
-#include <signal.h>  // kill(pid, 0): is the process that made a staging folder alive?
+#include <signal.h>    // kill(pid, 0): is the process that made a staging folder alive?
+#include <sys/file.h>  // flock: one writer per results folder
 #include <unistd.h>
 
 #include <cerrno>
@@ -108,24 +109,55 @@ ResultsWriter::ResultsWriter(fs::path outdir, RunInfo info)
   if (info_.model_sha256.empty() && !info_.model_path.empty())
     info_.model_sha256 = sha256_file(info_.model_path);
 
-  remove_stale_staging(outdir_);
-  std::error_code ec;
-  if (fs::exists(fs::symlink_status(staging_, ec))) {
-    fs::remove_all(staging_, ec);  // left by an earlier process with our pid
+  lock_outdir();
+  try {
+    remove_stale_staging(outdir_);
+    std::error_code ec;
+    if (fs::exists(fs::symlink_status(staging_, ec))) {
+      fs::remove_all(staging_, ec);  // left by an earlier process with our pid
+      if (ec)
+        throw std::runtime_error(fmt::format("cannot remove the leftover staging folder '{}': {}",
+                                             staging_.string(), ec.message()));
+    }
+    fs::create_directories(staging_, ec);
     if (ec)
-      throw std::runtime_error(fmt::format("cannot remove the leftover staging folder '{}': {}",
+      throw std::runtime_error(fmt::format("cannot create the staging folder '{}': {}",
                                            staging_.string(), ec.message()));
+  } catch (...) {
+    ::close(lock_fd_);  // no destructor runs for a constructor that throws
+    throw;
   }
-  fs::create_directories(staging_, ec);
+}
+
+void ResultsWriter::lock_outdir() {
+  const fs::path lock = sibling(outdir_, "");
+  const fs::path file = lock.parent_path() / ("." + lock.filename().string() + ".lock");
+  std::error_code ec;
+  if (!file.parent_path().empty()) fs::create_directories(file.parent_path(), ec);
   if (ec)
+    throw std::runtime_error(fmt::format("cannot create the folder '{}': {}",
+                                         file.parent_path().string(), ec.message()));
+  lock_fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0)
     throw std::runtime_error(
-        fmt::format("cannot create the staging folder '{}': {}", staging_.string(), ec.message()));
+        fmt::format("cannot create the lock file '{}': {}", file.string(), errno_text(errno)));
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    throw std::runtime_error(fmt::format(
+        "results folder '{}' is being written by another geardyn run ({}: {}); wait for it "
+        "to finish or choose another output folder",
+        outdir_.string(), file.string(), error == EWOULDBLOCK ? "locked" : errno_text(error)));
+  }
 }
 
 ResultsWriter::~ResultsWriter() {
-  if (committed_ || keep_staging_) return;
-  std::error_code ec;
-  fs::remove_all(staging_, ec);  // best effort: a destructor must not throw
+  if (!committed_ && !keep_staging_) {
+    std::error_code ec;
+    fs::remove_all(staging_, ec);  // best effort: a destructor must not throw
+  }
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
 }
 
 void ResultsWriter::add(const AnalysisOutput& output) {

@@ -28,7 +28,8 @@ class ResultsWriter {
  public:
   /// Prepares the staging folder `OUTDIR.tmp-<pid>` (creating OUTDIR's parent folders if needed,
   /// removing a leftover staging folder of the same name, and the staging folders of earlier
-  /// runs into OUTDIR whose process no longer exists). Throws std::runtime_error naming the
+  /// runs into OUTDIR whose process no longer exists). Throws std::runtime_error when another
+  /// writer (another geardyn run) holds OUTDIR. Throws std::runtime_error naming the
   /// path when OUTDIR exists but cannot be replaced safely: it is not a folder, or it is a
   /// non-empty folder without a geardyn manifest.json (so that `-o ~` never deletes a home).
   ResultsWriter(std::filesystem::path outdir, RunInfo info);
@@ -60,6 +61,10 @@ class ResultsWriter {
   bool committed() const { return committed_; }
 
  private:
+  /// Holds `.OUTDIR.lock` (a hidden file next to OUTDIR) locked while this writer lives, so a
+  /// second run into the same folder is refused instead of silently replacing the first.
+  void lock_outdir();
+  int lock_fd_ = -1;
   struct ColumnRecord {
     std::string name, unit;
     bool text = false;
