@@ -61,6 +61,16 @@ void print_table(const Table& table, std::size_t max_rows, std::size_t max_colum
 
 }  // namespace
 
+std::filesystem::path default_output_dir(const std::string& model_path) {
+  // results/<model file name>; a file called just "model" (every example's model.toml) is
+  // named by its folder instead, so two models never share a default results folder by name.
+  const std::filesystem::path path = std::filesystem::absolute(model_path).lexically_normal();
+  std::string name = path.stem().string();
+  const std::string folder = path.parent_path().filename().string();
+  if (name == "model" && !folder.empty()) name = folder;
+  return std::filesystem::path("results") / name;
+}
+
 int command_run(const RunOptions& options, int argc, char** argv) {
   model::ModelDocument document;
   const model::Model m = load_model(options.model_path, options.overrides, document);
@@ -72,9 +82,8 @@ int command_run(const RunOptions& options, int argc, char** argv) {
                        fmt::format("'{}'", name));
 
   namespace fs = std::filesystem;
-  const fs::path outdir = options.output_dir.empty()
-                              ? fs::path("results") / fs::path(options.model_path).stem()
-                              : fs::path(options.output_dir);
+  const fs::path outdir = options.output_dir.empty() ? default_output_dir(options.model_path)
+                                                     : fs::path(options.output_dir);
 
   std::unique_ptr<Progress> progress;
   if (options.quiet)

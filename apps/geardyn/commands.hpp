@@ -1,4 +1,5 @@
 #pragma once
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,10 @@ struct RunOptions {
   std::vector<std::string> only;
   bool quiet = false;
 };
+
+/// The results folder of `run` without -o: results/<model file name>, or results/<folder> for a
+/// file named model.toml (the examples), so models never share it by their common file name.
+std::filesystem::path default_output_dir(const std::string& model_path);
 
 /// Each returns the process exit code (0 ok, 1 numerical failure, 2 bad input); InputError
 /// propagates to main, which prints it and returns 2.

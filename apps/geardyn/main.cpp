@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "Run every analysis of a model and write results");
   run->add_option("model", run_options.model_path, "Model file (TOML)")->required();
   run->add_option("-o,--output", run_options.output_dir,
-                  "Results folder (default: results/<model name>)");
+                  "Results folder (default: results/<model file name>, or results/<its folder> for "
+                  "a model.toml)");
   run->add_option("--set", run_options.overrides,
                   "Override a model value, e.g. --set bearings[0].kxx=2e7 (repeatable)");
   run->add_flag("-q,--quiet", run_options.quiet, "No progress output on stderr");

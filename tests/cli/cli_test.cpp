@@ -191,6 +191,18 @@ TEST(Cli, AnOutputThatCannotBeReplacedIsRefusedBeforeAnythingRuns) {
         << "staging folder left: " << entry.path();
 }
 
+TEST(Cli, TheDefaultResultsFolderIsNamedByTheModelsFolder) {
+  // Every example is a model.toml: without -o, results/<its folder>, not results/model for all.
+  const fs::path expected = fs::current_path() / "results" / "friswell_5_9_1";
+  fs::remove_all(expected);
+  const ProcessResult r =
+      run("run " + kSource + "/examples/friswell_5_9_1/model.toml --only modes_0rpm -q");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(expected / "manifest.json")) << r.out;
+  EXPECT_FALSE(fs::exists(fs::current_path() / "results" / "model"));
+  fs::remove_all(expected);
+}
+
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
   const ProcessResult r =
