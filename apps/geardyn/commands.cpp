@@ -131,11 +131,14 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     failed = true;
   }
 
-  std::printf("geardyn: %s — %d nodes, %d DOFs\n",
-              m.title.empty() ? options.model_path.c_str() : m.title.c_str(),
-              system.dofs.num_nodes(), system.size());
+  // -q: errors only (stderr); without it, a summary of each analysis on stdout.
+  const bool say = !options.quiet;
+  if (say)
+    std::printf("geardyn: %s — %d nodes, %d DOFs\n",
+                m.title.empty() ? options.model_path.c_str() : m.title.c_str(),
+                system.dofs.num_nodes(), system.size());
   for (const auto& [solid_name, solid] : solids)
-    std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
+    if (say) std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
   if (!failed) {
     for (const auto& a : m.analyses) {
       const bool selected =
@@ -147,13 +150,14 @@ int command_run(const RunOptions& options, int argc, char** argv) {
       context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
       if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
       AnalysisOutput out = analyses::run_analysis(m, a, context).output;
-      std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
-                  std::string(to_string(out.status)).c_str(), out.run_time_s);
+      if (say)
+        std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
+                    std::string(to_string(out.status)).c_str(), out.run_time_s);
       if (out.status != Status::Ok) {
         failed = true;
         std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
                      out.message.c_str());
-      } else if (!out.tables.empty()) {
+      } else if (say && !out.tables.empty()) {
         print_table(out.tables.front(), 12, 9);
       }
       outputs.push_back(std::move(out));
@@ -164,8 +168,9 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   for (const auto& out : outputs) writer->add(out);
   writer->add_report(html);
   writer->commit();
-  std::printf("\nResults: %s\nReport: %s\n", fs::absolute(outdir).string().c_str(),
-              fs::absolute(outdir / "report.html").string().c_str());
+  if (say)
+    std::printf("\nResults: %s\nReport: %s\n", fs::absolute(outdir).string().c_str(),
+                fs::absolute(outdir / "report.html").string().c_str());
   return failed ? 1 : 0;
 }
 

@@ -108,5 +108,13 @@ TEST(RunUnbalance, InputErrors) {
                InputError);
 }
 
+TEST(UnbalancePhase, LagIsInZeroTo360WithoutNegativeZero) {
+  // Documented range [0, 360): a response in phase with the mark is 0, not -0 (printed "-0").
+  const double in_phase = UnbalanceResult::phase_lag_deg({1.0, 0.0});
+  EXPECT_EQ(in_phase, 0.0);
+  EXPECT_FALSE(std::signbit(in_phase));
+  EXPECT_DOUBLE_EQ(UnbalanceResult::phase_lag_deg({0.0, -1.0}), 90.0);  // lags a quarter turn
+  EXPECT_DOUBLE_EQ(UnbalanceResult::phase_lag_deg({0.0, 1.0}), 270.0);
+}
 }  // namespace
 }  // namespace geardyn::analyses

@@ -199,6 +199,7 @@ TEST(Cli, TheDefaultResultsFolderIsNamedByTheModelsFolder) {
       run("run " + kSource + "/examples/friswell_5_9_1/model.toml --only modes_0rpm -q");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(expected / "manifest.json")) << r.out;
+  EXPECT_EQ(r.out, "") << "-q: errors only";
   EXPECT_FALSE(fs::exists(fs::current_path() / "results" / "model"));
   fs::remove_all(expected);
 }

@@ -399,6 +399,25 @@ couplings = [ { node1 = "a", node2 = "b", stiffness = [
   EXPECT_EQ(m.nodes[1].position[0], 1.0);
 }
 
+TEST(ModelParse, AByteOrderMarkIsAccepted) {
+  // Windows editors start UTF-8 files with EF BB BF; it is not part of the TOML text.
+  const Model m = analyses::parse_model(
+      "\xEF\xBB\xBFversion = 1\ntitle = \"bom\"\n"
+      "[[nodes]]\nname = \"a\"\nposition = [0, 0, 0]\n",
+      "bom.toml");
+  EXPECT_EQ(m.title, "bom");
+}
+
+TEST(ModelParse, ADirectoryIsNotAModelFile) {
+  try {
+    (void)analyses::load_document(std::string(GEARDYN_SOURCE_DIR) + "/examples/damper_ring");
+    ADD_FAILURE() << "a directory was read as a model";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.found(), "a directory");
+    EXPECT_NE(e.hint().find("model.toml"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ModelParse, NonAsciiTextInStringsAndComments) {
   const Model m = analyses::parse_model(
       "version = 1  # Drehzahl in 1/min, \xc3\xbc\n"

@@ -28,7 +28,7 @@ double UnbalanceResult::phase_lag_deg(std::complex<double> x) {
   double lag = -std::arg(x) * 180.0 / kPi;  // in [-180, 180]
   if (lag < 0.0) lag += 360.0;
   if (lag >= 360.0) lag -= 360.0;
-  return lag;
+  return lag + 0.0;  // in [0, 360): -0 (from arg = +0) becomes 0
 }
 
 namespace {

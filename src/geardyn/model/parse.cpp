@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -1565,8 +1566,13 @@ void check_text(std::string_view text, const std::string& file_name) {
 // ---------------------------------------------------------------------------------------------
 // Public API
 
-ModelDocument parse_document(const std::string& text, const std::string& file_name,
+ModelDocument parse_document(const std::string& file_text, const std::string& file_name,
                              const Section& schema) {
+  // A UTF-8 byte-order mark (editors on Windows write one) is not part of the text.
+  const std::string_view bom = "\xEF\xBB\xBF";
+  const std::string text = std::string_view(file_text).substr(0, bom.size()) == bom
+                               ? file_text.substr(bom.size())
+                               : file_text;
   check_text(text, file_name);
   try {
     auto table = std::make_shared<toml::table>(toml::parse(text, file_name));
@@ -1579,8 +1585,17 @@ ModelDocument parse_document(const std::string& text, const std::string& file_na
 }
 
 ModelDocument load_document(const std::string& path, const Section& schema) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw InputError({path, 0, 0}, "(file)", "a model file (TOML)", "a directory",
+                     "give the model file inside it, e.g. " +
+                         (std::filesystem::path(path) / "model.toml").string());
   const std::optional<std::string> text = try_read_file(path);
-  if (!text) throw InputError({path, 0, 0}, "(file)", "a readable model file", "no such file");
+  if (!text)
+    throw InputError(
+        {path, 0, 0}, "(file)", "a readable model file",
+        std::filesystem::exists(status) ? "a file that cannot be read" : "no such file");
   return parse_document(*text, path, schema);
 }
 
