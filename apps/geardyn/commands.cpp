@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/run_analysis.hpp"
@@ -139,13 +140,19 @@ int command_run(const RunOptions& options, int argc, char** argv) {
                 system.dofs.num_nodes(), system.size());
   for (const auto& [solid_name, solid] : solids)
     if (say) std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
+  std::vector<const model::Analysis*> selected;
+  for (const auto& a : m.analyses)
+    if (options.only.empty()
+            ? a.enabled
+            : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end())
+      selected.push_back(&a);
   if (!failed) {
-    for (const auto& a : m.analyses) {
-      const bool selected =
-          options.only.empty()
-              ? a.enabled
-              : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end();
-      if (!selected) continue;
+    for (std::size_t i = 0; i < selected.size(); ++i) {
+      const model::Analysis& a = *selected[i];
+      // Which analysis is running, as it starts (progress of its long phases follows).
+      if (say)
+        std::fprintf(stderr, "analysis %zu/%zu: %s (%s)\n", i + 1, selected.size(), a.name.c_str(),
+                     a.type.c_str());
       analyses::Context context(m, a);
       context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
       if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);

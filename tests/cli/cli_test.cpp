@@ -204,6 +204,15 @@ TEST(Cli, TheDefaultResultsFolderIsNamedByTheModelsFolder) {
   fs::remove_all(expected);
 }
 
+TEST(Cli, EachAnalysisIsAnnouncedAsItStarts) {
+  const fs::path out = fresh_dir("announced");
+  const ProcessResult r = run("run " + kSource + "/examples/friswell_5_9_1/model.toml -o " +
+                              out.string() + " --only modes_0rpm modes_4000rpm");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("analysis 1/2: modes_0rpm (modal)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("analysis 2/2: modes_4000rpm (modal)"), std::string::npos) << r.err;
+}
+
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
   const ProcessResult r =
