@@ -95,6 +95,7 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   RunInfo info;
   info.model_path = options.model_path;
   info.model_sha256 = io::sha256_file(options.model_path);
+  info.model_title = m.title;
   for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
 
   // The results folder is checked (and its staging folder made) before anything is computed:

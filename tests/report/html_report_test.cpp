@@ -162,6 +162,16 @@ TEST(RenderHtml, HeaderNamesModelVersionAndOverallStatus) {
   EXPECT_NE(html.find("geardyn run &#39;rotor &lt;test&gt;.toml&#39;"), std::string::npos);
 }
 
+TEST(RenderHtml, TheModelsTitleHeadsTheReport) {
+  RunInfo info = sample_info();
+  info.model_title = "Central gear train <HPR>";
+  const std::string html = render_html(info, sample_outputs());
+  EXPECT_NE(html.find("<title>Central gear train &lt;HPR&gt; (rotor &lt;test&gt;.toml)"),
+            std::string::npos);
+  EXPECT_NE(html.find("<h1>Central gear train &lt;HPR&gt; (rotor &lt;test&gt;.toml)"),
+            std::string::npos);
+}
+
 TEST(RenderHtml, EscapesAllText) {
   const std::string html = render_html(sample_info(), sample_outputs());
   EXPECT_EQ(html.find("<b>&amp;</b>"), std::string::npos);

@@ -14,6 +14,7 @@ struct RunInfo {
   /// `model_path` (when that is not empty).
   std::string model_sha256;
   std::string command_line;  ///< argv joined by spaces
+  std::string model_title;   ///< the model's `title` ("" when it has none): the report's heading
   /// When the run started; defaults to the moment the RunInfo is made.
   std::chrono::system_clock::time_point start_time = std::chrono::system_clock::now();
 };

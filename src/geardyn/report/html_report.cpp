@@ -570,8 +570,11 @@ std::string render_html(const RunInfo& info, const std::vector<AnalysisOutput>& 
   if (options.display_digits < 1 || options.display_digits > 17)
     throw std::invalid_argument(fmt::format(
         "report: display_digits must be between 1 and 17, got {}", options.display_digits));
-  const std::string model_name = info.model_path.empty() ? std::string("(no model file)")
-                                                         : info.model_path.filename().string();
+  const std::string file_name = info.model_path.empty() ? std::string("(no model file)")
+                                                        : info.model_path.filename().string();
+  // The model's title when it has one (with its file), else the file name.
+  const std::string model_name =
+      info.model_title.empty() ? file_name : fmt::format("{} ({})", info.model_title, file_name);
   std::size_t n_failed = 0;
   double total_time = 0.0;
   for (const auto& o : outputs) {
