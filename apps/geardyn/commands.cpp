@@ -139,8 +139,14 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     std::printf("geardyn: %s — %d nodes, %d DOFs\n",
                 m.title.empty() ? options.model_path.c_str() : m.title.c_str(),
                 system.dofs.num_nodes(), system.size());
-  for (const auto& [solid_name, solid] : solids)
-    if (say) std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
+  for (const auto& [solid_name, solid] : solids) {
+    if (!say) continue;
+    std::printf("solid %s: %s\n", solid_name.c_str(), solid.description.c_str());
+    // What the reader skipped (unsupported Nastran cards, ...) is said where it is seen, not
+    // only in the manifest.
+    for (const auto& w : solid.warnings)
+      std::fprintf(stderr, "warning: solid '%s': %s\n", solid_name.c_str(), w.c_str());
+  }
   std::vector<const model::Analysis*> selected;
   for (const auto& a : m.analyses)
     if (options.only.empty()

@@ -213,6 +213,17 @@ TEST(Cli, EachAnalysisIsAnnouncedAsItStarts) {
   EXPECT_NE(r.err.find("analysis 2/2: modes_4000rpm (modal)"), std::string::npos) << r.err;
 }
 
+TEST(Cli, SkippedNastranCardsAreWarnedOnTheTerminal) {
+  const fs::path out = fresh_dir("skipped_card");
+  const ProcessResult r =
+      run("run " + kSource + "/tests/cli/data/skipped_card.toml -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: solid 'deck': "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("brick_with_shell.bdf:15: unsupported Nastran entry CQUAD4 skipped"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
   const ProcessResult r =
