@@ -224,6 +224,20 @@ TEST(Cli, SkippedNastranCardsAreWarnedOnTheTerminal) {
       << r.err;
 }
 
+TEST(Cli, ADeckWithoutElementsIsBadInputForCheckAndRun) {
+  // Once an internal eigen-solver message at '<model>'; now located at the solid's file key.
+  const std::string model = kSource + "/tests/cli/data/no_elements.toml";
+  const fs::path out = fresh_dir("no_elements");
+  for (const std::string& command : {"check " + model, "run " + model + " -o " + out.string()}) {
+    const ProcessResult r = run(command);
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_NE(r.err.find("no_elements.toml"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("solids[0].file"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("grids_only.bdf' with 8 nodes"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {
   const fs::path out = fresh_dir("singular");
   const ProcessResult r =

@@ -235,6 +235,15 @@ SolidComponent build_solid(const model::Model& model, const model::Solid& s, Pro
                          "a Gmsh mesh (.msh) or Nastran bulk data (.bdf, .dat, .nas, .blk)",
                          fmt::format("'{}'", path.filename().string()));
       }
+      if (c.mesh.elements.empty() && c.mesh.springs.empty() && c.mesh.point_masses.empty())
+        throw InputError(
+            s.where, key_of(model, s, "file"),
+            "a mesh with at least one element, spring or mass geardyn reads",
+            fmt::format("'{}' with {} nodes and none of them{}", path.filename().string(),
+                        c.mesh.num_nodes(),
+                        c.warnings.empty() ? std::string()
+                                           : fmt::format(" ({} entries skipped, the first: {})",
+                                                         c.warnings.size(), c.warnings.front())));
       c.source_sha256 = io::sha256_file(path);
       source = path.filename().string();
       break;
