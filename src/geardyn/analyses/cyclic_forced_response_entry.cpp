@@ -131,18 +131,9 @@ AnalysisType cyclic_forced_response_analysis() {
   type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
     const auto& r = result_of<CyclicForcedResponseResult>(o);
     const std::size_t k = r.sensor_index(q.sensor);
-    unit = std::string(r.response.sensors[k].component >= 3 ? "rad" : "m");
-    const std::vector<double> a = r.sum_curve(k);
     const Eigen::VectorXd& w = r.response.speeds;
-    if (q.quantity == "peak_amplitude") return a[largest_sample(a)];
-    if (q.quantity == "peak_location") {
-      unit = std::string("rpm");
-      return units::rad_per_s_to_rpm(w[static_cast<Eigen::Index>(largest_sample(a))]);
-    }
-    if (q.quantity == "amplitude_at")
-      return value_at(std::vector<double>(w.data(), w.data() + w.size()), a, q.at,
-                      units::rad_per_s_to_rpm(1.0), "rpm");
-    throw std::logic_error(fmt::format("cyclic_forced_response offers no scalar {}", q.quantity));
+    return speed_curve_scalar(std::vector<double>(w.data(), w.data() + w.size()), r.sum_curve(k), q,
+                              r.response.sensors[k].component >= 3 ? "rad" : "m", unit);
   };
   return type;
 }

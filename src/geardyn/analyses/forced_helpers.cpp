@@ -5,6 +5,7 @@
 
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/sector_excitation.hpp"
+#include "geardyn/core/units.hpp"
 
 namespace geardyn::analyses {
 
@@ -114,6 +115,20 @@ double value_at(const std::vector<double>& x, const std::vector<double>& a, doub
   }
   throw std::runtime_error(
       fmt::format("{:.6g} {} is outside the analysis range", at * per_unit, unit));
+}
+
+double speed_curve_scalar(const std::vector<double>& speeds, const std::vector<double>& amplitude,
+                          const ScalarRequest& q, const std::string& curve_unit,
+                          std::string& unit) {
+  unit = curve_unit;
+  if (q.quantity == "peak_amplitude") return amplitude[largest_sample(amplitude)];
+  if (q.quantity == "peak_location") {
+    unit = "rpm";
+    return units::rad_per_s_to_rpm(speeds[largest_sample(amplitude)]);
+  }
+  if (q.quantity == "amplitude_at")
+    return value_at(speeds, amplitude, q.at, units::rad_per_s_to_rpm(1.0), "rpm");
+  throw std::logic_error("a forced response over speed offers no scalar " + q.quantity);
 }
 
 }  // namespace geardyn::analyses

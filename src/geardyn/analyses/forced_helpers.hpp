@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geardyn/analyses/context.hpp"
+#include "geardyn/analyses/registry.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/gear/correlation.hpp"
@@ -80,6 +81,13 @@ MeasuredComparison compare_with_measured(AnalysisOutput& out, const gear::Measur
 std::size_t largest_sample(const std::vector<double>& a);
 double value_at(const std::vector<double>& x, const std::vector<double>& a, double at,
                 double per_unit, const std::string& unit);
+
+/// The scalars every forced response over speed offers, of one sensor's curve `amplitude` over
+/// `speeds` [rad/s] in `curve_unit` ("m" or "rad"): peak_amplitude (its largest sample),
+/// peak_location (the speed of that sample, rpm) and amplitude_at (at `q.at`, linear
+/// interpolation). `unit` is set to the value's unit.
+double speed_curve_scalar(const std::vector<double>& speeds, const std::vector<double>& amplitude,
+                          const ScalarRequest& q, const std::string& curve_unit, std::string& unit);
 
 /// Index of the sensor called `name` (empty: the first) in `sensors`; std::runtime_error (a
 /// scalar request the result cannot answer) when there is none.

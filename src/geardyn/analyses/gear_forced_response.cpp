@@ -148,11 +148,6 @@ double GearForcedResponseResult::peak_amplitude(std::size_t sensor) const {
   return a[largest_sample(a)];
 }
 
-double GearForcedResponseResult::peak_speed(std::size_t sensor) const {
-  return response
-      .speeds[static_cast<Eigen::Index>(largest_sample(order_curve(response, -1, sensor)))];
-}
-
 std::size_t GearForcedResponseResult::sensor_index(const std::string& name) const {
   return requested_sensor(response.sensors, name);
 }

@@ -51,9 +51,8 @@ struct GearForcedResponseResult {
   bool pair_ste_from_file = false;   ///< the pair's STE read from a file (from_pair)
 
   /// The largest amplitude over speed of the sum of the mesh orders' amplitudes at sensor
-  /// `sensor` (index into response.sensors) [m or rad], and the speed of that sample [rad/s].
+  /// `sensor` (index into response.sensors) [m or rad].
   double peak_amplitude(std::size_t sensor) const;
-  double peak_speed(std::size_t sensor) const;
   /// Index of the sensor called `name` in response.sensors (empty: the first);
   /// std::runtime_error if it has none.
   std::size_t sensor_index(const std::string& name) const;

@@ -157,21 +157,11 @@ AnalysisType gear_forced_response_analysis() {
   type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
     const auto& r = result_of<GearForcedResponseResult>(o);
     const std::size_t k = r.sensor_index(q.sensor);
-    unit = std::string(r.response.sensors[k].rotational ? "rad" : "m");
-    if (q.quantity == "peak_amplitude") return r.peak_amplitude(k);
-    if (q.quantity == "peak_location") {
-      unit = std::string("rpm");
-      return units::rad_per_s_to_rpm(r.peak_speed(k));
-    }
-    if (q.quantity == "amplitude_at") {
-      const Eigen::VectorXd& w = r.response.speeds;
-      const Eigen::MatrixXd& a = r.response.amplitude_sum;
-      const auto col = static_cast<Eigen::Index>(k);
-      return value_at(std::vector<double>(w.data(), w.data() + w.size()),
-                      std::vector<double>(a.col(col).data(), a.col(col).data() + a.rows()), q.at,
-                      units::rad_per_s_to_rpm(1.0), "rpm");
-    }
-    throw std::logic_error(fmt::format("gear_forced_response offers no scalar {}", q.quantity));
+    const Eigen::VectorXd& w = r.response.speeds;
+    const auto a = r.response.amplitude_sum.col(static_cast<Eigen::Index>(k));
+    return speed_curve_scalar(std::vector<double>(w.data(), w.data() + w.size()),
+                              std::vector<double>(a.data(), a.data() + a.size()), q,
+                              r.response.sensors[k].rotational ? "rad" : "m", unit);
   };
   return type;
 }
