@@ -13,6 +13,7 @@
 #include "geardyn/analyses/model_file.hpp"
 #include "geardyn/analyses/run_analysis.hpp"
 #include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/linalg/blas_library.hpp"
 #include "geardyn/model/parse.hpp"
 
 namespace geardyn::analyses {
@@ -46,6 +47,17 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
   unsigned threads = settings.threads > 0 ? static_cast<unsigned>(settings.threads)
                                           : std::max(1u, std::thread::hardware_concurrency());
   threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(n, 1)));
+  // Points factorise through SuiteSparse and so call the system BLAS from every thread; a BLAS
+  // that shares work buffers between callers corrupts results silently, so it gets one thread.
+  const linalg::BlasLibrary& blas = linalg::loaded_blas();
+  if (threads > 1 && !linalg::safe_for_concurrent_calls(blas)) {
+    result.thread_note = fmt::format(
+        "ran on 1 thread instead of {}: the system BLAS ({}) is a sequential OpenBLAS, which is "
+        "not safe to call from several threads at once; install the threaded OpenBLAS "
+        "(Debian: libopenblas0-pthread, as scripts/install-deps does) to run points in parallel",
+        threads, blas.description);
+    threads = 1;
+  }
   result.threads_used = static_cast<int>(threads);
 
   std::atomic<std::size_t> next{0}, done{0};
@@ -183,6 +195,7 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
       fmt::format("{} points on {} threads; each point rebuilds the model from "
                   "the file with the new value, so results equal a serial run.",
                   result.values.size(), result.threads_used));
+  if (!result.thread_note.empty()) out.notes.push_back(result.thread_note);
   return out;
 }
 

@@ -51,6 +51,9 @@ struct SweepResult {
   std::vector<Status> point_status;
   std::vector<std::string> point_message;
   int threads_used = 1;
+  /// Why fewer threads ran than were asked for (empty when none): a BLAS that is not safe to
+  /// call from several threads at once (linalg/blas_library.hpp).
+  std::string thread_note;
   Status status = Status::Ok;
   std::string message;
 };
