@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -65,6 +66,23 @@ TEST(WriteCsv, HeaderAndRows) {
             "1,12.5,forward\n"
             "2,0.30000000000000004,\"backward, weak\"\n"
             "3,nan,\"say \"\"x\"\"\"\n");
+}
+
+// Speeds are computed in rad/s; a requested speed must come back as it was typed.
+TEST(FormatSpeedRpm, RequestedSpeedsComeBackExactly) {
+  const double to_si = std::numbers::pi / 30.0;
+  for (double rpm : {3000.0, 36900.0, 4321.5, 1e-3, 123456.789}) {
+    const double w = rpm * to_si;
+    EXPECT_EQ(format_speed_rpm(w / to_si), format_number(rpm)) << rpm;
+    EXPECT_EQ(format_speed_rpm(w * (30.0 / std::numbers::pi)), format_number(rpm)) << rpm;
+  }
+  EXPECT_EQ(format_speed_rpm(-0.0), "0");
+  EXPECT_EQ(format_speed_rpm(std::numeric_limits<double>::quiet_NaN()), "nan");
+  EXPECT_EQ(format_speed_rpm(2368.4210526315787), "2368.42105263");  // 12 digits
+  Table t;
+  t.name = "speeds";
+  t.add("speed_rpm", "rpm", {3000.0 * to_si * (30.0 / std::numbers::pi)});
+  EXPECT_EQ(to_csv(t), "speed_rpm\n3000\n");
 }
 
 TEST(WriteCsv, EmptyTableHasHeaderOnly) {

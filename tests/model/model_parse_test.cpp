@@ -366,8 +366,8 @@ input_node = "hub"
 [[analyses]]
 name = "u"
 type = "unbalance"
-speed_start_rpm = 0
-speed_stop_rpm = 120
+speed_start_rpm = 60
+speed_stop_rpm = 180
 speed_count = 3
 )",
                                         "units.toml");
@@ -378,8 +378,9 @@ speed_count = 3
   EXPECT_DOUBLE_EQ(m.unbalances[0].phase, kPi);
   const auto& u = m.analyses[1].settings_of<analyses::UnbalanceSettings>();
   ASSERT_EQ(u.speeds.size(), 3u);
-  EXPECT_DOUBLE_EQ(u.speeds[1], 2.0 * kPi);
-  EXPECT_DOUBLE_EQ(u.speeds[2], 4.0 * kPi);
+  EXPECT_DOUBLE_EQ(u.speeds[0], 2.0 * kPi);
+  EXPECT_DOUBLE_EQ(u.speeds[1], 4.0 * kPi);
+  EXPECT_DOUBLE_EQ(u.speeds[2], 6.0 * kPi);
 }
 
 TEST(ModelParse, InlineTablesAndCommentsAreFine) {

@@ -289,11 +289,18 @@ std::vector<double> speed_range(const TableContext& t) {
   return spaced(a, b, static_cast<int>(t.at("speed_count").integer), false);
 }
 
+std::vector<double> positive_speed_range(const TableContext& t, const std::string& why) {
+  std::vector<double> speeds = speed_range(t);
+  for (double w : speeds)
+    if (!(w > 0.0))
+      t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
+             fmt::format("speeds > 0 rpm ({})", why),
+             fmt::format("{} rpm", value_text(w / kRpm.to_si)));
+  return speeds;
+}
+
 void finish_tooth_excitation(CyclicForcedResponseSettings& s, const TableContext& t) {
-  s.speeds = speed_range(t);
-  if (s.speeds.front() <= 0.0)
-    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
-           "speeds > 0 rpm (the excitation frequency k W must be positive)", "0 rpm");
+  s.speeds = positive_speed_range(t, "the excitation frequency k W must be positive");
   const bool pair = t.has("pair");
   for (const char* key :
        {"gear", "model", "contact_loss", "window_shift", "contact_ratio", "harmonics_rpm"})

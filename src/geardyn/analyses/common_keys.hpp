@@ -133,6 +133,9 @@ model::keys::F scale_to_measured_key();
 
 /// Speeds [rad/s] from speed_rpm = [...] or speed_start_rpm / speed_stop_rpm / speed_count.
 std::vector<double> speed_range(const model::TableContext& t);
+/// speed_range() for an analysis that needs every speed > 0; `why` completes "speeds > 0 rpm
+/// (...)". The error names the key the file gave (speed_rpm or speed_start_rpm).
+std::vector<double> positive_speed_range(const model::TableContext& t, const std::string& why);
 /// The speed-range alternatives: speed_rpm, or start / stop / count (`required`: one of them).
 model::Choice speed_range_choice(bool required);
 /// Integers of a number-array value (nodal diameters, node ids, orders).

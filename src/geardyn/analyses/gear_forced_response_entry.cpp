@@ -20,13 +20,10 @@ using model::TableContext;
 
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<GearForcedResponseSettings>();
-  s.speeds = speed_range(t);
+  s.speeds = positive_speed_range(t, "the mesh frequency must be positive");
   for (const char* key : {"measured_sensor", "measured_mesh_order", "scale_to_measured"})
     if (t.has(key) && !t.has("measured_file"))
       t.fail(key, "a measured_file to compare with", "no measured_file");
-  if (s.speeds.front() <= 0.0)
-    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
-           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
   if (t.has("force_amplitude") && t.at("force_amplitude").is_array) {
     const std::size_t n = t.at("force_amplitude").count;
     if (!t.has("max_mesh_order"))

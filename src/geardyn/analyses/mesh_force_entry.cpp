@@ -25,10 +25,7 @@ using model::TableContext;
 
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<MeshForceSettings>();
-  s.speeds = speed_range(t);
-  if (s.speeds.front() <= 0.0)
-    t.fail(t.has("speed_rpm") ? "speed_rpm" : "speed_start_rpm",
-           "speeds > 0 rpm (the mesh frequency must be positive)", "0 rpm");
+  s.speeds = positive_speed_range(t, "the mesh frequency must be positive");
   if (s.detail_speeds.size() > 8)
     t.fail("detail_rpm", "at most 8 speeds for time histories",
            fmt::format("{} speeds", s.detail_speeds.size()));

@@ -22,7 +22,8 @@ using model::Ref;
 using model::TableContext;
 
 void finish(Analysis& a, const TableContext& t) {
-  a.settings_of<UnbalanceSettings>().speeds = speed_range(t);
+  a.settings_of<UnbalanceSettings>().speeds =
+      positive_speed_range(t, "reverse rotation: negative speed ratios");
 }
 
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {

@@ -21,6 +21,16 @@ std::string format_number(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
+std::string format_speed_rpm(double value) {
+  if (!std::isfinite(value)) return format_number(value);
+  std::array<char, 32> buffer{};
+  const auto rounded = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                     std::chars_format::general, 12);
+  double back = value;
+  std::from_chars(buffer.data(), rounded.ptr, back);
+  return format_number(back == 0.0 ? 0.0 : back);  // no "-0"
+}
+
 std::string csv_field(std::string_view text) {
   const bool needs_quotes = text.find_first_of(",\"\r\n") != std::string_view::npos ||
                             (!text.empty() && (text.front() == ' ' || text.front() == '\t' ||
@@ -52,7 +62,9 @@ void write_csv(std::ostream& out, const Table& table) {
     for (std::size_t j = 0; j < n_cols; ++j) {
       if (j > 0) line += ',';
       const Column& c = table.columns[j];
-      line += c.text ? csv_field(c.texts[i]) : format_number(c.numbers[i]);
+      line += c.text            ? csv_field(c.texts[i])
+              : c.unit == "rpm" ? format_speed_rpm(c.numbers[i])
+                                : format_number(c.numbers[i]);
     }
     line += '\n';
     out << line;

@@ -1,6 +1,7 @@
 #pragma once
 // CSV output of a Table (RFC 4180 quoting, '\n' line ends). The header row holds the column
-// names, which carry their unit (`frequency_hz`); numbers are written losslessly.
+// names, which carry their unit (`frequency_hz`); numbers are written losslessly, except speeds
+// in rpm (format_speed_rpm).
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -13,6 +14,11 @@ namespace geardyn::io {
 /// Shortest decimal text that reads back to exactly `value` ("0.1", "1e-07", "12345.678").
 /// NaN is written as "nan" (whatever its sign bit), infinities as "inf" / "-inf".
 std::string format_number(double value);
+
+/// A speed in rpm to 12 significant digits, then in its shortest form: speeds are computed in
+/// rad/s, and the round trip through pi/30 would write a requested 3000 rpm as
+/// 3000.0000000000005. Twelve digits are far below any meaning a shaft speed has.
+std::string format_speed_rpm(double value);
 
 /// `text` as one CSV field: quoted (with inner quotes doubled) when it contains a comma, a
 /// double quote, a line break, or leading/trailing blanks; unchanged otherwise.
