@@ -167,7 +167,12 @@ int command_run(const RunOptions& options, int argc, char** argv) {
       if (say)
         std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
                     std::string(to_string(out.status)).c_str(), out.run_time_s);
-      if (out.status != Status::Ok) {
+      if (out.status == Status::Unstable) {
+        // Computed, but what a steady state means is void: said as loudly as a failure.
+        failed = true;
+        std::fprintf(stderr, "error: analysis '%s' is unstable: %s\n", out.name.c_str(),
+                     out.message.c_str());
+      } else if (out.status != Status::Ok) {
         failed = true;
         std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
                      out.message.c_str());

@@ -71,6 +71,7 @@ const char* status_class(Status s) {
   switch (s) {
     case Status::Ok:
       return "ok";
+    case Status::Unstable:
     case Status::NotConverged:
     case Status::FewerModes:
       return "warn";
@@ -82,8 +83,11 @@ const char* status_class(Status s) {
   return "bad";
 }
 
-// A result exists but is incomplete (fewer modes, iteration limit): shown amber, not red.
-bool is_incomplete(Status s) { return s == Status::NotConverged || s == Status::FewerModes; }
+// A result exists but is incomplete (fewer modes, iteration limit) or is the response of an
+// unstable system: shown amber, not red, with its tables.
+bool is_incomplete(Status s) {
+  return s == Status::Unstable || s == Status::NotConverged || s == Status::FewerModes;
+}
 
 std::string badge(Status s) {
   return fmt::format("<span class=\"badge {}\">{}</span>", status_class(s),
