@@ -98,12 +98,22 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   info.model_title = m.title;
   for (int i = 0; i < argc; ++i) info.command_line += (i ? " " : "") + std::string(argv[i]);
 
-  // The results folder is checked (and its staging folder made) before anything is computed:
-  // a folder geardyn may not replace, or one it cannot create, is bad input found at once, not
-  // after every analysis has run.
+  std::vector<const model::Analysis*> selected;
+  for (const auto& a : m.analyses)
+    if (options.only.empty()
+            ? a.enabled
+            : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end())
+      selected.push_back(&a);
+  std::vector<std::string> not_run;
+  for (const auto* a : selected) not_run.push_back(a->name);
+
+  // The results folder is checked (and locked) before anything is computed: a folder geardyn
+  // may not replace, one it cannot create, or one holding a user's file where an analysis would
+  // be written is bad input found at once, not after every analysis has run.
   std::unique_ptr<io::ResultsWriter> writer;
   try {
     writer = std::make_unique<io::ResultsWriter>(outdir, info);
+    writer->check(not_run);
   } catch (const std::exception& e) {
     throw InputError({options.model_path, 0, 0}, "--output",
                      "a results folder geardyn can write (new, empty, or an earlier geardyn "
@@ -118,7 +128,7 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   analyses::check_inputs(m, solids);
 
   std::vector<AnalysisOutput> outputs;
-  bool failed = false;
+  bool failed = false, build_failed = false;
   fe::LinearSystem system;
   try {
     if (!m.shafts.empty() || !m.nodes.empty())
@@ -130,7 +140,7 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     out.status = Status::Failed;
     out.message = e.what();
     outputs.push_back(out);
-    failed = true;
+    build_failed = failed = true;
   }
 
   // -q: errors only (stderr); without it, a summary of each analysis on stdout.
@@ -147,45 +157,51 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     for (const auto& w : solid.warnings)
       std::fprintf(stderr, "warning: solid '%s': %s\n", solid_name.c_str(), w.c_str());
   }
-  std::vector<const model::Analysis*> selected;
-  for (const auto& a : m.analyses)
-    if (options.only.empty()
-            ? a.enabled
-            : std::find(options.only.begin(), options.only.end(), a.name) != options.only.end())
-      selected.push_back(&a);
-  if (!failed) {
-    for (std::size_t i = 0; i < selected.size(); ++i) {
-      const model::Analysis& a = *selected[i];
-      // Which analysis is running, as it starts (progress of its long phases follows).
-      if (say)
-        std::fprintf(stderr, "analysis %zu/%zu: %s (%s)\n", i + 1, selected.size(), a.name.c_str(),
-                     a.type.c_str());
-      analyses::Context context(m, a);
-      context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
-      if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
-      AnalysisOutput out = analyses::run_analysis(m, a, context).output;
-      if (say)
-        std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
-                    std::string(to_string(out.status)).c_str(), out.run_time_s);
-      if (out.status == Status::Unstable) {
-        // Computed, but what a steady state means is void: said as loudly as a failure.
-        failed = true;
-        std::fprintf(stderr, "error: analysis '%s' is unstable: %s\n", out.name.c_str(),
-                     out.message.c_str());
-      } else if (out.status != Status::Ok) {
-        failed = true;
-        std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
-                     out.message.c_str());
-      } else if (say && !out.tables.empty()) {
-        print_table(out.tables.front(), 12, 9);
-      }
-      outputs.push_back(std::move(out));
-    }
-  }
 
-  const std::string html = report::render_html(info, outputs);
-  for (const auto& out : outputs) writer->add(out);
-  writer->add_report(html);
+  // Results are kept as they come: each analysis is written when it finishes, with a manifest
+  // and report that say which analyses are still to come, so a later failure or a kill keeps
+  // the finished ones.
+  if (build_failed) not_run.clear();
+  writer->begin(not_run);
+  for (const auto& kept : writer->kept_files())
+    std::fprintf(stderr, "note: kept '%s' in the results folder (not written by geardyn)\n",
+                 kept.c_str());
+  auto keep = [&](const AnalysisOutput& out) {
+    writer->add(out);
+    std::erase(not_run, out.name);
+    info.not_run = not_run;
+    writer->add_report(report::render_html(info, outputs));
+  };
+  if (build_failed) keep(outputs.back());
+  for (std::size_t i = 0; !build_failed && i < selected.size(); ++i) {
+    const model::Analysis& a = *selected[i];
+    // Which analysis is running, as it starts (progress of its long phases follows).
+    if (say)
+      std::fprintf(stderr, "analysis %zu/%zu: %s (%s)\n", i + 1, selected.size(), a.name.c_str(),
+                   a.type.c_str());
+    analyses::Context context(m, a);
+    context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
+    if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
+    outputs.push_back(analyses::run_analysis(m, a, context).output);
+    const AnalysisOutput& out = outputs.back();
+    if (say)
+      std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
+                  std::string(to_string(out.status)).c_str(), out.run_time_s);
+    if (out.status == Status::Unstable) {
+      // Computed, but what a steady state means is void: said as loudly as a failure.
+      failed = true;
+      std::fprintf(stderr, "error: analysis '%s' is unstable: %s\n", out.name.c_str(),
+                   out.message.c_str());
+    } else if (out.status != Status::Ok) {
+      failed = true;
+      std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
+                   out.message.c_str());
+    } else if (say && !out.tables.empty()) {
+      print_table(out.tables.front(), 12, 9);
+    }
+    keep(out);
+  }
+  if (outputs.empty()) writer->add_report(report::render_html(info, outputs));
   writer->commit();
   if (say)
     std::printf("\nResults: %s\nReport: %s\n", fs::absolute(outdir).string().c_str(),

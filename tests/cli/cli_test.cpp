@@ -1,10 +1,12 @@
 // End-to-end tests of the geardyn program: the examples reproduce their published numbers from
 // the CSV files they write; exit codes (0 ok, 1 numerical failure, 2 bad input); bad input
-// leaves no results folder; a numerical failure leaves a manifest that says so.
+// leaves no results folder; a numerical failure leaves a manifest that says so; a killed run
+// keeps its finished analyses; a second run into a folder in use is refused.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -236,6 +238,122 @@ TEST(Cli, ADeckWithoutElementsIsBadInputForCheckAndRun) {
     EXPECT_NE(r.err.find("grids_only.bdf' with 8 nodes"), std::string::npos) << r.err;
   }
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Starts geardyn in the background (stdout and stderr to files in `dir`); returns its pid.
+pid_t start(const std::vector<std::string>& args, const fs::path& dir) {
+  fs::create_directories(dir);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const std::string out = (dir / "stdout.txt").string(), err = (dir / "stderr.txt").string();
+    if (std::freopen(out.c_str(), "w", stdout) == nullptr ||
+        std::freopen(err.c_str(), "w", stderr) == nullptr)
+      std::_Exit(127);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(kExe.c_str()));
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(kExe.c_str(), argv.data());
+    std::_Exit(127);
+  }
+  return pid;
+}
+
+// Waits (up to `seconds`) until `done()` holds; false on time-out.
+template <class Done>
+bool wait_until(Done done, double seconds) {
+  for (int i = 0; i < static_cast<int>(seconds * 20); ++i) {
+    if (done()) return true;
+    ::usleep(50000);
+  }
+  return done();
+}
+
+int wait_exit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+// The manifest lists `analysis` as written (it is rewritten atomically after each analysis).
+bool manifest_lists(const fs::path& out, const std::string& analysis) {
+  std::ifstream in(out / "manifest.json");
+  if (!in) return false;
+  const auto m = nlohmann::json::parse(in, nullptr, false);
+  if (!m.is_object() || !m.contains("analyses")) return false;
+  for (const auto& a : m["analyses"])
+    if (a["name"] == analysis) return true;
+  return false;
+}
+
+TEST(Cli, AKilledRunKeepsItsFinishedAnalysesAndTheRerunReplacesThem) {
+  // The second analysis (a 100 s transient, minutes of work) is killed; the first stays, in a
+  // folder whose manifest and report say the run is incomplete. A rerun then writes a complete
+  // folder over it and removes what the killed run was writing.
+  const fs::path base = fresh_dir("killed");
+  const fs::path out = base / "results";
+  const std::string model = kSource + "/tests/cli/data/long_second_analysis.toml";
+  const pid_t pid = start({"run", model, "-o", out.string(), "-q", "--set",
+                           "analyses[1].duration=100"},
+                          base / "first");
+  ASSERT_TRUE(wait_until([&] { return manifest_lists(out, "modes"); }, 60.0));
+  ::usleep(300000);  // well inside the transient
+  ::kill(pid, SIGKILL);
+  EXPECT_EQ(wait_exit(pid), -SIGKILL);
+
+  auto m = read_json(out / "manifest.json");
+  EXPECT_EQ(m["status"], "incomplete");
+  EXPECT_EQ(m["complete"], false);
+  EXPECT_EQ(m["not_run"], nlohmann::json({"run_up"}));
+  ASSERT_EQ(m["analyses"].size(), 1u);
+  EXPECT_EQ(m["analyses"][0]["name"], "modes");
+  EXPECT_TRUE(fs::exists(out / "modes" / "modes.csv"));
+  EXPECT_FALSE(fs::exists(out / "run_up"));
+  std::ifstream report(out / "report.html");
+  std::stringstream html;
+  html << report.rdbuf();
+  EXPECT_NE(html.str().find("incomplete: 1 of 2 analyses finished"), std::string::npos);
+
+  const ProcessResult rerun =
+      run("run " + model + " -o " + out.string() + " -q --set analyses[1].duration=0.01");
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  m = read_json(out / "manifest.json");
+  EXPECT_EQ(m["status"], "ok");
+  EXPECT_EQ(m["complete"], true);
+  EXPECT_TRUE(m["not_run"].empty());
+  EXPECT_TRUE(fs::exists(out / "run_up"));
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_NE(entry.path().filename().string().front(), '.') << "left: " << entry.path();
+}
+
+TEST(Cli, ASecondRunIntoTheSameFolderIsRefusedWhileTheFirstRuns) {
+  const fs::path base = fresh_dir("concurrent");
+  const fs::path out = base / "results";
+  const std::string model = kSource + "/tests/cli/data/long_second_analysis.toml";
+  const pid_t first =
+      start({"run", model, "-o", out.string(), "-q", "--set", "analyses[1].duration=3"},
+            base / "first");
+  ASSERT_TRUE(wait_until([&] { return manifest_lists(out, "modes"); }, 60.0));
+  const ProcessResult second = run("run " + model + " -o " + out.string() + " -q");
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  EXPECT_NE(second.err.find("another geardyn run"), std::string::npos) << second.err;
+  EXPECT_EQ(wait_exit(first), 0);
+  const auto m = read_json(out / "manifest.json");  // the first run's results, complete
+  EXPECT_EQ(m["status"], "ok");
+  EXPECT_EQ(m["analyses"].size(), 2u);
+  EXPECT_TRUE(fs::exists(out / "run_up"));
+}
+
+TEST(Cli, ARerunKeepsTheUsersFilesInTheResultsFolderAndSaysSo) {
+  const fs::path out = fresh_dir("kept_files");
+  const std::string model = kSource + "/examples/friswell_5_9_1/model.toml";
+  ASSERT_EQ(run("run -q " + model + " --only modes_0rpm -o " + out.string()).exit_code, 0);
+  std::ofstream(out / "post.py") << "print('mine')\n";
+  const ProcessResult r = run("run " + model + " --only modes_0rpm -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("kept 'post.py'"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out / "post.py"));
+  EXPECT_EQ(read_json(out / "manifest.json")["kept_files"], nlohmann::json({"post.py"}));
 }
 
 TEST(Cli, SingularFrfFailsNumericallyAndTheManifestSaysSo) {

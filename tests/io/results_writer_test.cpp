@@ -72,6 +72,15 @@ std::vector<std::string> leftovers(const fs::path& dir) {
   return found;
 }
 
+// Hidden entries inside a results folder: analyses or files caught mid-write.
+std::vector<std::string> hidden_entries(const fs::path& dir) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().front() == '.')
+      found.push_back(entry.path().filename().string());
+  return found;
+}
+
 class ResultsWriterTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -102,11 +111,15 @@ TEST_F(ResultsWriterTest, WritesTablesAndManifest) {
   EXPECT_EQ(read_text(outdir_ / "report.html"), "<html>report</html>");
   EXPECT_TRUE(fs::is_directory(outdir_ / "unbalance"));
   EXPECT_TRUE(leftovers(outdir_).empty());
+  EXPECT_TRUE(hidden_entries(outdir_).empty());
 
   const nlohmann::json m = read_json(outdir_ / "manifest.json");
   EXPECT_EQ(m["manifest_version"], kManifestVersion);
   EXPECT_EQ(m["geardyn_version"], kVersion);
   EXPECT_EQ(m["status"], "failed");  // one analysis failed
+  EXPECT_EQ(m["complete"], true);
+  EXPECT_TRUE(m["not_run"].empty());
+  EXPECT_TRUE(m["kept_files"].empty());
   EXPECT_EQ(m["model"]["path"], model_.string());
   EXPECT_EQ(m["model"]["sha256"], sha256_file(model_));
   EXPECT_EQ(m["command_line"], info_.command_line);
@@ -179,56 +192,91 @@ TEST_F(ResultsWriterTest, TrailingSeparatorStagesNextToTheFolder) {
   EXPECT_TRUE(leftovers(outdir_).empty());
 }
 
-TEST_F(ResultsWriterTest, AbandonedWriteLeavesNoOutdir) {
+// Results are written as each analysis finishes; a run that ends with an error keeps what
+// finished, in a folder whose manifest says it is incomplete and what did not run.
+TEST_F(ResultsWriterTest, AnAbandonedRunKeepsWhatFinishedAndSaysItIsIncomplete) {
   {
     ResultsWriter writer(outdir_, info_);
+    EXPECT_FALSE(fs::exists(outdir_));  // nothing on disk before begin
+    writer.begin({"modal", "unbalance"});
+    nlohmann::json m = read_json(outdir_ / "manifest.json");
+    EXPECT_EQ(m["status"], "incomplete");
+    EXPECT_EQ(m["complete"], false);
+    EXPECT_EQ(m["not_run"], nlohmann::json({"modal", "unbalance"}));
     writer.add(modal_output());
-    EXPECT_TRUE(fs::exists(writer.staging_dir() / "modal" / "modes.csv"));
-    EXPECT_FALSE(fs::exists(outdir_));
+    EXPECT_TRUE(fs::exists(outdir_ / "modal" / "modes.csv"));
+    m = read_json(outdir_ / "manifest.json");
+    EXPECT_EQ(m["analyses"].size(), 1u);
+    EXPECT_EQ(m["not_run"], nlohmann::json({"unbalance"}));
     // An error in the middle of the run: a repeated analysis name.
     EXPECT_THROW(writer.add(modal_output()), std::invalid_argument);
   }
-  EXPECT_FALSE(fs::exists(outdir_));
-  EXPECT_TRUE(leftovers(outdir_).empty());  // the staging folder was removed
+  const nlohmann::json m = read_json(outdir_ / "manifest.json");
+  EXPECT_EQ(m["status"], "incomplete");
+  EXPECT_EQ(m["complete"], false);
+  EXPECT_NE(m["run_message"].get<std::string>().find("ended with an error"), std::string::npos);
+  EXPECT_EQ(m["not_run"], nlohmann::json({"unbalance"}));
+  ASSERT_EQ(m["analyses"].size(), 1u);
+  EXPECT_EQ(m["analyses"][0]["name"], "modal");
+  EXPECT_TRUE(fs::exists(outdir_ / "modal" / "modes.csv"));
+  EXPECT_FALSE(fs::exists(outdir_ / "unbalance"));
+  EXPECT_TRUE(leftovers(outdir_).empty());
+  EXPECT_TRUE(hidden_entries(outdir_).empty());
 }
 
-TEST_F(ResultsWriterTest, AbandonedWriteKeepsPreviousResults) {
+// Until begin() the earlier results are untouched (bad input found before computing leaves
+// them as they were); begin() replaces them.
+TEST_F(ResultsWriterTest, EarlierResultsStayUntilTheRunBegins) {
   write_results(outdir_, info_, {modal_output()}, "old report");
   const std::string old_manifest = read_text(outdir_ / "manifest.json");
   {
     ResultsWriter writer(outdir_, info_);
-    writer.add(failed_output());
-    writer.add_report("new report");
-  }  // destroyed without commit
+    writer.check({"unbalance"});
+  }  // destroyed before begin: as a run refused for bad input
   EXPECT_EQ(read_text(outdir_ / "manifest.json"), old_manifest);
   EXPECT_EQ(read_text(outdir_ / "report.html"), "old report");
-  EXPECT_FALSE(fs::exists(outdir_ / "unbalance"));
-  EXPECT_TRUE(leftovers(outdir_).empty());
+  {
+    ResultsWriter writer(outdir_, info_);
+    writer.begin({"unbalance"});
+    EXPECT_FALSE(fs::exists(outdir_ / "modal"));
+    EXPECT_FALSE(fs::exists(outdir_ / "report.html"));
+  }
+  EXPECT_EQ(read_json(outdir_ / "manifest.json")["status"], "incomplete");
 }
 
-// A process killed in the middle of writing never leaves an OUTDIR: only its staging folder,
-// which has no manifest.json (the manifest is written last).
-TEST_F(ResultsWriterTest, KilledProcessLeavesNoCompleteOutdir) {
+// A process killed in its last analysis keeps the analyses before it; the next run into the
+// same folder replaces the killed run's results, including what it was writing at the kill.
+TEST_F(ResultsWriterTest, AKilledRunKeepsItsFinishedAnalyses) {
   EXPECT_EXIT(
       {
         ResultsWriter writer(outdir_, info_);
+        writer.begin({"modal", "unbalance"});
         writer.add(modal_output());
         writer.add_report("half");
+        fs::create_directories(outdir_ / ".unbalance.tmp-999999");  // caught mid-write
         std::_Exit(3);  // no destructors, no commit: as if killed
       },
       ::testing::ExitedWithCode(3), "");
-  EXPECT_FALSE(fs::exists(outdir_));
-  const auto left = leftovers(outdir_);
-  ASSERT_EQ(left.size(), 1u);
-  EXPECT_EQ(left[0].rfind("results.tmp-", 0), 0u) << left[0];
-  EXPECT_FALSE(fs::exists(base_ / left[0] / "manifest.json"));
-  EXPECT_TRUE(fs::exists(base_ / left[0] / "modal" / "modes.csv"));
+  nlohmann::json m = read_json(outdir_ / "manifest.json");
+  EXPECT_EQ(m["status"], "incomplete");
+  EXPECT_EQ(m["complete"], false);
+  EXPECT_EQ(m["not_run"], nlohmann::json({"unbalance"}));
+  EXPECT_EQ(m["report"], "report.html");
+  EXPECT_TRUE(fs::exists(outdir_ / "modal" / "modes.csv"));
+  EXPECT_EQ(read_text(outdir_ / "report.html"), "half");
 
-  // The next run into the same folder removes the dead run's staging folder; the staging folder
-  // of a live process (pid 1 always exists) may be another run's and stays.
+  // Staging folders of earlier geardyn versions (a whole run next to OUTDIR) are removed when
+  // their process is gone; one of a live process (pid 1 always exists) stays.
+  fs::create_directories(base_ / "results.tmp-999999999");
   fs::create_directories(base_ / "results.tmp-1");
-  write_results(outdir_, info_, {modal_output()}, "");
-  EXPECT_TRUE(fs::exists(outdir_ / "manifest.json"));
+  AnalysisOutput other = failed_output();
+  write_results(outdir_, info_, {other}, "");
+  m = read_json(outdir_ / "manifest.json");
+  EXPECT_EQ(m["status"], "failed");
+  EXPECT_EQ(m["complete"], true);
+  EXPECT_FALSE(fs::exists(outdir_ / "modal"));
+  EXPECT_FALSE(fs::exists(outdir_ / "report.html"));
+  EXPECT_TRUE(hidden_entries(outdir_).empty());
   EXPECT_EQ(leftovers(outdir_), std::vector<std::string>{"results.tmp-1"});
 }
 
@@ -268,28 +316,40 @@ TEST_F(ResultsWriterTest, RefusesToReplaceAForeignFolder) {
   EXPECT_TRUE(fs::exists(outdir_ / "precious.txt"));
 }
 
-// A folder that appears at OUTDIR during the run is not ours: commit refuses, the foreign folder
-// stays untouched, and the complete new results stay in the staging folder named in the error.
-TEST_F(ResultsWriterTest, FailedCommitKeepsTheNewResults) {
-  fs::path staging;
+// A rerun into an earlier results folder keeps what a user added there (a post-processing
+// script) and says so; a user's entry where a new analysis would be written is refused before
+// anything is removed.
+TEST_F(ResultsWriterTest, ForeignFilesAreKeptAndNeverOverwritten) {
+  write_results(outdir_, info_, {modal_output()}, "old report");
+  std::ofstream(outdir_ / "post.py") << "import pandas\n";
+  fs::create_directories(outdir_ / "unbalance");
+  std::ofstream(outdir_ / "unbalance" / "notes.txt") << "mine";
+  try {
+    write_results(outdir_, info_, {failed_output()}, "");  // named "unbalance"
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'unbalance'"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::exists(outdir_ / "modal" / "modes.csv"));  // nothing removed
+  EXPECT_EQ(read_text(outdir_ / "unbalance" / "notes.txt"), "mine");
+
+  AnalysisOutput other = modal_output();
+  other.name = "other";
   {
     ResultsWriter writer(outdir_, info_);
-    staging = writer.staging_dir();
-    writer.add(modal_output());
-    fs::create_directories(outdir_);
-    std::ofstream(outdir_ / "precious.txt") << "created by someone else during the run";
-    try {
-      writer.commit();
-      FAIL() << "expected std::runtime_error";
-    } catch (const std::runtime_error& e) {
-      EXPECT_NE(std::string(e.what()).find(staging.string()), std::string::npos) << e.what();
-    }
-    EXPECT_FALSE(writer.committed());
+    writer.begin({"other"});
+    writer.add(other);
+    writer.commit();
+    EXPECT_EQ(writer.kept_files(), (std::vector<std::string>{"post.py", "unbalance"}));
   }
-  EXPECT_TRUE(fs::exists(outdir_ / "precious.txt"));
-  EXPECT_FALSE(fs::exists(outdir_ / "manifest.json"));
-  EXPECT_TRUE(fs::exists(staging / "manifest.json"));
-  EXPECT_TRUE(fs::exists(staging / "modal" / "modes.csv"));
+  EXPECT_EQ(read_text(outdir_ / "post.py"), "import pandas\n");
+  EXPECT_FALSE(fs::exists(outdir_ / "modal"));
+  const nlohmann::json m = read_json(outdir_ / "manifest.json");
+  EXPECT_EQ(m["kept_files"], nlohmann::json({"post.py", "unbalance"}));
+  // Kept files are not the run's: the next run keeps them again, and removes "other".
+  write_results(outdir_, info_, {modal_output()}, "");
+  EXPECT_TRUE(fs::exists(outdir_ / "post.py"));
+  EXPECT_FALSE(fs::exists(outdir_ / "other"));
 }
 
 TEST_F(ResultsWriterTest, ReplacesAnEmptyFolder) {
@@ -306,12 +366,15 @@ TEST_F(ResultsWriterTest, RejectsNamesThatAreNotFolderNames) {
     EXPECT_THROW(write_results(outdir_, info_, {out}, ""), std::invalid_argument) << name;
   }
   AnalysisOutput out = modal_output();
+  EXPECT_FALSE(fs::exists(outdir_));  // analysis names are checked before anything is written
   out.tables[1].name = "../../escape";
   EXPECT_THROW(write_results(outdir_, info_, {out}, ""), std::invalid_argument);
   out.tables[1].name = out.tables[0].name;
   EXPECT_THROW(write_results(outdir_, info_, {out}, ""), std::invalid_argument);
-  EXPECT_FALSE(fs::exists(outdir_));
   EXPECT_FALSE(fs::exists(base_ / "escape"));
+  EXPECT_FALSE(fs::exists(outdir_ / "modal"));  // the analysis was not written in part
+  EXPECT_TRUE(read_json(outdir_ / "manifest.json")["analyses"].empty());
+  EXPECT_TRUE(hidden_entries(outdir_).empty());
   EXPECT_TRUE(leftovers(outdir_).empty());
 }
 

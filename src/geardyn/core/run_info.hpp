@@ -5,6 +5,7 @@
 #include <ctime>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace geardyn {
 
@@ -15,6 +16,9 @@ struct RunInfo {
   std::string model_sha256;
   std::string command_line;  ///< argv joined by spaces
   std::string model_title;   ///< the model's `title` ("" when it has none): the report's heading
+  /// Analyses selected to run that have not finished yet. Not empty in the report and manifest
+  /// written while the run is in progress (a run killed then leaves them saying so).
+  std::vector<std::string> not_run;
   /// When the run started; defaults to the moment the RunInfo is made.
   std::chrono::system_clock::time_point start_time = std::chrono::system_clock::now();
 };

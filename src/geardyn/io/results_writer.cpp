@@ -1,11 +1,12 @@
 #include "geardyn/io/results_writer.hpp"
 
-#include <fcntl.h>  // AT_FDCWD for renameat2
+#include <fcntl.h>  // open flags of the lock file
 #include <fmt/format.h>
 #include <signal.h>    // kill(pid, 0): is the process that made a staging folder alive?
 #include <sys/file.h>  // flock: one writer per results folder
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -35,8 +36,8 @@ fs::path sibling(const fs::path& outdir, const std::string& suffix) {
 
 std::string errno_text(int error) { return std::strerror(error); }
 
-// Removes the staging folders `OUTDIR.tmp-<pid>` that runs killed before their commit left
-// behind: those of processes that no longer exist (a live one may be another run writing).
+// Removes the staging folders `OUTDIR.tmp-<pid>` that runs of earlier geardyn versions (which
+// staged a whole run next to OUTDIR) left behind when killed before their commit: those of processes that no longer exist (a live one may be another run writing).
 // Best effort: what cannot be removed stays, and the run goes on.
 void remove_stale_staging(const fs::path& outdir) {
   const fs::path any = sibling(outdir, ".tmp-");
@@ -64,6 +65,45 @@ void write_file(const fs::path& file, std::string_view contents) {
   if (!out) throw std::runtime_error(fmt::format("cannot write '{}'", file.string()));
 }
 
+// Writes `file` so that a reader (or a kill) sees the old contents or the new, never a part:
+// a temporary sibling renamed over it.
+void write_file_atomically(const fs::path& file, std::string_view contents) {
+  const fs::path temporary =
+      file.parent_path() / fmt::format(".{}.tmp-{}", file.filename().string(), ::getpid());
+  write_file(temporary, contents);
+  if (std::rename(temporary.c_str(), file.c_str()) != 0) {
+    const int error = errno;
+    std::error_code ec;
+    fs::remove(temporary, ec);
+    throw std::runtime_error(
+        fmt::format("cannot replace '{}': {}", file.string(), errno_text(error)));
+  }
+}
+
+// A hidden entry `.<name>.tmp-<digits>` inside a results folder: an analysis folder or file
+// being written when its run was killed (the lock guarantees that run is gone).
+bool is_unfinished_entry(const std::string& name) {
+  const auto at = name.rfind(".tmp-");
+  if (name.empty() || name.front() != '.' || at == std::string::npos || at == 0) return false;
+  const std::string digits = name.substr(at + 5);
+  return !digits.empty() && digits.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// What the manifest of an earlier results folder says geardyn wrote there.
+std::vector<std::string> entries_written_by_geardyn(const fs::path& dir) {
+  std::vector<std::string> entries;
+  std::ifstream in(dir / kManifestName);
+  if (!in) return entries;
+  const nlohmann::json manifest = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!manifest.is_object()) return entries;
+  entries = {kManifestName, kReportName};
+  if (manifest.contains("analyses") && manifest["analyses"].is_array())
+    for (const auto& a : manifest["analyses"])
+      if (a.is_object() && a.contains("name") && a["name"].is_string())
+        entries.push_back(a["name"].get<std::string>());
+  return entries;
+}
+
 // A name used as one path component: no separators, no "." / "..", nothing that collides with
 // the files at the top of the results folder.
 void check_component(const std::string& name, const char* what) {
@@ -80,6 +120,13 @@ void check_component(const std::string& name, const char* what) {
   if (!problem.empty())
     throw std::invalid_argument(fmt::format(
         "{} '{}' cannot be used as a file name in the results folder: {}", what, name, problem));
+}
+
+void check_analysis_name(const std::string& name) {
+  check_component(name, "analysis name");
+  if (name == kManifestName || name == kReportName)
+    throw std::invalid_argument(
+        fmt::format("analysis name '{}' is reserved in the results folder", name));
 }
 
 }  // namespace
@@ -99,7 +146,6 @@ bool is_replaceable_results_dir(const fs::path& dir) {
 ResultsWriter::ResultsWriter(fs::path outdir, RunInfo info)
     : outdir_(std::move(outdir)), info_(std::move(info)) {
   if (outdir_.empty()) throw std::invalid_argument("results folder: empty path");
-  staging_ = sibling(outdir_, fmt::format(".tmp-{}", ::getpid()));
   if (!is_replaceable_results_dir(outdir_))
     throw std::runtime_error(fmt::format(
         "results folder '{}' exists and is not a geardyn results folder (not a folder, or not "
@@ -108,25 +154,68 @@ ResultsWriter::ResultsWriter(fs::path outdir, RunInfo info)
         outdir_.string()));
   if (info_.model_sha256.empty() && !info_.model_path.empty())
     info_.model_sha256 = sha256_file(info_.model_path);
-
   lock_outdir();
-  try {
-    remove_stale_staging(outdir_);
-    std::error_code ec;
-    if (fs::exists(fs::symlink_status(staging_, ec))) {
-      fs::remove_all(staging_, ec);  // left by an earlier process with our pid
-      if (ec)
-        throw std::runtime_error(fmt::format("cannot remove the leftover staging folder '{}': {}",
-                                             staging_.string(), ec.message()));
+  remove_stale_staging(outdir_);
+  old_entries_ = entries_written_by_geardyn(outdir_);
+}
+
+// The earlier run's entries go, anything else stays — unless a new analysis would have to
+// overwrite it. `remove` gets what is ours, `keep` the rest; throws on a clash.
+static void sort_entries(const fs::path& outdir, const std::vector<std::string>& old_entries,
+                         const std::vector<std::string>& planned, std::vector<fs::path>* remove,
+                         std::vector<std::string>* keep) {
+  std::error_code ec;
+  if (!fs::is_directory(outdir, ec)) return;
+  if (!is_replaceable_results_dir(outdir))
+    throw std::runtime_error(fmt::format(
+        "results folder '{}' is no longer a geardyn results folder; refusing to replace it",
+        outdir.string()));
+  for (const auto& entry : fs::directory_iterator(outdir)) {
+    const std::string name = entry.path().filename().string();
+    if (std::find(old_entries.begin(), old_entries.end(), name) != old_entries.end() ||
+        is_unfinished_entry(name)) {
+      if (remove) remove->push_back(entry.path());
+      continue;
     }
-    fs::create_directories(staging_, ec);
-    if (ec)
-      throw std::runtime_error(fmt::format("cannot create the staging folder '{}': {}",
-                                           staging_.string(), ec.message()));
-  } catch (...) {
-    ::close(lock_fd_);  // no destructor runs for a constructor that throws
-    throw;
+    if (std::find(planned.begin(), planned.end(), name) != planned.end())
+      throw std::runtime_error(fmt::format(
+          "results folder '{}' holds '{}', which geardyn did not write, and analysis '{}' "
+          "would overwrite it: move it away or choose another output folder",
+          outdir.string(), name, name));
+    if (keep) keep->push_back(name);
   }
+}
+
+void ResultsWriter::check(const std::vector<std::string>& planned) const {
+  for (std::size_t i = 0; i < planned.size(); ++i) {
+    check_analysis_name(planned[i]);
+    for (std::size_t j = 0; j < i; ++j)
+      if (planned[j] == planned[i])
+        throw std::invalid_argument(fmt::format("analysis name '{}' repeats", planned[i]));
+  }
+  sort_entries(outdir_, old_entries_, planned, nullptr, nullptr);
+}
+
+void ResultsWriter::begin(const std::vector<std::string>& planned) {
+  if (begun_) throw std::logic_error("ResultsWriter::begin called twice");
+  check(planned);
+  std::vector<fs::path> to_remove;
+  sort_entries(outdir_, old_entries_, planned, &to_remove, &kept_);
+  std::error_code ec;
+  std::sort(kept_.begin(), kept_.end());
+  for (const auto& path : to_remove) {
+    fs::remove_all(path, ec);
+    if (ec)
+      throw std::runtime_error(fmt::format("cannot remove the earlier result '{}': {}",
+                                           path.string(), ec.message()));
+  }
+  fs::create_directories(outdir_, ec);
+  if (ec)
+    throw std::runtime_error(fmt::format("cannot create the results folder '{}': {}",
+                                         outdir_.string(), ec.message()));
+  planned_ = planned;
+  begun_ = true;
+  write_manifest(Phase::InProgress);
 }
 
 void ResultsWriter::lock_outdir() {
@@ -153,23 +242,53 @@ void ResultsWriter::lock_outdir() {
 }
 
 ResultsWriter::~ResultsWriter() {
-  if (!committed_ && !keep_staging_) {
-    std::error_code ec;
-    fs::remove_all(staging_, ec);  // best effort: a destructor must not throw
+  if (begun_ && !committed_) {
+    try {
+      write_manifest(Phase::Stopped);  // best effort: a destructor must not throw
+    } catch (...) {
+    }
   }
   if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
 }
 
 void ResultsWriter::add(const AnalysisOutput& output) {
   if (committed_) throw std::logic_error("ResultsWriter::add after commit");
-  check_component(output.name, "analysis name");
-  if (output.name == kManifestName || output.name == kReportName)
-    throw std::invalid_argument(
-        fmt::format("analysis name '{}' is reserved in the results folder", output.name));
+  check_analysis_name(output.name);
   for (const auto& a : analyses_)
     if (a.name == output.name)
       throw std::invalid_argument(fmt::format("analysis name '{}' repeats", output.name));
+  if (!begun_) begin({output.name});
+  if (std::find(kept_.begin(), kept_.end(), output.name) != kept_.end())
+    throw std::runtime_error(fmt::format(
+        "results folder '{}' holds '{}', which geardyn did not write; refusing to overwrite it",
+        outdir_.string(), output.name));
 
+  // Written aside, then renamed into place: a kill leaves a hidden folder, never a half one.
+  const fs::path folder = outdir_ / fmt::format(".{}.tmp-{}", output.name, ::getpid());
+  const fs::path final_folder = outdir_ / output.name;
+  std::error_code ec;
+  fs::remove_all(folder, ec);
+  fs::create_directory(folder, ec);
+  if (ec)
+    throw std::runtime_error(
+        fmt::format("cannot create the folder '{}': {}", folder.string(), ec.message()));
+  AnalysisRecord record;
+  try {
+    record = write_analysis(output, folder);
+    if (std::rename(folder.c_str(), final_folder.c_str()) != 0)
+      throw std::runtime_error(fmt::format("cannot move '{}' to '{}': {}", folder.string(),
+                                           final_folder.string(), errno_text(errno)));
+  } catch (...) {
+    fs::remove_all(folder, ec);
+    throw;
+  }
+  analyses_.push_back(std::move(record));
+  planned_.erase(std::remove(planned_.begin(), planned_.end(), output.name), planned_.end());
+  write_manifest(Phase::InProgress);
+}
+
+ResultsWriter::AnalysisRecord ResultsWriter::write_analysis(const AnalysisOutput& output,
+                                                            const fs::path& folder) {
   AnalysisRecord record;
   record.name = output.name;
   record.type = output.type;
@@ -177,13 +296,6 @@ void ResultsWriter::add(const AnalysisOutput& output) {
   record.message = output.message;
   record.run_time_s = output.run_time_s;
   record.notes = output.notes;
-
-  const fs::path folder = staging_ / output.name;
-  std::error_code ec;
-  fs::create_directory(folder, ec);
-  if (ec)
-    throw std::runtime_error(
-        fmt::format("cannot create the folder '{}': {}", folder.string(), ec.message()));
 
   std::set<std::string> table_names;
   for (const Table& table : output.tables) {
@@ -213,21 +325,42 @@ void ResultsWriter::add(const AnalysisOutput& output) {
     file.write(folder / file.file_name);
     record.files.push_back({output.name + "/" + file.file_name, file.description});
   }
-  analyses_.push_back(std::move(record));
+  return record;
 }
 
 void ResultsWriter::add_report(std::string_view html) {
   if (committed_) throw std::logic_error("ResultsWriter::add_report after commit");
-  write_file(staging_ / kReportName, html);
-  has_report_ = true;
+  if (!begun_) begin({});
+  write_file_atomically(outdir_ / kReportName, html);
+  if (!has_report_) {
+    has_report_ = true;
+    write_manifest(Phase::InProgress);
+  }
 }
 
-std::string ResultsWriter::manifest_text(bool all_ok) const {
+void ResultsWriter::write_manifest(Phase phase) const {
+  write_file_atomically(outdir_ / kManifestName, manifest_text(phase));
+}
+
+std::string ResultsWriter::manifest_text(Phase phase) const {
   using nlohmann::json;
+  bool all_ok = true;
+  for (const auto& a : analyses_) all_ok = all_ok && a.status == to_string(Status::Ok);
   json manifest;
   manifest["manifest_version"] = kManifestVersion;
   manifest["geardyn_version"] = kVersion;
-  manifest["status"] = all_ok ? "ok" : "failed";
+  manifest["status"] = phase != Phase::Complete ? "incomplete" : all_ok ? "ok" : "failed";
+  manifest["complete"] = phase == Phase::Complete;
+  if (phase == Phase::InProgress)
+    manifest["run_message"] =
+        "written while the run was in progress: the analyses listed are complete; those under "
+        "not_run had not finished (if geardyn is no longer running, it was stopped before them)";
+  else if (phase == Phase::Stopped)
+    manifest["run_message"] =
+        "the run ended with an error before it finished: the analyses listed are complete; "
+        "those under not_run were not run";
+  manifest["not_run"] = planned_;
+  manifest["kept_files"] = kept_;
   json model;
   if (info_.model_path.empty()) {
     model["path"] = nullptr;
@@ -279,72 +412,17 @@ std::string ResultsWriter::manifest_text(bool all_ok) const {
 
 void ResultsWriter::commit() {
   if (committed_) throw std::logic_error("ResultsWriter::commit called twice");
-  bool all_ok = true;
-  for (const auto& a : analyses_) all_ok = all_ok && a.status == to_string(Status::Ok);
-  // The manifest is written last: a staging folder without it is an unfinished write.
-  write_file(staging_ / kManifestName, manifest_text(all_ok));
-  try {
-    move_into_place();
-  } catch (...) {
-    // The staging folder is complete now: keep it, the error message says where it is.
-    if (!committed_) keep_staging_ = true;
-    throw;
-  }
-}
-
-void ResultsWriter::move_into_place() {
-  std::error_code ec;
-  const bool exists = fs::exists(fs::symlink_status(outdir_, ec));
-  if (!exists) {
-    if (std::rename(staging_.c_str(), outdir_.c_str()) != 0)
-      throw std::runtime_error(
-          fmt::format("cannot move '{}' to '{}': {}; the new results stay in '{}'",
-                      staging_.string(), outdir_.string(), errno_text(errno), staging_.string()));
-    committed_ = true;
-    return;
-  }
-  if (!is_replaceable_results_dir(outdir_))
-    throw std::runtime_error(fmt::format(
-        "results folder '{}' is no longer a geardyn results folder; refusing to replace it; the "
-        "new results are in '{}'",
-        outdir_.string(), staging_.string()));
-
-  // Preferred: swap both folders in one atomic step; the old results then sit at staging_.
-  fs::path old_dir;
-  if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, outdir_.c_str(), RENAME_EXCHANGE) == 0) {
-    old_dir = staging_;
-  } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP) {
-    // The file system cannot exchange: rename the old away, the new in, restore on failure.
-    old_dir = sibling(outdir_, fmt::format(".old-{}", ::getpid()));
-    fs::remove_all(old_dir, ec);
-    if (std::rename(outdir_.c_str(), old_dir.c_str()) != 0)
-      throw std::runtime_error(fmt::format(
-          "cannot move the previous results '{}' to '{}': {}; the new results stay in '{}'",
-          outdir_.string(), old_dir.string(), errno_text(errno), staging_.string()));
-    if (std::rename(staging_.c_str(), outdir_.c_str()) != 0) {
-      const int error = errno;
-      std::rename(old_dir.c_str(), outdir_.c_str());
-      throw std::runtime_error(fmt::format(
-          "cannot move '{}' to '{}': {}; the previous results are back in place and the new "
-          "results stay in '{}'",
-          staging_.string(), outdir_.string(), errno_text(error), staging_.string()));
-    }
-  } else {
-    throw std::runtime_error(
-        fmt::format("cannot replace '{}' by '{}': {}; the new results stay in '{}'",
-                    outdir_.string(), staging_.string(), errno_text(errno), staging_.string()));
-  }
-  committed_ = true;  // the new results are in place; what follows only tidies up
-  fs::remove_all(old_dir, ec);
-  if (ec)
-    throw std::runtime_error(fmt::format(
-        "the results are in '{}', but the previous results moved to '{}' could not be removed: {}",
-        outdir_.string(), old_dir.string(), ec.message()));
+  if (!begun_) begin({});
+  write_manifest(Phase::Complete);
+  committed_ = true;
 }
 
 void write_results(const fs::path& outdir, const RunInfo& info,
                    const std::vector<AnalysisOutput>& outputs, std::string_view report_html) {
   ResultsWriter writer(outdir, info);
+  std::vector<std::string> names;
+  for (const auto& output : outputs) names.push_back(output.name);
+  writer.begin(names);
   for (const auto& output : outputs) writer.add(output);
   if (!report_html.empty()) writer.add_report(report_html);
   writer.commit();

@@ -5,10 +5,17 @@
 //   OUTDIR/report.html              the self-contained report (when given)
 //   OUTDIR/<analysis>/<table>.csv   every table of every analysis
 //
-// Everything is written into a staging folder next to OUTDIR (`OUTDIR.tmp-<pid>`, same file
-// system) and moved into place by one rename at commit, so OUTDIR is either the previous complete
-// results or the new complete results, never a half-written mix. A process killed before the
-// commit leaves only the staging folder, which has no manifest.json.
+// Results are kept as they are made: each analysis is written when it finishes (into a hidden
+// folder `OUTDIR/.<analysis>.tmp-<pid>`, renamed into place in one step) and the manifest is
+// rewritten (atomically) after it. Until the run ends the manifest says "status": "incomplete",
+// "complete": false and lists under "not_run" the analyses still to come, so a run killed in
+// its last analysis keeps every analysis before it, in a folder that says it is incomplete.
+//
+// An earlier geardyn results folder is replaced when the run begins (begin()): what its
+// manifest lists (analysis folders, manifest.json, report.html) is removed; anything else in it
+// (a user's post-processing script) is kept, listed in the manifest under "kept_files" and
+// reported by kept_files(). A folder that is neither empty nor a geardyn results folder is
+// never touched.
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -26,39 +33,47 @@ inline constexpr int kManifestVersion = 1;
 
 class ResultsWriter {
  public:
-  /// Prepares the staging folder `OUTDIR.tmp-<pid>` (creating OUTDIR's parent folders if needed,
-  /// removing a leftover staging folder of the same name, and the staging folders of earlier
-  /// runs into OUTDIR whose process no longer exists). Throws std::runtime_error when another
-  /// writer (another geardyn run) holds OUTDIR. Throws std::runtime_error naming the
-  /// path when OUTDIR exists but cannot be replaced safely: it is not a folder, or it is a
+  /// Checks OUTDIR and locks it; changes nothing on disk yet (except creating OUTDIR's parent
+  /// folders and the lock file `.OUTDIR.lock` next to it, and removing the staging folders
+  /// `OUTDIR.tmp-<pid>` that runs of earlier geardyn versions killed before their commit left).
+  /// Throws std::runtime_error when another writer (another geardyn run) holds OUTDIR, or naming
+  /// the path when OUTDIR exists but may not be replaced: it is not a folder, or it is a
   /// non-empty folder without a geardyn manifest.json (so that `-o ~` never deletes a home).
   ResultsWriter(std::filesystem::path outdir, RunInfo info);
-  /// Removes the staging folder unless commit() succeeded. Never throws.
+  /// Marks an unfinished run's manifest as stopped ("complete": false) when begun but not
+  /// committed, and releases the lock. Never throws.
   ~ResultsWriter();
   ResultsWriter(const ResultsWriter&) = delete;
   ResultsWriter& operator=(const ResultsWriter&) = delete;
 
-  /// Writes the tables of `output` to `<analysis>/<table>.csv` in the staging folder and records
-  /// the analysis (also a failed one, with its status and message) for the manifest.
-  /// Throws std::invalid_argument when the analysis name is not a usable folder name or repeats,
-  /// or a table name repeats within the analysis; std::logic_error for an inconsistent table;
-  /// std::runtime_error naming the path on I/O failure.
+  /// The checks of begin(planned), without changing anything: call it before computing.
+  void check(const std::vector<std::string>& planned) const;
+
+  /// Starts writing: `planned` are the names of the analyses that will be added (in order).
+  /// Throws std::invalid_argument when a name is not a usable folder name or repeats, and
+  /// std::runtime_error when OUTDIR holds an entry of that name that geardyn did not write —
+  /// both before anything is removed. Then removes the earlier run's results (keeping foreign
+  /// files), creates OUTDIR and writes the "incomplete" manifest.
+  void begin(const std::vector<std::string>& planned);
+
+  /// Writes the tables and files of `output` to `<analysis>/` and records the analysis (also a
+  /// failed one, with its status and message) in the manifest, rewritten at once. Calls
+  /// begin({output.name}) first when the run was not begun. Throws std::invalid_argument when
+  /// the analysis name is not a usable folder name or repeats, or a table name repeats within
+  /// the analysis; std::logic_error for an inconsistent table; std::runtime_error naming the
+  /// path on I/O failure (the analysis is then not listed as written).
   void add(const AnalysisOutput& output);
 
-  /// Writes `html` as report.html and lists it in the manifest.
+  /// Writes `html` as report.html (replaced in one step) and lists it in the manifest.
   void add_report(std::string_view html);
 
-  /// Writes manifest.json and moves the staging folder to OUTDIR. An existing OUTDIR is swapped
-  /// out atomically (renameat2 RENAME_EXCHANGE; on file systems without it: renamed away, the new
-  /// folder renamed in, the old one restored if that fails) and then deleted.
-  /// Throws std::runtime_error naming the paths on failure; OUTDIR is then left as it was and
-  /// the complete new results stay in the staging folder (not removed by the destructor).
-  /// One ResultsWriter per OUTDIR at a time in a process (the staging name holds only the pid).
+  /// Writes the final manifest: "complete": true, "status" ok or failed.
   void commit();
 
   const std::filesystem::path& outdir() const { return outdir_; }
-  const std::filesystem::path& staging_dir() const { return staging_; }
   bool committed() const { return committed_; }
+  /// Entries of an earlier results folder that geardyn did not write, kept in place.
+  const std::vector<std::string>& kept_files() const { return kept_; }
 
  private:
   /// Holds `.OUTDIR.lock` (a hidden file next to OUTDIR) locked while this writer lives, so a
@@ -85,25 +100,29 @@ class ResultsWriter {
     std::vector<FileRecord> files;
   };
 
-  std::string manifest_text(bool all_ok) const;
-  void move_into_place();
+  enum class Phase { Complete, InProgress, Stopped };
+  std::string manifest_text(Phase phase) const;
+  void write_manifest(Phase phase) const;
+  AnalysisRecord write_analysis(const AnalysisOutput& output, const std::filesystem::path& folder);
 
   std::filesystem::path outdir_;
-  std::filesystem::path staging_;
   RunInfo info_;
+  std::vector<std::string> old_entries_;  // what the earlier run's manifest lists
+  std::vector<std::string> planned_;
+  std::vector<std::string> kept_;
   std::vector<AnalysisRecord> analyses_;
+  bool begun_ = false;
   bool has_report_ = false;
-  bool committed_ = false;     // the new results are at outdir_
-  bool keep_staging_ = false;  // commit failed after the staging folder was complete
+  bool committed_ = false;
 };
 
 /// Writes a whole run at once: every output (failed ones included), `report_html` as report.html
-/// unless it is empty, the manifest, then commits. Same errors as ResultsWriter.
+/// unless it is empty, then commits. Same errors as ResultsWriter.
 void write_results(const std::filesystem::path& outdir, const RunInfo& info,
                    const std::vector<AnalysisOutput>& outputs, std::string_view report_html);
 
 /// True when `dir` may be replaced by a results folder: it does not exist, is an empty folder, or
-/// is a folder whose manifest.json was written by geardyn.
+/// is a folder whose manifest.json was written by geardyn (complete or not).
 bool is_replaceable_results_dir(const std::filesystem::path& dir);
 
 }  // namespace geardyn::io

@@ -471,11 +471,18 @@ void append_page_header(std::string& out, const RunInfo& info,
                         const std::string& started, double total_time, std::size_t n_failed) {
   const bool all_ok = n_failed == 0;
   out += "<header class=\"page\">\n";
+  std::string verdict = outputs.empty() ? std::string("no analyses")
+                        : all_ok
+                            ? fmt::format("all {} analyses ok", outputs.size())
+                            : fmt::format("failed: {} of {} analyses", n_failed, outputs.size());
+  const char* badge_class = all_ok ? "ok" : "bad";
+  if (!info.not_run.empty()) {  // written while the run is in progress (or was killed)
+    verdict = fmt::format("incomplete: {} of {} analyses finished", outputs.size(),
+                          outputs.size() + info.not_run.size());
+    badge_class = "warn";
+  }
   out += fmt::format("<h1>{} <span class=\"badge {}\">{}</span></h1>\n", escape_html(model_name),
-                     all_ok ? "ok" : "bad",
-                     outputs.empty() ? std::string("no analyses")
-                     : all_ok        ? fmt::format("all {} analyses ok", outputs.size())
-                              : fmt::format("failed: {} of {} analyses", n_failed, outputs.size()));
+                     badge_class, verdict);
   out +=
       fmt::format("<div class=\"subtitle\">geardyn {} report</div>\n<dl>\n", escape_html(kVersion));
   out += fmt::format("<dt>Model</dt><dd><code>{}</code></dd>\n",
@@ -484,6 +491,14 @@ void append_page_header(std::string& out, const RunInfo& info,
     out +=
         fmt::format("<dt>SHA-256</dt><dd><code>{}</code></dd>\n", escape_html(info.model_sha256));
   out += fmt::format("<dt>Started</dt><dd>{}</dd>\n", escape_html(started));
+  if (!info.not_run.empty()) {
+    std::string names;
+    for (const auto& n : info.not_run) names += (names.empty() ? "" : ", ") + n;
+    out += fmt::format(
+        "<dt>Not run</dt><dd>{} — the run had not finished when this report was written; if "
+        "geardyn is no longer running, it was stopped (killed) before them</dd>\n",
+        escape_html(names));
+  }
   out += fmt::format("<dt>Analysis time</dt><dd>{}</dd>\n", format_duration(total_time));
   if (!info.command_line.empty())
     out +=
