@@ -293,9 +293,9 @@ TEST(Cli, AKilledRunKeepsItsFinishedAnalysesAndTheRerunReplacesThem) {
   const fs::path base = fresh_dir("killed");
   const fs::path out = base / "results";
   const std::string model = kSource + "/tests/cli/data/long_second_analysis.toml";
-  const pid_t pid = start({"run", model, "-o", out.string(), "-q", "--set",
-                           "analyses[1].duration=100"},
-                          base / "first");
+  const pid_t pid =
+      start({"run", model, "-o", out.string(), "-q", "--set", "analyses[1].duration=100"},
+            base / "first");
   ASSERT_TRUE(wait_until([&] { return manifest_lists(out, "modes"); }, 60.0));
   ::usleep(300000);  // well inside the transient
   ::kill(pid, SIGKILL);
@@ -330,9 +330,8 @@ TEST(Cli, ASecondRunIntoTheSameFolderIsRefusedWhileTheFirstRuns) {
   const fs::path base = fresh_dir("concurrent");
   const fs::path out = base / "results";
   const std::string model = kSource + "/tests/cli/data/long_second_analysis.toml";
-  const pid_t first =
-      start({"run", model, "-o", out.string(), "-q", "--set", "analyses[1].duration=3"},
-            base / "first");
+  const pid_t first = start(
+      {"run", model, "-o", out.string(), "-q", "--set", "analyses[1].duration=3"}, base / "first");
   ASSERT_TRUE(wait_until([&] { return manifest_lists(out, "modes"); }, 60.0));
   const ProcessResult second = run("run " + model + " -o " + out.string() + " -q");
   EXPECT_EQ(second.exit_code, 2) << second.err;
