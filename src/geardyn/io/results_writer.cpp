@@ -37,8 +37,9 @@ fs::path sibling(const fs::path& outdir, const std::string& suffix) {
 std::string errno_text(int error) { return std::strerror(error); }
 
 // Removes the staging folders `OUTDIR.tmp-<pid>` that runs of earlier geardyn versions (which
-// staged a whole run next to OUTDIR) left behind when killed before their commit: those of processes that no longer exist (a live one may be another run writing).
-// Best effort: what cannot be removed stays, and the run goes on.
+// staged a whole run next to OUTDIR) left behind when killed before their commit: those of
+// processes that no longer exist (a live one may be another run writing). Best effort: what cannot
+// be removed stays, and the run goes on.
 void remove_stale_staging(const fs::path& outdir) {
   const fs::path any = sibling(outdir, ".tmp-");
   const fs::path parent = any.parent_path().empty() ? fs::path(".") : any.parent_path();
@@ -206,13 +207,13 @@ void ResultsWriter::begin(const std::vector<std::string>& planned) {
   for (const auto& path : to_remove) {
     fs::remove_all(path, ec);
     if (ec)
-      throw std::runtime_error(fmt::format("cannot remove the earlier result '{}': {}",
-                                           path.string(), ec.message()));
+      throw std::runtime_error(
+          fmt::format("cannot remove the earlier result '{}': {}", path.string(), ec.message()));
   }
   fs::create_directories(outdir_, ec);
   if (ec)
-    throw std::runtime_error(fmt::format("cannot create the results folder '{}': {}",
-                                         outdir_.string(), ec.message()));
+    throw std::runtime_error(
+        fmt::format("cannot create the results folder '{}': {}", outdir_.string(), ec.message()));
   planned_ = planned;
   begun_ = true;
   write_manifest(Phase::InProgress);
