@@ -60,6 +60,27 @@ void print_table(const Table& table, std::size_t max_rows, std::size_t max_colum
                 table.name.c_str());
 }
 
+// Says how an analysis ended: its status line and first table (unless quiet), and on stderr
+// why it is not ok. Returns whether it is ok.
+bool tell_outcome(const AnalysisOutput& out, bool say) {
+  if (say)
+    std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
+                std::string(to_string(out.status)).c_str(), out.run_time_s);
+  if (out.status == Status::Unstable) {
+    // Computed, but what a steady state means is void: said as loudly as a failure.
+    std::fprintf(stderr, "error: analysis '%s' is unstable: %s\n", out.name.c_str(),
+                 out.message.c_str());
+    return false;
+  }
+  if (out.status != Status::Ok) {
+    std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
+                 out.message.c_str());
+    return false;
+  }
+  if (say && !out.tables.empty()) print_table(out.tables.front(), 12, 9);
+  return true;
+}
+
 }  // namespace
 
 std::filesystem::path default_output_dir(const std::string& model_path) {
@@ -184,21 +205,7 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
     outputs.push_back(analyses::run_analysis(m, a, context).output);
     const AnalysisOutput& out = outputs.back();
-    if (say)
-      std::printf("\n[%s] %s: %s (%.2f s)\n", out.type.c_str(), out.name.c_str(),
-                  std::string(to_string(out.status)).c_str(), out.run_time_s);
-    if (out.status == Status::Unstable) {
-      // Computed, but what a steady state means is void: said as loudly as a failure.
-      failed = true;
-      std::fprintf(stderr, "error: analysis '%s' is unstable: %s\n", out.name.c_str(),
-                   out.message.c_str());
-    } else if (out.status != Status::Ok) {
-      failed = true;
-      std::fprintf(stderr, "error: analysis '%s' failed: %s\n", out.name.c_str(),
-                   out.message.c_str());
-    } else if (say && !out.tables.empty()) {
-      print_table(out.tables.front(), 12, 9);
-    }
+    if (!tell_outcome(out, say)) failed = true;
     keep(out);
   }
   if (outputs.empty()) writer->add_report(report::render_html(info, outputs));

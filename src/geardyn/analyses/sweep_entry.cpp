@@ -260,7 +260,9 @@ std::vector<model::Field> keys() {
                 "a sweep).")
           .required()
           .to_settings(&SweepSettings::analysis),
-      integer("threads", "Worker threads (0: all cores); 1 when the system BLAS is a sequential OpenBLAS, which is not safe to call from several threads (the notes say so).")
+      integer("threads",
+              "Worker threads (0: all cores); 1 when the system BLAS is a sequential OpenBLAS, "
+              "which is not safe to call from several threads (the notes say so).")
           .def("0")
           .ge(0)
           .le(4096)
