@@ -53,12 +53,29 @@ Plot error_plot(const ReductionResult& r, const Table& cmp) {
 void add_convergence(AnalysisOutput& out, const ReductionSettings& s, const ReductionResult& r,
                      std::size_t n_compared) {
   const reduce::ReducedComponent& rc = *r.reduced;
-  std::vector<int> counts = s.convergence;
+  std::vector<int> counts, dropped;
+  for (int n : s.convergence) (n <= rc.n_modal ? counts : dropped).push_back(n);
+  // The reduction may find fewer fixed-interface modes than reduced_modes asked for (a small
+  // interior, or a frequency limit): the counts beyond them are left out and said so.
+  if (!dropped.empty())
+    out.notes.push_back(fmt::format(
+        "Convergence table: the counts {} exceed the {} fixed-interface modes the reduction "
+        "found and are left out.",
+        fmt::join(dropped, ", "), rc.n_modal));
   if (counts.empty())
     for (int n : {0, rc.n_modal / 8, rc.n_modal / 4, rc.n_modal / 2, rc.n_modal})
       if (counts.empty() || n > counts.back()) counts.push_back(n);
-  Table conv =
-      reduce::convergence_table(rc, r.full.eigenvalues, counts, static_cast<int>(n_compared));
+  // A reduced model with n fixed-interface modes has masters + n coordinates, so it can be
+  // compared on at most that many modes.
+  const int smallest = *std::min_element(counts.begin(), counts.end());
+  const int n_compare = std::min(static_cast<int>(n_compared), rc.n_masters() + smallest);
+  if (n_compare < 1) return;
+  if (n_compare < static_cast<int>(n_compared))
+    out.notes.push_back(
+        fmt::format("Convergence table: compared on the first {} modes (the reduced model with {} "
+                    "fixed-interface modes has only {} coordinates).",
+                    n_compare, smallest, rc.n_masters() + smallest));
+  Table conv = reduce::convergence_table(rc, r.full.eigenvalues, counts, n_compare);
   conv.title = "Convergence as fixed-interface modes are added";
   Plot p;
   p.name = "convergence";
@@ -67,7 +84,7 @@ void add_convergence(AnalysisOutput& out, const ReductionSettings& s, const Redu
   p.y_label = "largest error [%]";
   p.y_log = true;
   Trace t;
-  t.name = fmt::format("first {} modes", n_compared);
+  t.name = fmt::format("first {} modes", n_compare);
   t.mode = Trace::Mode::LinesMarkers;
   t.x = conv.column("n_modes").numbers;
   t.y = conv.column("max_error_pct").numbers;
@@ -88,14 +105,19 @@ ReductionResult run_reduction(const model::Model& model, const ReductionSettings
   const auto& dofs = c.system.dofs;
   const std::vector<int> masters = master_dofs(c, s.master_sets);
 
+  ReductionResult r;
   reduce::CraigBamptonOptions o;
   if (s.method == ReductionMethod::CraigBampton) {
-    if (!std::isnan(s.f_max))
+    if (!std::isnan(s.f_max)) {
       o.frequency_max_hz = s.f_max / units::kTwoPi;
-    else
-      o.n_modes = s.n_modes;
+    } else {
+      // More modes than the interior has cannot be known before the masters are chosen: all
+      // interior modes are kept (the reduction is then exact) and the note says so.
+      const int n_interior = static_cast<int>(c.system.K.rows()) - static_cast<int>(masters.size());
+      o.n_modes = std::min(s.n_modes, std::max(n_interior, 0));
+      if (s.n_modes > o.n_modes) r.modes_asked_beyond_interior = s.n_modes;
+    }
   }
-  ReductionResult r;
   r.master_dofs = static_cast<int>(masters.size());
   progress.start(fmt::format("{}: reduction", name), 0);
   auto rc = std::make_shared<const reduce::ReducedComponent>(reduce::craig_bampton(
@@ -131,6 +153,12 @@ AnalysisOutput reduction_output(const model::Model& model, const ReductionSettin
       s.method == ReductionMethod::Guyan ? "Guyan" : "Craig-Bampton", rc.n_masters(), r.master_dofs,
       s.master_sets.size(), rc.n_modal, rc.size(), c.system.dofs.size(), cmp.rows(),
       r.max_error_pct));
+  if (r.modes_asked_beyond_interior > 0)
+    out.notes.push_back(fmt::format(
+        "reduced_modes = {} exceeds the {} interior DOFs left by the masters: all {} "
+        "fixed-interface modes are kept, so the reduced model is exact and no smaller than the "
+        "full one; a smaller reduced_modes gives a real reduction.",
+        r.modes_asked_beyond_interior, rc.n_modal, rc.n_modal));
   out.tables.push_back(cmp);
   out.plots.push_back(error_plot(r, cmp));
   if (rc.n_modal > 0) add_convergence(out, s, r, cmp.rows());

@@ -44,6 +44,9 @@ struct ReductionResult {
   /// frequency [Hz] and error 100 (reduced - full) / full [%].
   std::vector<double> full_hz, reduced_hz, error_pct;
   double max_error_pct = 0.0;  ///< largest |error_pct|
+  /// Fixed-interface modes asked for (reduced_modes) beyond the interior DOFs: all interior
+  /// modes are kept instead; 0 when the request fitted.
+  int modes_asked_beyond_interior = 0;
 };
 
 ReductionResult run_reduction(const model::Model& model, const ReductionSettings& settings,
