@@ -23,6 +23,7 @@
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/status.hpp"
+#include "geardyn/eig/conditioning.hpp"
 #include "geardyn/eig/eigen_options.hpp"
 
 namespace geardyn::eig::detail {
@@ -353,7 +354,9 @@ void solve_dense(const SparseMatrix<Scalar>& K, const SparseMatrix<Scalar>& M,
         Kd, Md, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
     if (ges.info() != Eigen::Success) {
       r.status = Status::Failed;
-      r.message = "dense eigen-solver (QR iteration) did not converge";
+      const std::string scaling = scaling_diagnosis(Kd, Md);
+      r.message = "dense eigen-solver (QR iteration) did not converge" +
+                  (scaling.empty() ? std::string() : ": " + scaling);
       return;
     }
     values = ges.eigenvalues();
@@ -585,8 +588,9 @@ void solve_generalized(const SparseMatrix<Scalar>& K, const SparseMatrix<Scalar>
     if (r.status == Status::Ok && r.max_residual() > options.residual_limit) {
       r.status = Status::NotConverged;
       r.message = fmt::format(
-          "largest backward error {:.3e} exceeds residual_limit {:.1e}; tighten "
-          "krylov.tolerance or check the model's conditioning",
+          "largest backward error {:.3e} exceeds residual_limit {:.1e}: the model is badly "
+          "conditioned: check for stiffness or mass values many orders of magnitude apart, and "
+          "for nearly unsupported parts",
           r.max_residual(), options.residual_limit);
     }
   }

@@ -20,6 +20,7 @@
 #include <type_traits>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/eig/conditioning.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -90,6 +91,15 @@ Eigen::VectorXd start_vector(const QuadraticEigenResult& modes) {
 }
 
 namespace {
+
+// What to look at when the modes are not accurate: the model's scaling if it is off, else the
+// general advice (in terms of the model, not of solver settings a model file cannot reach).
+std::string conditioning_advice(const SparseMatrix& K, const SparseMatrix& M) {
+  const std::string scaling = scaling_diagnosis(K, M);
+  return scaling.empty() ? "the model is badly conditioned: check for stiffness or mass values "
+                           "many orders of magnitude apart, and for nearly unsupported parts"
+                         : scaling;
+}
 
 // Scale of the problem: min_i K_ii / M_ii bounds omega_1^2 from above (see automatic_shift).
 double lowest_ratio(const SparseMatrix& K, const SparseMatrix& M) {
@@ -245,10 +255,13 @@ void solve_dense(const QuadraticPencil& p, const QuadraticEigenOptions& options,
   const Eigen::PartialPivLU<Eigen::MatrixXd> lu(P);
   if (!(lu.rcond() > 1e-15)) {
     r.status = Status::Singular;
+    const std::string scaling = scaling_diagnosis(p.K, p.M);
     r.message = fmt::format(
-        "K + sigma D + sigma^2 M is singular at sigma = {:.6g} (rcond {:.2e}): the model has a "
-        "mechanism without mass, damping or stiffness; check supports",
-        sigma, lu.rcond());
+        "K + sigma D + sigma^2 M is singular at sigma = {:.6g} (rcond {:.2e}): {}", sigma,
+        lu.rcond(),
+        scaling.empty()
+            ? "the model has a mechanism without mass, damping or stiffness; check supports"
+            : scaling);
     return;
   }
   const Norms norms = pencil_norms(p);
@@ -264,7 +277,9 @@ void solve_dense(const QuadraticPencil& p, const QuadraticEigenOptions& options,
   const Eigen::EigenSolver<Eigen::MatrixXd> es(T, true);
   if (es.info() != Eigen::Success) {
     r.status = Status::Failed;
-    r.message = "dense eigen-solver (Hessenberg QR) did not converge";
+    const std::string scaling = scaling_diagnosis(p.K, p.M);
+    r.message = "dense eigen-solver (Hessenberg QR) did not converge" +
+                (scaling.empty() ? std::string() : ": " + scaling);
     return;
   }
   const Eigen::VectorXcd nu = es.eigenvalues();
@@ -504,10 +519,9 @@ QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
   }
   if (r.status == Status::Ok && r.max_residual() > options.residual_limit) {
     r.status = Status::NotConverged;
-    r.message = fmt::format(
-        "largest backward error {:.3e} exceeds residual_limit {:.1e}; tighten krylov.tolerance, "
-        "move the target, or check the model's conditioning",
-        r.max_residual(), options.residual_limit);
+    r.message =
+        fmt::format("largest backward error {:.3e} exceeds residual_limit {:.1e}: {}",
+                    r.max_residual(), options.residual_limit, conditioning_advice(p.K, p.M));
   }
   return r;
 }
