@@ -181,8 +181,8 @@ model = "infinite_inertia"
 
 // The same mesh with contact loss near the resonance, swept both ways: the teeth separate
 // (contact_loss > 0) and the analysis says so; and without damping at the principal parametric
-// resonance f_m = 2 f_n the linear model grows without bound: the analysis fails and names
-// the speed instead of hiding it.
+// resonance f_m = 2 f_n the linear model grows without bound: with that speed alone the
+// analysis fails and names it; among speeds that have a steady state it is reported per speed.
 TEST(GearanValidation, MeshForceReportsContactLossAndFailsVisiblyWithoutSteadyState) {
   const fs::path dir = fresh_dir("parker_contact_loss");
   std::string csv = "angle_deg, ste_um\n";
@@ -222,6 +222,20 @@ detail_rpm = [{:.17g}]
   EXPECT_GT(loss, 0.0);
   EXPECT_TRUE(has_note(out, "CONTACT LOSS"));
   EXPECT_EQ(out.plots.size(), 5u);  // dynamic factor, DTE RMS, contact loss, detail F and DTE
+  // Every steady state found is a stable orbit (largest Floquet multiplier below 1: it is the
+  // attractor the continuation converged to), and the DTE extremes bracket its mean.
+  for (const char* name : {"sweep_up", "sweep_down"}) {
+    const Table& t = table(out, name);
+    for (std::size_t i = 0; i < t.rows(); ++i) {
+      EXPECT_LT(t.column("floquet_multiplier").numbers[i], 1.0) << name << " row " << i;
+      EXPECT_LE(t.column("dte_min_m").numbers[i], t.column("dte_mean_m").numbers[i]);
+      EXPECT_LE(t.column("dte_mean_m").numbers[i], t.column("dte_max_m").numbers[i]);
+      EXPECT_LE(t.column("force_min_n").numbers[i], t.column("force_max_n").numbers[i]);
+    }
+  }
+  // The detail table is named by the exact speed and carries it.
+  const Table& detail = table(out, fmt::format("detail_{:.10g}rpm", rpm_res));
+  EXPECT_NEAR(detail.column("speed_rpm").numbers.front(), rpm_res, 1e-9 * rpm_res);
 
   const model::Model undamped = load(dir, kHeader + pair +
                                               fmt::format(R"(mesh_damping_ratio = 0.0
@@ -238,6 +252,28 @@ contact_loss = false
   EXPECT_NE(bad.message.find(fmt::format("{:.6g} rpm", 2.0 * rpm_res)), std::string::npos)
       << bad.message;
   EXPECT_NE(bad.message.find("mesh_damping_ratio"), std::string::npos) << bad.message;
+
+  // One speed without a steady state among others that have one is a finding, not a failed
+  // analysis: status ok, the speed named in a note and in the table's status column.
+  const model::Model light = load(dir, kHeader + pair +
+                                           fmt::format(R"(mesh_damping_ratio = 0.002
+[[analyses]]
+name = "partly"
+type = "mesh_force"
+speed_rpm = [{:.17g}, {:.17g}]
+direction = "up"
+contact_loss = false
+)",
+                                                       0.3 * rpm_res, 2.0 * rpm_res));
+  const AnalysisOutput partly = run_entry(light, 0).output;
+  const Table& t = table(partly, "sweep_up");
+  ASSERT_EQ(t.rows(), 2u);
+  EXPECT_EQ(t.column("status").texts[0], "ok");
+  EXPECT_NE(t.column("status").texts[1], "ok");
+  EXPECT_FALSE(t.column("message").texts[1].empty());
+  EXPECT_EQ(partly.status, Status::Ok) << partly.message;
+  EXPECT_TRUE(has_note(partly, "NO STEADY STATE"));
+  EXPECT_TRUE(has_note(partly, fmt::format("{:.6g} rpm", 2.0 * rpm_res)));
 }
 
 // Engine-order harmonics of a constant mesh force (constant STE, infinite inertias): the tooth

@@ -113,11 +113,14 @@ void add_details(AnalysisOutput& out, const MeshForceResult& r, std::vector<std:
     const std::string label = fmt::format("{:.6g} rpm", rpm);
     std::vector<double> cycles = scaled(d.time_s, d.mesh_frequency_hz);
     Table t;
-    t.name = fmt::format("detail_{:.0f}rpm", rpm);
+    // Named by the speed as given (to 10 digits, so 1000.4 and 1000.2 rpm stay apart), and the
+    // speed written in the table too.
+    t.name = fmt::format("detail_{:.10g}rpm", rpm);
     t.title = fmt::format(
         "Steady state at gear 1 speed {} (f_m = {:.6g} Hz, period {} mesh "
         "cycle{})",
         rpm_text(rpm), d.mesh_frequency_hz, d.period_cycles, d.period_cycles == 1 ? "" : "s");
+    t.add("speed_rpm", "rpm", std::vector<double>(d.time_s.size(), rpm));
     t.add("time_s", "s", d.time_s);
     t.add("mesh_cycles", "", cycles);
     t.add("dte_m", "m", d.dte_m);
@@ -204,12 +207,25 @@ AnalysisOutput mesh_force_output(const model::Model& /*model*/, const MeshForceS
   if (!failed.empty()) {
     std::string list;
     for (const auto& f : failed) list += (list.empty() ? "" : "; ") + f;
-    out.status = r.status != Status::Ok ? r.status : Status::NotConverged;
-    out.message = fmt::format(
-        "analysis '{}': no periodic steady state of the mesh at {} speed{}: {}. {} What usually "
-        "helps: more mesh damping (mesh_damping_ratio), a finer speed grid near the resonance, "
-        "or model = \"infinite_inertia\" far below the mesh resonance.",
-        context.name(), failed.size(), failed.size() == 1 ? "" : "s", list, r.message);
+    const std::string what = fmt::format(
+        "no periodic steady state of the mesh at {} speed{}: {}. {} What usually helps: more "
+        "mesh damping (mesh_damping_ratio), a finer speed grid near the resonance, or model = "
+        "\"infinite_inertia\" far below the mesh resonance.",
+        failed.size(), failed.size() == 1 ? "" : "s", list, r.message);
+    // A speed without a periodic steady state (quasi-periodic or chaotic) is a finding about
+    // the mesh, reported per speed in the tables; only when no speed has one has the analysis
+    // no result.
+    std::size_t ok_points = 0;
+    for (const auto* points : {&r.up, &r.down})
+      for (const gear::MeshSweepPoint& q : *points) ok_points += q.status == Status::Ok;
+    if (ok_points == 0) {
+      out.status = r.status != Status::Ok ? r.status : Status::NotConverged;
+      out.message = fmt::format("analysis '{}': {}", context.name(), what);
+    } else {
+      out.notes.push_back("NO STEADY STATE: " + what +
+                          " The status and message columns of the sweep tables say which "
+                          "speeds.");
+    }
   }
   return out;
 }

@@ -817,16 +817,24 @@ Table MeshSweepResult::table(const std::vector<MeshSweepPoint>& points, std::str
   column("speed_rpm", "rpm", [](const MeshSweepPoint& p) { return p.speed_rpm; });
   column("dte_mean_m", "m", [](const MeshSweepPoint& p) { return p.dte_mean_m; });
   column("dte_rms_m", "m", [](const MeshSweepPoint& p) { return p.dte_rms_m; });
+  column("dte_min_m", "m", [](const MeshSweepPoint& p) { return p.dte_min_m; });
   column("dte_max_m", "m", [](const MeshSweepPoint& p) { return p.dte_max_m; });
+  column("force_min_n", "N", [](const MeshSweepPoint& p) { return p.force_min_n; });
   column("force_max_n", "N", [](const MeshSweepPoint& p) { return p.force_max_n; });
   column("dynamic_factor", "", [](const MeshSweepPoint& p) { return p.dynamic_factor; });
   column("contact_loss", "", [](const MeshSweepPoint& p) { return p.contact_loss_fraction; });
+  column("floquet_multiplier", "", [](const MeshSweepPoint& p) { return p.floquet_multiplier; });
   column("period_cycles", "",
          [](const MeshSweepPoint& p) { return static_cast<double>(p.period_cycles); });
   column("cycles", "", [](const MeshSweepPoint& p) { return static_cast<double>(p.cycles); });
   std::vector<std::string> status;
-  for (const MeshSweepPoint& p : points) status.emplace_back(to_string(p.status));
+  std::vector<std::string> message;
+  for (const MeshSweepPoint& p : points) {
+    status.emplace_back(to_string(p.status));
+    message.push_back(p.message);
+  }
   t.add_text("status", std::move(status));
+  t.add_text("message", std::move(message));
   return t;
 }
 
@@ -869,13 +877,17 @@ MeshSweepResult sweep_mesh_frequency(const DynamicMesh& mesh, const MeshSweepOpt
       p.speed_rpm = options.teeth > 0 ? units::hz_to_rpm(f[i]) / options.teeth : kNaN;
       p.dte_mean_m = r.dte_mean_m;
       p.dte_rms_m = r.dte_rms_m;
+      p.dte_min_m = r.dte_min_m;
       p.dte_max_m = r.dte_max_m;
+      p.force_min_n = r.force_min_n;
       p.force_max_n = r.force_max_n;
       p.dynamic_factor = r.dynamic_factor;
       p.contact_loss_fraction = r.contact_loss_fraction;
+      p.floquet_multiplier = r.floquet_multiplier;
       p.period_cycles = r.period_cycles;
       p.cycles = r.transient_cycles;
       p.status = r.status;
+      if (r.status != Status::Ok) p.message = r.message;
       if (r.status != Status::Ok) {
         ++not_ok;
         result.status = worse(result.status, r.status);

@@ -171,9 +171,12 @@ struct MeshSweepPoint {
   double mesh_frequency_hz = MeshResponse::kNaN, speed_rpm = MeshResponse::kNaN;
   double dte_mean_m = MeshResponse::kNaN, dte_rms_m = MeshResponse::kNaN;
   double dte_max_m = MeshResponse::kNaN, force_max_n = MeshResponse::kNaN;
+  double dte_min_m = MeshResponse::kNaN, force_min_n = MeshResponse::kNaN;
   double dynamic_factor = MeshResponse::kNaN, contact_loss_fraction = MeshResponse::kNaN;
+  double floquet_multiplier = MeshResponse::kNaN;  ///< largest |mu| (< 1: a stable orbit)
   int period_cycles = 0, cycles = 0;
   Status status = Status::Failed;
+  std::string message;  ///< why there is no steady state (empty when ok)
 };
 
 struct MeshSweepResult {
@@ -185,8 +188,9 @@ struct MeshSweepResult {
   Status status = Status::Ok;                              ///< the worst point status
   std::string message;  ///< summary of the points that are not ok
 
-  /// Table `name` with columns mesh_frequency_hz, speed_rpm, dte_mean_m, dte_rms_m, dte_max_m,
-  /// force_max_n, dynamic_factor, contact_loss (fraction of time), period_cycles, cycles, status.
+  /// Table `name` with columns mesh_frequency_hz, speed_rpm, dte_mean_m, dte_rms_m, dte_min_m,
+  /// dte_max_m, force_min_n, force_max_n, dynamic_factor, contact_loss (fraction of time),
+  /// floquet_multiplier, period_cycles, cycles, status, message.
   static Table table(const std::vector<MeshSweepPoint>& points, std::string name,
                      std::string title);
 };
