@@ -86,6 +86,12 @@ TEST(Sweep, NaturalFrequencyFollowsTheClosedForm) {
     EXPECT_NEAR(r.outputs[0][i], exact, 1e-9 * exact) << "k = " << r.values[i];
   }
   EXPECT_EQ(r.units[0], "Hz");
+  // The table says what was swept in which unit.
+  EXPECT_EQ(r.parameter_unit, "N/m");
+  const AnalysisOutput out = sweep_output(r, settings, "k_sweep");
+  EXPECT_EQ(out.tables[0].columns[0].name, "value_N_m");
+  EXPECT_EQ(out.tables[0].columns[1].name, "natural_frequency_1_Hz");
+  EXPECT_EQ(out.plots[0].x_label, "bearings[0].kxx [N/m]");
 }
 
 TEST(Sweep, ThreadsGiveTheSerialResultBitForBit) {

@@ -106,7 +106,7 @@ TEST(Cli, GearedRotorDemoRunsAndTheMeshCarriesTheSwing) {
   for (const auto& a : manifest["analyses"]) EXPECT_EQ(a["status"], "ok") << a["name"];
 
   auto sweep = read_csv(out / "sweep_mesh_stiffness" / "sweep.csv");
-  const auto& k = sweep["value"];
+  const auto& k = sweep["value_N_m"];  // the swept key's unit in the name
   const auto& amp = sweep["swing_amplitude_rad"];
   ASSERT_FALSE(k.empty());
   double at_weak = NAN, at_design = NAN;

@@ -35,6 +35,7 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
                       Progress& progress) {
   SweepResult result;
   result.parameter = settings.parameter;
+  result.parameter_unit = model::field_of(document, settings.parameter, {}).unit.symbol;
   result.values = settings.values;
   const std::size_t n = settings.values.size();
   const std::size_t n_out = settings.outputs.size();
@@ -153,14 +154,16 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
   Table table;
   table.name = "sweep";
   table.title = fmt::format("Sweep of {} (analysis '{}')", settings.parameter, settings.analysis);
-  table.add("value", "", result.values);
-  for (std::size_t j = 0; j < result.outputs.size(); ++j) {
-    const std::string unit = result.units[j];
+  // Column names carry their unit ("value_N_m", "natural_frequency_1_Hz").
+  auto with_unit = [](const std::string& name, const std::string& unit) {
     std::string suffix = unit.empty() ? "" : "_" + unit;
     for (auto& ch : suffix)
-      if (ch == '/') ch = '_';
-    table.add(result.labels[j] + suffix, unit, result.outputs[j]);
-  }
+      if (ch == '/' || ch == ' ' || ch == '^' || ch == '*') ch = '_';
+    return name + suffix;
+  };
+  table.add(with_unit("value", result.parameter_unit), result.parameter_unit, result.values);
+  for (std::size_t j = 0; j < result.outputs.size(); ++j)
+    table.add(with_unit(result.labels[j], result.units[j]), result.units[j], result.outputs[j]);
   std::vector<std::string> status;
   for (auto s : result.point_status) status.emplace_back(to_string(s));
   table.add_text("status", status);
@@ -170,7 +173,9 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
     Plot plot;
     plot.name = "sweep_" + result.labels[j];
     plot.title = fmt::format("{} versus {}", result.labels[j], settings.parameter);
-    plot.x_label = settings.parameter;
+    plot.x_label = result.parameter_unit.empty()
+                       ? settings.parameter
+                       : fmt::format("{} [{}]", settings.parameter, result.parameter_unit);
     plot.y_label = result.units[j].empty()
                        ? result.labels[j]
                        : fmt::format("{} [{}]", result.labels[j], result.units[j]);

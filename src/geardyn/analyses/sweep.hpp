@@ -44,6 +44,7 @@ struct SweepSettings : model::SettingsOf<SweepSettings> {
 
 struct SweepResult {
   std::string parameter;
+  std::string parameter_unit;                ///< the key's unit as written ("N/m"; "" none)
   std::vector<double> values;                ///< parameter values, in the key's units
   std::vector<std::string> labels;           ///< one per output
   std::vector<std::string> units;            ///< unit of each output column
