@@ -1,16 +1,19 @@
 // Tests of the VTU and Gmsh-view writers (meshio/vtu_writer.hpp, meshio/gmsh_view_writer.hpp).
 //
 // A hand-built mesh holds one straight-sided element of each type (tet4, tet10, hex8, hex20,
-// wedge6, wedge15; Gmsh node order of solid/mesh.hpp). The VTU is read back as text and its
-// cells are checked against the VTK documentation's node order (vtkQuadraticTetra,
-// vtkQuadraticHexahedron, vtkQuadraticWedge class docs): every VTK mid-edge node must be the
-// midpoint of the corners of the edge VTK lists for it, and the corners must be oriented as
-// VTK's parametric coordinates are. The .msh is read back by Gmsh itself (gmsh::open) and its
-// views compared value by value.
+// wedge6, wedge15; Gmsh node order of solid/mesh.hpp). The VTU is read back (its compressed
+// binary arrays decoded by the test itself) and its cells are checked against the VTK
+// documentation's node order (vtkQuadraticTetra, vtkQuadraticHexahedron, vtkQuadraticWedge class
+// docs): every VTK mid-edge node must be the midpoint of the corners of the edge VTK lists for it,
+// and the corners must be oriented as VTK's parametric coordinates are. The .msh is read back by
+// Gmsh itself (gmsh::open) and its views compared value by value.
 #include <fmt/format.h>
 #include <gmsh.h>
 #include <gtest/gtest.h>
+#include <zlib.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -84,17 +87,65 @@ std::string read_text(const fs::path& path) {
   return s.str();
 }
 
-/// Numbers of the DataArray whose opening tag contains `marker`.
+/// The attribute `name` of the XML tag starting at `tag` ("" when absent).
+std::string attribute(const std::string& xml, std::size_t tag, const std::string& name) {
+  const std::size_t end = xml.find('>', tag);
+  const std::size_t at = xml.find(" " + name + "=\"", tag);
+  if (at == std::string::npos || at > end) return "";
+  const std::size_t begin = at + name.size() + 3;
+  return xml.substr(begin, xml.find('"', begin) - begin);
+}
+
+/// Numbers of the DataArray whose opening tag contains `marker`, decoded from the appended
+/// data as the VTK XML format defines it (independently of the writer): header_type UInt64,
+/// vtkZLibDataCompressor header [blocks, block size, last block size, compressed sizes...],
+/// then the zlib blocks, little-endian values of the array's type.
 std::vector<double> data_array(const std::string& xml, const std::string& marker) {
   std::size_t at = xml.find(marker);
   EXPECT_NE(at, std::string::npos) << marker;
   if (at == std::string::npos) return {};
-  if (marker.front() == '<') at = xml.find("<DataArray", at);  // a section: its first array
-  const std::size_t begin = xml.find('>', at) + 1;
-  const std::size_t end = xml.find("</DataArray>", begin);
-  std::istringstream in(xml.substr(begin, end - begin));
+  at = marker.front() == '<' ? xml.find("<DataArray", at)  // a section: its first array
+                             : xml.rfind("<DataArray", at);
+  EXPECT_EQ(attribute(xml, at, "format"), "appended");
+  const std::string type = attribute(xml, at, "type");
+  const std::size_t offset = std::stoul(attribute(xml, at, "offset"));
+  const std::size_t base = xml.find('_', xml.find("<AppendedData encoding=\"raw\">")) + 1;
+  const unsigned char* p = reinterpret_cast<const unsigned char*>(xml.data()) + base + offset;
+  auto u64 = [&](std::size_t k) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, p + 8 * k, 8);
+    return static_cast<std::size_t>(v);
+  };
+  const std::size_t blocks = u64(0), block = u64(1), last = u64(2);
+  std::string raw;
+  std::size_t position = 8 * (3 + blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    uLongf size = static_cast<uLongf>(b + 1 == blocks && last != 0 ? last : block);
+    std::string chunk(size, '\0');
+    EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(chunk.data()), &size, p + position,
+                         static_cast<uLong>(u64(3 + b))),
+              Z_OK);
+    raw += chunk;
+    position += u64(3 + b);
+  }
   std::vector<double> out;
-  for (double v; in >> v;) out.push_back(v);
+  auto read = [&](auto zero) {
+    for (std::size_t i = 0; i + sizeof(zero) <= raw.size(); i += sizeof(zero)) {
+      decltype(zero) v;
+      std::memcpy(&v, raw.data() + i, sizeof(v));
+      out.push_back(static_cast<double>(v));
+    }
+  };
+  if (type == "Float64")
+    read(double{});
+  else if (type == "Int64")
+    read(std::int64_t{});
+  else if (type == "Int32")
+    read(std::int32_t{});
+  else if (type == "UInt8")
+    read(std::uint8_t{});
+  else
+    ADD_FAILURE() << "unexpected type " << type;
   return out;
 }
 
@@ -163,7 +214,7 @@ TEST(VtuWriter, CellsFollowTheVtkNodeOrder) {
     EXPECT_GT(n.dot(x[type == 12 || type == 25 ? 4 : 3] - x[0]), 0.0) << "VTK type " << type;
   }
 
-  // Point data read back exactly (shortest round-trip formatting).
+  // Point data read back exactly (binary: the very doubles).
   const std::vector<double> re = data_array(xml, "Name=\"mode_1_re\"");
   EXPECT_EQ(re, fields[0].values);
   EXPECT_EQ(data_array(xml, "Name=\"amplitude\""), fields[1].values);
@@ -172,6 +223,32 @@ TEST(VtuWriter, CellsFollowTheVtkNodeOrder) {
   // No temporary file left behind.
   for (const auto& entry : fs::directory_iterator(path.parent_path()))
     EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos);
+}
+
+// A field larger than one compression block (32 KiB): 12 000 nodes x 3 doubles = 288 000 bytes,
+// nine blocks, the last one partial.
+TEST(VtuWriter, LargeArraysSpanSeveralCompressedBlocks) {
+  solid::Mesh mesh;
+  mesh.materials = {{"steel", 1, 210e9, 0.3, 7850, {}}};
+  const std::vector<Eigen::Vector3d> tet{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int k = 0; k < 3000; ++k) {
+    std::vector<Eigen::Vector3d> x = tet;
+    for (Eigen::Vector3d& p : x) p += Eigen::Vector3d(2.0 * k, 0.0, 0.0);
+    add_element(mesh, ElementType::Tet4, x, 0);
+  }
+  Field u{"displacement", 3, {}};
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    u.values.insert(u.values.end(), {std::sin(0.01 * i), std::cos(0.02 * i), 1e-3 * i});
+  const fs::path path = scratch("large.vtu");
+  write_vtu(path, mesh, {u});
+  const std::string xml = read_text(path);
+  EXPECT_EQ(data_array(xml, "Name=\"displacement\""), u.values);
+  const std::vector<double> connectivity = data_array(xml, "Name=\"connectivity\"");
+  ASSERT_EQ(connectivity.size(), 12000u);
+  for (std::size_t i = 0; i < connectivity.size(); ++i)
+    ASSERT_EQ(connectivity[i], static_cast<double>(i));
+  // Compressed: far smaller than the ASCII it replaces (~1 MB here).
+  EXPECT_LT(fs::file_size(path), 400000u);
 }
 
 TEST(VtuWriter, SeriesWritesOneFilePerStateAndACollection) {

@@ -41,11 +41,18 @@ void add_shape_files(AnalysisOutput& out, std::shared_ptr<const solid::Mesh> mes
   auto times = std::make_shared<const std::vector<double>>(std::move(frequencies));
   out.files.push_back(
       {stem + ".pvd",
-       fmt::format("{} for ParaView: a .pvd collection of {}_<k>.vtu files, time = frequency [Hz]",
+       fmt::format("{} for ParaView: a .pvd collection of {}_<k>.vtu files (binary, compressed), "
+                   "array 'mode_shape', time = frequency [Hz]",
                    what, stem),
        [mesh, shared_fields, times](const std::filesystem::path& path) {
+         // One array name in every step ("mode_shape"), so that ParaView filters set on it
+         // (Warp By Vector) keep working while stepping through the modes; the step's time is
+         // the frequency. The Gmsh views below keep one name per mode.
          std::vector<std::vector<meshio::Field>> states;
-         for (const auto& f : *shared_fields) states.push_back({f});
+         for (const auto& f : *shared_fields) {
+           states.push_back({f});
+           states.back().front().name = "mode_shape";
+         }
          meshio::write_vtu_series(path, *mesh, states, *times);
        }});
   out.files.push_back({stem + ".msh", fmt::format("{} as Gmsh post-processing views", what),

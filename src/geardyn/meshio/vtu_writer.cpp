@@ -2,11 +2,15 @@
 
 #include <fmt/format.h>
 #include <unistd.h>
+#include <zlib.h>
 
+#include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <stdexcept>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/text.hpp"
@@ -116,71 +120,105 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 
 namespace {
 
+static_assert(std::endian::native == std::endian::little,
+              "the VTU writer stores arrays in the machine's byte order, declared LittleEndian");
+
+// The appended-data block of a VTU file: arrays one after the other, each zlib-compressed in
+// blocks with its header; add() returns the array's offset for its DataArray element.
+class AppendedData {
+ public:
+  template <class T>
+  std::size_t add(const std::vector<T>& values) {
+    return add_bytes(reinterpret_cast<const unsigned char*>(values.data()),
+                     values.size() * sizeof(T));
+  }
+  const std::string& bytes() const { return data_; }
+
+ private:
+  static constexpr std::size_t kBlock = 32768;
+  std::size_t add_bytes(const unsigned char* bytes, std::size_t size) {
+    const std::size_t offset = data_.size();
+    const std::size_t blocks = (size + kBlock - 1) / kBlock;
+    // As VTK writes it: the last block's size is 0 when that block is full.
+    std::vector<std::uint64_t> header{blocks, kBlock, size % kBlock};
+    std::string compressed;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::size_t n = std::min(kBlock, size - b * kBlock);
+      uLongf length = compressBound(static_cast<uLong>(n));
+      std::string block(length, '\0');
+      if (compress2(reinterpret_cast<Bytef*>(block.data()), &length, bytes + b * kBlock,
+                    static_cast<uLong>(n), Z_DEFAULT_COMPRESSION) != Z_OK)
+        throw std::runtime_error("VTU output: zlib compression failed");
+      header.push_back(length);
+      compressed.append(block.data(), length);
+    }
+    data_.append(reinterpret_cast<const char*>(header.data()),
+                 header.size() * sizeof(std::uint64_t));
+    data_ += compressed;
+    return offset;
+  }
+  std::string data_;
+};
+
+template <class T>
+void data_array(fmt::memory_buffer& b, AppendedData& appended, const char* type,
+                const std::string& name, int components, const std::vector<T>& values) {
+  fmt::format_to(std::back_inserter(b),
+                 "<DataArray type=\"{}\"{}{} format=\"appended\" offset=\"{}\"/>\n", type,
+                 name.empty() ? "" : fmt::format(" Name=\"{}\"", escape_xml(name)),
+                 components > 1 ? fmt::format(" NumberOfComponents=\"{}\"", components) : "",
+                 appended.add(values));
+}
+
 std::string vtu_text(const solid::Mesh& mesh, const std::vector<Field>& fields) {
   fmt::memory_buffer b;
   auto out = std::back_inserter(b);
+  AppendedData appended;
   fmt::format_to(out,
                  "<?xml version=\"1.0\"?>\n"
                  "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-                 "header_type=\"UInt64\">\n"
+                 "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
                  "<UnstructuredGrid>\n"
                  "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
                  mesh.num_nodes(), mesh.num_elements());
 
   fmt::format_to(out, "<PointData>\n");
-  for (const Field& f : fields) {
-    fmt::format_to(out,
-                   "<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" "
-                   "format=\"ascii\">\n",
-                   escape_xml(f.name), f.num_components);
-    // Shortest representation that reads back to the same double.
-    for (std::size_t i = 0; i < f.values.size(); ++i)
-      fmt::format_to(out, "{}{}", f.values[i],
-                     (i + 1) % static_cast<std::size_t>(f.num_components) == 0 ? '\n' : ' ');
-    fmt::format_to(out, "</DataArray>\n");
-  }
-  fmt::format_to(out, "<DataArray type=\"Int64\" Name=\"node_id\" format=\"ascii\">\n");
+  for (const Field& f : fields)
+    data_array(b, appended, "Float64", f.name, f.num_components, f.values);
+  std::vector<std::int64_t> node_id(static_cast<std::size_t>(mesh.num_nodes()));
   for (int i = 0; i < mesh.num_nodes(); ++i)
-    fmt::format_to(out, "{}\n",
-                   i < static_cast<int>(mesh.node_ids.size()) ? mesh.node_ids[i] : i + 1L);
-  fmt::format_to(out, "</DataArray>\n</PointData>\n");
-
-  fmt::format_to(out,
-                 "<CellData>\n<DataArray type=\"Int32\" Name=\"material\" format=\"ascii\">\n");
-  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", e.material);
-  fmt::format_to(out,
-                 "</DataArray>\n<DataArray type=\"Int64\" Name=\"element_id\" format=\"ascii\">\n");
-  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", e.id);
-  fmt::format_to(out, "</DataArray>\n</CellData>\n");
-
-  fmt::format_to(out,
-                 "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
-                 "format=\"ascii\">\n");
-  for (const Eigen::Vector3d& x : mesh.coords)
-    fmt::format_to(out, "{} {} {}\n", x.x(), x.y(), x.z());
-  fmt::format_to(out, "</DataArray>\n</Points>\n");
-
-  fmt::format_to(out,
-                 "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
-                 "format=\"ascii\">\n");
+    node_id[static_cast<std::size_t>(i)] = i < static_cast<int>(mesh.node_ids.size())
+                                               ? mesh.node_ids[static_cast<std::size_t>(i)]
+                                               : i + 1L;
+  data_array(b, appended, "Int64", "node_id", 1, node_id);
+  fmt::format_to(out, "</PointData>\n<CellData>\n");
+  std::vector<std::int32_t> material;
+  std::vector<std::int64_t> element_id, connectivity, offsets;
+  std::vector<std::uint8_t> types;
   for (const solid::Element& e : mesh.elements) {
-    const std::vector<int>& order = vtk_order(e.type);
-    for (std::size_t i = 0; i < order.size(); ++i)
-      fmt::format_to(out, "{}{}", e.nodes[static_cast<std::size_t>(order[i])],
-                     i + 1 == order.size() ? '\n' : ' ');
+    material.push_back(e.material);
+    element_id.push_back(e.id);
+    for (int k : vtk_order(e.type)) connectivity.push_back(e.nodes[static_cast<std::size_t>(k)]);
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    types.push_back(static_cast<std::uint8_t>(vtk_cell_type(e.type)));
   }
+  data_array(b, appended, "Int32", "material", 1, material);
+  data_array(b, appended, "Int64", "element_id", 1, element_id);
+  fmt::format_to(out, "</CellData>\n<Points>\n");
+  std::vector<double> points;
+  points.reserve(3 * mesh.coords.size());
+  for (const Eigen::Vector3d& x : mesh.coords) points.insert(points.end(), {x.x(), x.y(), x.z()});
+  data_array(b, appended, "Float64", "", 3, points);
+  fmt::format_to(out, "</Points>\n<Cells>\n");
+  data_array(b, appended, "Int64", "connectivity", 1, connectivity);
+  data_array(b, appended, "Int64", "offsets", 1, offsets);
+  data_array(b, appended, "UInt8", "types", 1, types);
   fmt::format_to(out,
-                 "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" "
-                 "format=\"ascii\">\n");
-  long offset = 0;
-  for (const solid::Element& e : mesh.elements) {
-    offset += solid::num_element_nodes(e.type);
-    fmt::format_to(out, "{}\n", offset);
-  }
-  fmt::format_to(out, "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-  for (const solid::Element& e : mesh.elements) fmt::format_to(out, "{}\n", vtk_cell_type(e.type));
-  fmt::format_to(out, "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-  return fmt::to_string(b);
+                 "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
+  std::string text = fmt::to_string(b);
+  text += appended.bytes();
+  text += "\n</AppendedData>\n</VTKFile>\n";
+  return text;
 }
 
 }  // namespace
