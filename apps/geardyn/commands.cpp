@@ -188,10 +188,12 @@ int command_run(const RunOptions& options, int argc, char** argv) {
     std::fprintf(stderr, "note: kept '%s' in the results folder (not written by geardyn)\n",
                  kept.c_str());
   auto keep = [&](const AnalysisOutput& out) {
+    progress->start(fmt::format("{}: writing results", out.name), 0);  // VTU series take a while
     writer->add(out);
     std::erase(not_run, out.name);
     info.not_run = not_run;
     writer->add_report(report::render_html(info, outputs));
+    progress->finish();
   };
   if (build_failed) keep(outputs.back());
   for (std::size_t i = 0; !build_failed && i < selected.size(); ++i) {

@@ -459,7 +459,13 @@ AnalysisOutput cyclic_modal_output(const model::Model& model, const CyclicModalS
   out.plots.push_back(nd_plot(r.modes));
   if (!s.speeds.empty()) add_campbell(out, c.sectors, s, r.modes);
   if (s.compare_full) add_comparison(out, c, r.full);
-  if (c.has_mesh() && s.shapes > 0) add_wheel_shapes(out, c, s, r);
+  if (c.has_mesh() && s.shapes > 0) {
+    // Expanding every shape around the wheel takes tens of seconds on a fine sector: shown.
+    Progress& progress = context.progress();
+    progress.start(fmt::format("{}: full-wheel mode shapes", context.name()), 0);
+    add_wheel_shapes(out, c, s, r);
+    progress.finish();
+  }
   return out;
 }
 
