@@ -201,19 +201,24 @@ class Tracker {
 
 SpeedSolve Tracker::solve(double speed) {
   const eig::QuadraticPencil pencil = assembly::pencil_at(system_, speed);
-  const double rigid = rigid_body_limit(system_, speed);
+  const RigidBodyTest rigid(system_, speed, &pencil);
   eig::QuadraticEigenOptions qo;
   qo.method = to_eig_method(settings_.method);
   qo.start = start_vector_;
   eig::QuadraticEigenResult cx;
+  std::vector<Mode> modes;
   int found_rigid = 0;
   for (int attempt = 0; attempt < 2; ++attempt) {
     qo.n_modes = n_candidates_ + rigid_roots_;
     cx = eig::solve_quadratic(pencil, qo);
     result_.total_operations += cx.operations;
+    modes.clear();
     found_rigid = 0;
-    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
-      if (std::norm(cx.eigenvalues[j]) <= rigid) ++found_rigid;
+    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
+      modes.push_back(describe_mode(system_, cx.eigenvalues[j], cx.eigenvectors.col(j),
+                                    cx.residuals[j], speed, rigid));
+      if (modes.back().rigid_body) ++found_rigid;
+    }
     if (found_rigid <= rigid_roots_) break;
     rigid_roots_ = found_rigid;  // one more solve with room for the rigid-body roots
   }
@@ -229,11 +234,10 @@ SpeedSolve Tracker::solve(double speed) {
   out.message = cx.message;
   if (cx.method_used == eig::Method::Sparse) start_vector_ = eig::start_vector(cx);
 
-  for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
-    if (std::norm(cx.eigenvalues[j]) <= rigid) continue;
-    out.candidates.push_back(describe_mode(system_, cx.eigenvalues[j], cx.eigenvectors.col(j),
-                                           cx.residuals[j], speed, rigid));
-    result_.max_residual = std::max(result_.max_residual, cx.residuals[j]);
+  for (Mode& m : modes) {
+    if (m.rigid_body) continue;
+    result_.max_residual = std::max(result_.max_residual, m.residual);
+    out.candidates.push_back(std::move(m));
   }
   return out;
 }

@@ -41,12 +41,76 @@ double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
   return std::norm(a.dot(b)) / (na * nb);
 }
 
-double rigid_body_limit(const fe::LinearSystem& system, double speed) {
-  const Eigen::VectorXd kd = system.K_at(speed).diagonal(), md = system.M.diagonal();
-  double largest = 0.0;
-  for (Eigen::Index i = 0; i < kd.size(); ++i)
-    if (md[i] > 0.0) largest = std::max(largest, std::abs(kd[i]) / md[i]);
-  return 1e-10 * largest;
+Eigen::MatrixXd rigid_body_candidates(const fe::DofMap& dofs) {
+  const int n = dofs.num_dofs();
+  int n_shafts = 0;
+  for (const auto& node : dofs.nodes()) n_shafts = std::max(n_shafts, node.shaft + 1);
+  // Sets: the whole model (-2), each shaft (0 .. n_shafts - 1), nodes on no shaft (-1).
+  std::vector<int> sets = {-2, -1};
+  for (int s = 0; s < n_shafts; ++s) sets.push_back(s);
+  std::vector<Eigen::VectorXd> columns;
+  auto in_set = [](const fe::NodeInfo& node, int set) { return set == -2 || node.shaft == set; };
+  auto put = [&](Eigen::VectorXd& v, int k, const Eigen::Vector3d& u, const Eigen::Vector3d& r) {
+    const auto eq = dofs.node_dofs(k);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (eq[c] >= 0) v[eq[c]] = u[static_cast<Eigen::Index>(c)];
+      if (eq[c + 3] >= 0) v[eq[c + 3]] = r[static_cast<Eigen::Index>(c)];
+    }
+  };
+  for (int set : sets) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const auto& node : dofs.nodes())
+      if (in_set(node, set)) {
+        centroid += node.position;
+        ++count;
+      }
+    if (count == 0) continue;
+    centroid /= count;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d a = Eigen::Vector3d::Unit(axis);
+      Eigen::VectorXd translation = Eigen::VectorXd::Zero(n), rotation = Eigen::VectorXd::Zero(n);
+      for (int k = 0; k < dofs.num_nodes(); ++k) {
+        const fe::NodeInfo& node = dofs.node(k);
+        if (!in_set(node, set)) continue;
+        const Eigen::Matrix3d Ft = node.frame.transpose();
+        put(translation, k, Ft * a, Eigen::Vector3d::Zero());
+        put(rotation, k, Ft * a.cross(node.position - centroid), Ft * a);
+      }
+      columns.push_back(std::move(translation));
+      columns.push_back(std::move(rotation));
+    }
+    Eigen::VectorXd spin = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < dofs.num_nodes(); ++k)
+      if (in_set(dofs.node(k), set))
+        put(spin, k, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+    columns.push_back(std::move(spin));
+  }
+  Eigen::VectorXd train = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < dofs.num_nodes(); ++k)
+    put(train, k, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, dofs.node(k).speed_ratio));
+  columns.push_back(std::move(train));
+  Eigen::MatrixXd candidates(n, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    candidates.col(static_cast<Eigen::Index>(c)) = columns[c];
+  return candidates;
+}
+
+RigidBodyTest::RigidBodyTest(const fe::LinearSystem& system, double speed,
+                             const eig::QuadraticPencil* pencil)
+    : system_(&system),
+      pencil_(pencil),
+      space_(eig::rigid_body_space(system.K_at(speed), system.M,
+                                   rigid_body_candidates(system.dofs))) {}
+
+bool RigidBodyTest::operator()(std::complex<double> lambda, const Eigen::VectorXcd& shape) const {
+  if (space_.dimension() == 0) return false;
+  if (eig::rigid_body_fraction(space_, system_->M, shape) < kRigidEnergyFraction) return false;
+  if (pencil_ == nullptr) return true;
+  const std::complex<double> m = shape.dot(system_->M * shape);
+  const std::complex<double> d = shape.dot(pencil_->apply_damping(shape));
+  const std::complex<double> lambda_d = std::abs(m) > 0.0 ? -d / m : 0.0;
+  return std::abs(lambda - lambda_d) >= 0.5 * std::abs(lambda);
 }
 
 ModeKind mode_kind(const fe::ModeFamilies& f) {
@@ -98,7 +162,7 @@ Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& sh
 
 Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
                    const Eigen::VectorXcd& shape, double residual, double speed,
-                   double rigid_limit) {
+                   const RigidBodyTest& rigid) {
   Mode m;
   m.eigenvalue = lambda;
   m.shape = shape;
@@ -109,7 +173,7 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
     m.shape /= shape[imax];
   }
   m.residual = residual;
-  m.rigid_body = std::norm(lambda) <= rigid_limit;
+  m.rigid_body = rigid(lambda, m.shape);
   if (m.rigid_body) {
     m.frequency_hz = 0.0;
     m.damped_frequency_hz = 0.0;
@@ -120,7 +184,7 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
     m.damping_ratio = eig::damping_ratio(lambda);
   }
   m.families = fe::mode_families(system, m.shape);
-  m.kind = mode_kind(m.families);
+  m.kind = m.rigid_body ? ModeKind::Rigid : mode_kind(m.families);
   m.whirl = m.rigid_body ? Whirl::None : whirl_direction(system, m.shape, lambda, speed);
   return m;
 }
@@ -158,7 +222,6 @@ ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settin
   result.speed = settings.speed;
   result.complex_requested = settings.complex_modes;
   progress.start("modal", settings.complex_modes ? 2 : 1);
-  const double rigid = rigid_body_limit(system, settings.speed);
 
   // Undamped, non-gyroscopic modes with the stiffness at the analysis speed.
   eig::SymmetricEigenOptions so;
@@ -167,13 +230,14 @@ ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settin
   if (settings.shift > 0.0) so.shift = settings.shift * settings.shift;
   const eig::SymmetricEigenResult real =
       eig::solve_symmetric(system.K_at(settings.speed), system.M, so);
+  const RigidBodyTest rigid_undamped(system, settings.speed);
   result.undamped_report = real.brief_report();
   result.stiffness_asymmetry = real.asymmetry;
   for (Eigen::Index j = 0; j < real.eigenvalues.size(); ++j) {
     const double omega = std::sqrt(std::max(real.eigenvalues[j], 0.0));
     result.undamped.push_back(describe_mode(system, {0.0, omega},
                                             real.eigenvectors.col(j).cast<std::complex<double>>(),
-                                            real.residuals[j], settings.speed, rigid));
+                                            real.residuals[j], settings.speed, rigid_undamped));
   }
   Status status = real.status;
   std::string message = real.status == Status::Ok ? "" : "undamped modes: " + real.message;
@@ -184,8 +248,9 @@ ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settin
     qo.n_modes = settings.n_modes;
     qo.method = to_eig_method(settings.method);
     if (settings.shift > 0.0) qo.target = {0.0, settings.shift};
-    const eig::QuadraticEigenResult cx =
-        eig::solve_quadratic(assembly::pencil_at(system, settings.speed), qo);
+    const eig::QuadraticPencil pencil = assembly::pencil_at(system, settings.speed);
+    const eig::QuadraticEigenResult cx = eig::solve_quadratic(pencil, qo);
+    const RigidBodyTest rigid(system, settings.speed, &pencil);
     result.complex_report = cx.brief_report();
     for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
       result.complex.push_back(describe_mode(system, cx.eigenvalues[j], cx.eigenvectors.col(j),
@@ -432,7 +497,10 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& /*se
   out.notes.push_back(
       "Whirl: orbit sense at the node with the largest lateral amplitude relative to its spin; "
       "'none' for real roots, non-lateral modes and straight-line orbits. Kind: energy fraction "
-      "above 0.8 in one DOF family, else coupled. Rigid-body modes are reported at 0 Hz.");
+      "above 0.8 in one DOF family, else coupled. Rigid-body roots (kind 'rigid') are reported "
+      "at 0 Hz: a root is rigid when 99 % of its kinetic energy lies in the rigid-body motions "
+      "(translations, rotations, spins) that the stiffness leaves unstrained and it is the zero "
+      "root of that motion; the test is on the shape, so it holds on any mesh.");
   return out;
 }
 
