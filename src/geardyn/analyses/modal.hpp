@@ -96,6 +96,8 @@ struct ModalResult {
   std::string undamped_report;  ///< solver's brief_report()
   std::string complex_report;
   double stiffness_asymmetry = 0;  ///< ||K - K^T|| / ||K||: undamped modes use (K + K^T) / 2
+  /// Set when n_modes asked for more modes than the model has: what was returned instead.
+  std::string fewer_modes_note;
   double run_time_s = 0;
   /// The modes the tables lead with: complex when computed, else undamped.
   const std::vector<Mode>& primary() const { return complex_requested ? complex : undamped; }
@@ -116,8 +118,18 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& sett
                             const ModalResult& result, const Context& context);
 
 /// Logarithmic decrement ln(x_k / x_{k+1}) of successive peaks of a free decay with damping
-/// ratio zeta: 2 pi zeta / sqrt(1 - zeta^2) (NaN for zeta >= 1: no oscillation).
+/// ratio zeta: 2 pi zeta / sqrt(1 - zeta^2) (NaN for |zeta| >= 1: a real root, no oscillation).
+/// Negative for a growing oscillation.
 double log_decrement(double damping_ratio);
+
+/// A mode counts as unstable when its damping ratio is below -kUnstableDampingRatio. The margin
+/// keeps rounding from calling an undamped mode unstable: the eigen-solves give |zeta| up to
+/// 2e-6 on undamped rotors of 6000 beam elements. A mode with -1e-5 < zeta < 0 grows by less
+/// than 0.01 % per cycle and is reported as neutral (stable "yes").
+inline constexpr double kUnstableDampingRatio = 1e-5;
+/// True for a mode that grows: not rigid and damping ratio below -kUnstableDampingRatio (an
+/// overdamped root with lambda > 0 has damping ratio -1).
+bool is_unstable(const Mode& mode);
 
 // ---------------------------------------------------------------------------------------------
 // Pieces shared with the Campbell analysis.
