@@ -396,6 +396,24 @@ TEST(CriticalSpeeds, RefinedOnACoarseGridToClosedForm) {
   ASSERT_EQ(cs.rows(), 2u);
   EXPECT_EQ(cs.column("kind").texts[0], "lateral_backward");
   EXPECT_EQ(cs.column("kind").texts[1], "torsional");
+
+  // refine_crossings = false: the linear interpolation of g = w_b(W) - W between the grid
+  // speeds 400 and 800 rad/s (exact arithmetic on the closed form, to the 1e-12 of the
+  // eigenvalues at the grid speeds).
+  settings.refine_crossings = false;
+  const CampbellResult lin =
+      run_campbell(model, settings, Context("campbell").with_system(&system));
+  ASSERT_EQ(lin.critical_speeds.size(), 2u);
+  EXPECT_EQ(lin.refinement_solves, 0);
+  EXPECT_FALSE(lin.critical_speeds[0].refined);
+  auto w_b = [](double W) {
+    const double a = 0.04 * W;
+    return (-a + std::sqrt(a * a + 4 * 0.02 * 2e4)) / (2 * 0.02);
+  };
+  const double ga = w_b(400.0) - 400.0, gb = w_b(800.0) - 800.0;
+  const double linear = 400.0 + 400.0 * ga / (ga - gb);
+  EXPECT_NEAR(lin.critical_speeds[0].speed, linear, 1e-9 * linear);
+  EXPECT_GT(std::abs(linear - backward), 1e-3 * backward);  // what the refinement gains here
 }
 
 // n_modes above what the model has (a 2-DOF Jeffcott rotor, 8 asked): the modes that exist are

@@ -370,6 +370,8 @@ class RootProbe {
   RootProbe(const fe::LinearSystem& system, const CampbellSettings& settings, int& solves)
       : system_(system), settings_(settings), solves_(solves) {}
 
+  bool enabled() const { return settings_.refine_crossings; }
+
   bool at(double speed, std::complex<double> predicted, Mode& out) const {
     const eig::QuadraticPencil pencil = assembly::pencil_at(system_, speed);
     eig::QuadraticEigenOptions qo;
@@ -483,7 +485,7 @@ std::vector<CriticalSpeed> find_critical_speeds(const CampbellResult& result,
         cs.kind = w <= 0.5 ? a.kind : b.kind;
         cs.ambiguous = a.ambiguous || b.ambiguous;
         cs.refined = w == 0.0 || w == 1.0;  // on a grid speed: exact
-        if (!cs.refined) {
+        if (!cs.refined && probe.enabled()) {
           double root = cs.speed;
           Mode m;
           auto gm = [&](const Mode& mode, double speed) {
@@ -550,13 +552,14 @@ std::vector<InstabilityOnset> find_onsets(const CampbellResult& result, const Ro
       o.whirl = from.whirl;
       o.kind = from.kind;
       if (a != nullptr && a->damping_ratio > 0.0) {
-        // Linear estimate first, then the root on the eigenvalue curve.
+        // Linear estimate first, then (when enabled) the root on the eigenvalue curve.
         o.speed = a->speed +
                   a->damping_ratio / (a->damping_ratio - b.damping_ratio) * (b.speed - a->speed);
         double root = o.speed;
         Mode m;
         auto zeta = [](const Mode& mode, double) { return mode.damping_ratio; };
-        if (refine_root(probe, {a->speed, a->eigenvalue, a->damping_ratio},
+        if (probe.enabled() &&
+            refine_root(probe, {a->speed, a->eigenvalue, a->damping_ratio},
                         {b.speed, b.eigenvalue, b.damping_ratio}, zeta, root, m)) {
           o.refined = true;
           o.speed = root;
@@ -874,16 +877,24 @@ std::vector<std::string> campbell_notes(const CampbellResult& result) {
       result.ambiguous_points, result.speeds.size() * result.tracks.size()));
   int unrefined = 0;
   for (const auto& c : result.critical_speeds) unrefined += c.refined ? 0 : 1;
-  notes.push_back(fmt::format(
-      "Critical speeds: roots of f(Omega) - order Omega / 2pi found on the eigenvalue curve "
-      "between the grid speeds (regula falsi, {} extra eigen-solves), to about 1e-12 relative "
-      "whatever the grid{}. Column kind: lateral_forward / lateral_backward / torsional / axial / "
-      "coupled. Frequencies are |lambda|/2pi.",
-      result.refinement_solves,
-      unrefined > 0 ? fmt::format("; {} could not be followed between grid speeds (another mode "
-                                  "too close) and are linear interpolations (refined = 0)",
-                                  unrefined)
-                    : std::string()));
+  if (result.refinement_solves == 0 && !result.critical_speeds.empty() &&
+      std::none_of(result.critical_speeds.begin(), result.critical_speeds.end(),
+                   [](const CriticalSpeed& c) { return c.refined; }))
+    notes.push_back(
+        "Critical speeds: linear interpolation of f(Omega) - order Omega / 2pi between speeds "
+        "(refinement off); their accuracy is that of the speed grid.");
+  else
+    notes.push_back(fmt::format(
+        "Critical speeds: roots of f(Omega) - order Omega / 2pi found on the eigenvalue curve "
+        "between the grid speeds (regula falsi, {} extra eigen-solves), to about 1e-12 relative "
+        "whatever the grid{}. Column kind: lateral_forward / lateral_backward / torsional / axial "
+        "/ "
+        "coupled. Frequencies are |lambda|/2pi.",
+        result.refinement_solves,
+        unrefined > 0 ? fmt::format("; {} could not be followed between grid speeds (another mode "
+                                    "too close) and are linear interpolations (refined = 0)",
+                                    unrefined)
+                      : std::string()));
   if (!result.fewer_modes_note.empty()) notes.push_back(result.fewer_modes_note + ".");
   if (!result.onsets.empty()) {
     std::string list;

@@ -23,6 +23,10 @@ struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   bool shaft_orders = true;                   ///< add order 1 of every shaft (x its speed ratio)
   bool mesh_orders = true;                    ///< add teeth x shaft order of every mesh with teeth
   double mac_threshold = 0.7;                 ///< below this a tracking step is flagged ambiguous
+  /// Refine critical speeds and instability onsets by eigen-solves between the grid speeds
+  /// (false: linear interpolation on the grid). Not a model key yet (adding one needs the
+  /// regenerated model reference); set by library callers.
+  bool refine_crossings = true;
   EigenMethod method = EigenMethod::Auto;
 };
 
