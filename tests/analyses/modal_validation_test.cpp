@@ -58,9 +58,10 @@ TEST(Modal, JeffcottRotorMatchesClosedForm) {
   EXPECT_EQ(out.type, "modal");
   EXPECT_EQ(out.status, Status::Ok);
   const Table& modes = table(out, "modes");
-  EXPECT_EQ(column_names(modes), (std::vector<std::string>{
-                                     "mode", "frequency_hz", "damped_frequency_hz", "damping_ratio",
-                                     "real", "imag", "whirl", "kind", "residual"}));
+  EXPECT_EQ(column_names(modes),
+            (std::vector<std::string>{"mode", "frequency_hz", "damped_frequency_hz",
+                                      "damping_ratio", "log_decrement", "stable", "real", "imag",
+                                      "whirl", "kind", "residual"}));
   EXPECT_NO_THROW(modes.validate());
   EXPECT_EQ(modes.rows(), 2u);
   EXPECT_NEAR(modes.column("frequency_hz").numbers[0], 50.32921210448704, 1e-9);

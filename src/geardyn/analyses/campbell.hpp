@@ -23,6 +23,10 @@ struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   bool shaft_orders = true;                   ///< add order 1 of every shaft (x its speed ratio)
   bool mesh_orders = true;                    ///< add teeth x shaft order of every mesh with teeth
   double mac_threshold = 0.7;                 ///< below this a tracking step is flagged ambiguous
+  /// Refine critical speeds and instability onsets by eigen-solves between the grid speeds
+  /// (false: linear interpolation on the grid). Not a model key yet (adding one needs the
+  /// regenerated model reference); set by library callers.
+  bool refine_crossings = true;
   EigenMethod method = EigenMethod::Auto;
 };
 
@@ -57,8 +61,28 @@ struct CriticalSpeed {
   double frequency_hz = eig::kNaN;
   double damping_ratio = eig::kNaN;
   Whirl whirl = Whirl::None;
-  bool ambiguous = false;  ///< the track was ambiguous at either neighbouring speed
+  ModeKind kind = ModeKind::Coupled;  ///< of the mode at the critical speed
+  bool ambiguous = false;             ///< the track was ambiguous at either neighbouring speed
+  /// Located by root-finding on the eigenvalue curve (false: linear interpolation between the
+  /// grid speeds, when no unambiguous root could be followed between them).
+  bool refined = false;
 };
+
+/// A speed at which a tracked mode's damping ratio crosses zero downwards (it becomes unstable).
+struct InstabilityOnset {
+  int mode = 0;              ///< 1-based track
+  double speed = eig::kNaN;  ///< [rad/s]
+  double frequency_hz = eig::kNaN;
+  Whirl whirl = Whirl::None;
+  ModeKind kind = ModeKind::Coupled;
+  bool refined = false;         ///< root of zeta(Omega) = 0 found between grid speeds
+  bool at_first_speed = false;  ///< unstable already at the first speed: onset at or below it
+  double min_damping_ratio = eig::kNaN;  ///< lowest damping ratio of the track over the grid
+  double speed_of_min = eig::kNaN;       ///< [rad/s] where that lowest value is
+};
+
+/// True when a track point's damping ratio is below -kUnstableDampingRatio.
+bool is_unstable(const TrackPoint& point);
 
 struct CampbellResult {
   Status status = Status::Failed;
@@ -67,6 +91,9 @@ struct CampbellResult {
   std::vector<std::vector<TrackPoint>> tracks;  ///< tracks[t][i]: track t at speeds[i]
   std::vector<EngineOrderLine> lines;
   std::vector<CriticalSpeed> critical_speeds;  ///< ordered by speed
+  std::vector<InstabilityOnset> onsets;        ///< ordered by speed
+  int refinement_solves = 0;                   ///< eigen-solves between grid speeds
+  std::string fewer_modes_note;                ///< set when n_modes exceeds the modes the model has
   int ambiguous_points = 0;
   int candidates_per_speed = 0;  ///< elastic modes computed per speed (tracks + spares)
   int rigid_body_roots = 0;      ///< roots at 0 Hz (rigid-body motion) left out of the tracking
@@ -102,9 +129,9 @@ CampbellResult run_campbell(const model::Model& model, const CampbellSettings& s
 AnalysisOutput campbell_output(const model::Model& model, const CampbellSettings& settings,
                                const CampbellResult& result, const Context& context);
 
-/// The lowest speed [rad/s] at which a tracked mode's damping ratio turns negative (linear
-/// interpolation between the speeds either side; the first speed when a mode is unstable
-/// there), NaN when every tracked mode stays stable over the speeds.
+/// The lowest speed [rad/s] at which a tracked mode becomes unstable: the lowest of
+/// result.onsets (root-refined where the damping ratio crosses zero between grid speeds; the
+/// first speed when a mode is unstable there), NaN when every tracked mode stays stable.
 double instability_onset_speed(const CampbellResult& result);
 
 }  // namespace geardyn::analyses

@@ -19,7 +19,9 @@ namespace {
 
 using units::kTwoPi;
 constexpr double kRpmPerRadS = 60.0 / kTwoPi;
-constexpr int kPlottedModes = 6;
+constexpr std::size_t kPlottedModes = 6;
+/// Modes with less lateral energy than this are left out of the lateral mode-shape plots.
+constexpr double kPlottedLateralFraction = 0.2;
 
 }  // namespace
 
@@ -41,12 +43,76 @@ double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
   return std::norm(a.dot(b)) / (na * nb);
 }
 
-double rigid_body_limit(const fe::LinearSystem& system, double speed) {
-  const Eigen::VectorXd kd = system.K_at(speed).diagonal(), md = system.M.diagonal();
-  double largest = 0.0;
-  for (Eigen::Index i = 0; i < kd.size(); ++i)
-    if (md[i] > 0.0) largest = std::max(largest, std::abs(kd[i]) / md[i]);
-  return 1e-10 * largest;
+Eigen::MatrixXd rigid_body_candidates(const fe::DofMap& dofs) {
+  const int n = dofs.num_dofs();
+  int n_shafts = 0;
+  for (const auto& node : dofs.nodes()) n_shafts = std::max(n_shafts, node.shaft + 1);
+  // Sets: the whole model (-2), each shaft (0 .. n_shafts - 1), nodes on no shaft (-1).
+  std::vector<int> sets = {-2, -1};
+  for (int s = 0; s < n_shafts; ++s) sets.push_back(s);
+  std::vector<Eigen::VectorXd> columns;
+  auto in_set = [](const fe::NodeInfo& node, int set) { return set == -2 || node.shaft == set; };
+  auto put = [&](Eigen::VectorXd& v, int k, const Eigen::Vector3d& u, const Eigen::Vector3d& r) {
+    const auto eq = dofs.node_dofs(k);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (eq[c] >= 0) v[eq[c]] = u[static_cast<Eigen::Index>(c)];
+      if (eq[c + 3] >= 0) v[eq[c + 3]] = r[static_cast<Eigen::Index>(c)];
+    }
+  };
+  for (int set : sets) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const auto& node : dofs.nodes())
+      if (in_set(node, set)) {
+        centroid += node.position;
+        ++count;
+      }
+    if (count == 0) continue;
+    centroid /= count;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d a = Eigen::Vector3d::Unit(axis);
+      Eigen::VectorXd translation = Eigen::VectorXd::Zero(n), rotation = Eigen::VectorXd::Zero(n);
+      for (int k = 0; k < dofs.num_nodes(); ++k) {
+        const fe::NodeInfo& node = dofs.node(k);
+        if (!in_set(node, set)) continue;
+        const Eigen::Matrix3d Ft = node.frame.transpose();
+        put(translation, k, Ft * a, Eigen::Vector3d::Zero());
+        put(rotation, k, Ft * a.cross(node.position - centroid), Ft * a);
+      }
+      columns.push_back(std::move(translation));
+      columns.push_back(std::move(rotation));
+    }
+    Eigen::VectorXd spin = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < dofs.num_nodes(); ++k)
+      if (in_set(dofs.node(k), set))
+        put(spin, k, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+    columns.push_back(std::move(spin));
+  }
+  Eigen::VectorXd train = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < dofs.num_nodes(); ++k)
+    put(train, k, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, dofs.node(k).speed_ratio));
+  columns.push_back(std::move(train));
+  Eigen::MatrixXd candidates(n, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    candidates.col(static_cast<Eigen::Index>(c)) = columns[c];
+  return candidates;
+}
+
+RigidBodyTest::RigidBodyTest(const fe::LinearSystem& system, double speed,
+                             const eig::QuadraticPencil* pencil)
+    : system_(&system),
+      pencil_(pencil),
+      space_(eig::rigid_body_space(system.K_at(speed), system.M,
+                                   rigid_body_candidates(system.dofs))) {}
+
+bool RigidBodyTest::operator()(std::complex<double> lambda, const Eigen::VectorXcd& shape) const {
+  if (space_.dimension() == 0) return false;
+  if (eig::rigid_body_fraction(space_, system_->M, shape) < kRigidEnergyFraction) return false;
+  if (pencil_ == nullptr) return true;
+  const std::complex<double> m = shape.dot(system_->M * shape);
+  const std::complex<double> d = shape.dot(pencil_->apply_damping(shape));
+  const std::complex<double> lambda_d = std::abs(m) > 0.0 ? -d / m : 0.0;
+  return std::abs(lambda - lambda_d) >= 0.5 * std::abs(lambda);
 }
 
 ModeKind mode_kind(const fe::ModeFamilies& f) {
@@ -98,7 +164,7 @@ Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& sh
 
 Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
                    const Eigen::VectorXcd& shape, double residual, double speed,
-                   double rigid_limit) {
+                   const RigidBodyTest& rigid) {
   Mode m;
   m.eigenvalue = lambda;
   m.shape = shape;
@@ -109,7 +175,7 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
     m.shape /= shape[imax];
   }
   m.residual = residual;
-  m.rigid_body = std::norm(lambda) <= rigid_limit;
+  m.rigid_body = rigid(lambda, m.shape);
   if (m.rigid_body) {
     m.frequency_hz = 0.0;
     m.damped_frequency_hz = 0.0;
@@ -120,7 +186,7 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
     m.damping_ratio = eig::damping_ratio(lambda);
   }
   m.families = fe::mode_families(system, m.shape);
-  m.kind = mode_kind(m.families);
+  m.kind = m.rigid_body ? ModeKind::Rigid : mode_kind(m.families);
   m.whirl = m.rigid_body ? Whirl::None : whirl_direction(system, m.shape, lambda, speed);
   return m;
 }
@@ -132,8 +198,12 @@ double ModalResult::max_residual() const {
   return r;
 }
 
+bool is_unstable(const Mode& mode) {
+  return !mode.rigid_body && mode.damping_ratio < -kUnstableDampingRatio;
+}
+
 double log_decrement(double damping_ratio) {
-  if (!(damping_ratio < 1.0)) return std::numeric_limits<double>::quiet_NaN();
+  if (!(std::abs(damping_ratio) < 1.0)) return std::numeric_limits<double>::quiet_NaN();
   return kTwoPi * damping_ratio / std::sqrt(1.0 - damping_ratio * damping_ratio);
 }
 
@@ -158,25 +228,37 @@ ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settin
   result.speed = settings.speed;
   result.complex_requested = settings.complex_modes;
   progress.start("modal", settings.complex_modes ? 2 : 1);
-  const double rigid = rigid_body_limit(system, settings.speed);
 
   // Undamped, non-gyroscopic modes with the stiffness at the analysis speed.
+  // More modes than DOFs cannot exist: the undamped problem has n, the quadratic one at most 2n
+  // roots (n pairs when all oscillate). Those that exist are returned with a note.
+  const int n = static_cast<int>(system.size());
   eig::SymmetricEigenOptions so;
-  so.n_modes = settings.n_modes;
+  so.n_modes = std::min(settings.n_modes, n);
   so.method = to_eig_method(settings.method);
   if (settings.shift > 0.0) so.shift = settings.shift * settings.shift;
   const eig::SymmetricEigenResult real =
       eig::solve_symmetric(system.K_at(settings.speed), system.M, so);
+  const RigidBodyTest rigid_undamped(system, settings.speed);
   result.undamped_report = real.brief_report();
   result.stiffness_asymmetry = real.asymmetry;
   for (Eigen::Index j = 0; j < real.eigenvalues.size(); ++j) {
     const double omega = std::sqrt(std::max(real.eigenvalues[j], 0.0));
     result.undamped.push_back(describe_mode(system, {0.0, omega},
                                             real.eigenvectors.col(j).cast<std::complex<double>>(),
-                                            real.residuals[j], settings.speed, rigid));
+                                            real.residuals[j], settings.speed, rigid_undamped));
   }
-  Status status = real.status;
-  std::string message = real.status == Status::Ok ? "" : "undamped modes: " + real.message;
+  // A dense solve computes every eigenvalue: fewer than asked is all the model has.
+  auto complete = [](Status st, eig::Method used) {
+    return st == Status::FewerModes && used == eig::Method::Dense;
+  };
+  Status status = complete(real.status, real.method_used) ? Status::Ok : real.status;
+  std::string message = status == Status::Ok ? "" : "undamped modes: " + real.message;
+  if (settings.n_modes > n || complete(real.status, real.method_used))
+    result.fewer_modes_note = fmt::format(
+        "n_modes = {} asks for more modes than the model has ({} unconstrained DOFs): {} undamped "
+        "modes are returned",
+        settings.n_modes, n, real.eigenvalues.size());
   progress.update(1);
 
   if (settings.complex_modes) {
@@ -184,13 +266,22 @@ ModalResult run_modal(const model::Model& /*model*/, const ModalSettings& settin
     qo.n_modes = settings.n_modes;
     qo.method = to_eig_method(settings.method);
     if (settings.shift > 0.0) qo.target = {0.0, settings.shift};
-    const eig::QuadraticEigenResult cx =
-        eig::solve_quadratic(assembly::pencil_at(system, settings.speed), qo);
+    const eig::QuadraticPencil pencil = assembly::pencil_at(system, settings.speed);
+    const eig::QuadraticEigenResult cx = eig::solve_quadratic(pencil, qo);
+    const RigidBodyTest rigid(system, settings.speed, &pencil);
     result.complex_report = cx.brief_report();
     for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j)
       result.complex.push_back(describe_mode(system, cx.eigenvalues[j], cx.eigenvectors.col(j),
                                              cx.residuals[j], settings.speed, rigid));
-    if (cx.status != Status::Ok) {
+    if (complete(cx.status, cx.method_used)) {
+      result.fewer_modes_note +=
+          fmt::format("{}{} complex modes exist (each conjugate pair once) and are returned",
+                      result.fewer_modes_note.empty()
+                          ? fmt::format("n_modes = {} asks for more modes than the model has: ",
+                                        settings.n_modes)
+                          : "; ",
+                      cx.eigenvalues.size());
+    } else if (cx.status != Status::Ok) {
       status = worse(status, cx.status);
       message += (message.empty() ? "" : "; ") + std::string("complex modes: ") + cx.message;
     }
@@ -241,8 +332,8 @@ Table modes_table(const ModalResult& r) {
   const bool cx = r.complex_requested;
   t.title = cx ? fmt::format("Complex modes at {:.6g} rpm", r.speed * kRpmPerRadS)
                : fmt::format("Undamped modes at {:.6g} rpm", r.speed * kRpmPerRadS);
-  std::vector<double> mode, f, fd, zeta, re, im, res;
-  std::vector<std::string> whirl, kind;
+  std::vector<double> mode, f, fd, zeta, delta, re, im, res;
+  std::vector<std::string> whirl, kind, stable;
   const auto& modes = r.primary();
   for (std::size_t i = 0; i < modes.size(); ++i) {
     const Mode& m = modes[i];
@@ -250,6 +341,8 @@ Table modes_table(const ModalResult& r) {
     f.push_back(m.frequency_hz);
     fd.push_back(m.damped_frequency_hz);
     zeta.push_back(m.damping_ratio);
+    delta.push_back(log_decrement(m.damping_ratio));
+    stable.emplace_back(is_unstable(m) ? "no" : "yes");
     re.push_back(m.eigenvalue.real());
     im.push_back(m.eigenvalue.imag());
     whirl.emplace_back(to_string(m.whirl));
@@ -260,6 +353,8 @@ Table modes_table(const ModalResult& r) {
   t.add("frequency_hz", "Hz", f);
   t.add("damped_frequency_hz", "Hz", fd);
   t.add("damping_ratio", "", zeta);
+  t.add("log_decrement", "", delta);
+  t.add_text("stable", stable);
   t.add("real", "rad/s", re);
   t.add("imag", "rad/s", im);
   t.add_text("whirl", whirl);
@@ -354,12 +449,19 @@ std::vector<Plot> shape_plots(const model::Model& model, const fe::LinearSystem&
     });
     Plot p;
     p.name = "mode_shapes_" + model.shafts[sh].name;
-    p.title = fmt::format("Lateral mode shapes along shaft '{}'", model.shafts[sh].name);
+    p.title = fmt::format(
+        "Lateral mode shapes along shaft '{}' (the first {} modes with at least {:.0f} % lateral "
+        "energy; rigid-body, torsional and axial modes are in the mode_shapes table)",
+        model.shafts[sh].name, kPlottedModes, 100 * kPlottedLateralFraction);
     p.x_label = "axial position [m]";
     p.y_label = "lateral amplitude sqrt(|ux|^2 + |uy|^2) [-]";
-    const std::size_t shown = std::min<std::size_t>(modes.size(), kPlottedModes);
-    for (std::size_t i = 0; i < shown; ++i) {
+    // Only modes that move laterally: a torsional, axial or rigid-body mode has a lateral
+    // amplitude made of rounding, which a per-mode normalisation would blow up to full height.
+    std::size_t shown = 0;
+    for (std::size_t i = 0; i < modes.size() && shown < kPlottedModes; ++i) {
       const Mode& m = modes[i];
+      if (m.rigid_body || m.families.lateral < kPlottedLateralFraction) continue;
+      ++shown;
       auto lateral = [&](int k) {
         const int ex = dofs.dof(k, model::Component::Ux), ey = dofs.dof(k, model::Component::Uy);
         return std::sqrt((ex >= 0 ? std::norm(m.shape[ex]) : 0.0) +
@@ -370,8 +472,9 @@ std::vector<Plot> shape_plots(const model::Model& model, const fe::LinearSystem&
       double scale = 0.0;
       for (int k = 0; k < dofs.num_nodes(); ++k) scale = std::max(scale, lateral(k));
       Trace tr;
-      tr.name = fmt::format("mode {}: {:.4g} Hz, {}, {}", i + 1, m.frequency_hz, to_string(m.kind),
-                            to_string(m.whirl));
+      tr.name =
+          fmt::format("mode {}: {:.4g} Hz, {}, {}{}", i + 1, m.frequency_hz, to_string(m.kind),
+                      to_string(m.whirl), is_unstable(m) ? ", UNSTABLE" : "");
       tr.mode = Trace::Mode::LinesMarkers;
       for (int k : nodes) {
         tr.x.push_back(dofs.node(k).axial_position);
@@ -401,6 +504,23 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& /*se
   out.tables.push_back(shapes_table(model, system, result.primary()));
   out.plots = shape_plots(model, system, result.primary());
 
+  if (!result.fewer_modes_note.empty()) out.notes.push_back(result.fewer_modes_note + ".");
+  std::string unstable;
+  const auto& primary = result.primary();
+  for (std::size_t i = 0; i < primary.size(); ++i) {
+    const Mode& m = primary[i];
+    if (!is_unstable(m)) continue;
+    unstable +=
+        fmt::format("{}mode {} ({}, {}, {:.6g} Hz): damping ratio {:.3g}, log decrement {:.3g}",
+                    unstable.empty() ? "" : "; ", i + 1, to_string(m.kind), to_string(m.whirl),
+                    m.frequency_hz, m.damping_ratio, log_decrement(m.damping_ratio));
+  }
+  if (!unstable.empty())
+    out.notes.push_back(fmt::format(
+        "UNSTABLE at {:.6g} rpm: {}. A mode with negative damping grows; a steady-state "
+        "response at this speed is not what the machine reaches (check cross-coupled bearing or "
+        "seal coefficients and damping).",
+        result.speed * kRpmPerRadS, unstable));
   out.notes.push_back(fmt::format("Undamped modes: {}.", result.undamped_report));
   if (!model.sensors.empty())
     out.notes.push_back(
@@ -432,7 +552,13 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& /*se
   out.notes.push_back(
       "Whirl: orbit sense at the node with the largest lateral amplitude relative to its spin; "
       "'none' for real roots, non-lateral modes and straight-line orbits. Kind: energy fraction "
-      "above 0.8 in one DOF family, else coupled. Rigid-body modes are reported at 0 Hz.");
+      "above 0.8 in one DOF family, else coupled. Column 'log_decrement': 2 pi zeta / "
+      "sqrt(1 - zeta^2), negative for a growing mode; 'stable' is 'no' when the damping ratio is "
+      "below -1e-5 (rounding of the eigen-solve stays below that). Rigid-body roots (kind 'rigid') "
+      "are reported "
+      "at 0 Hz: a root is rigid when 99 % of its kinetic energy lies in the rigid-body motions "
+      "(translations, rotations, spins) that the stiffness leaves unstrained and it is the zero "
+      "root of that motion; the test is on the shape, so it holds on any mesh.");
   return out;
 }
 

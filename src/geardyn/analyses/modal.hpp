@@ -17,6 +17,8 @@
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/eig/eigen_options.hpp"
+#include "geardyn/eig/quadratic_eigen.hpp"
+#include "geardyn/eig/rigid_body.hpp"
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/model/model.hpp"
 
@@ -36,8 +38,9 @@ struct ModalSettings : model::SettingsOf<ModalSettings> {
 enum class Whirl { Forward, Backward, None };
 /// Dominant DOF family by the mass-weighted energy fractions of fe::mode_families: a family
 /// with more than kKindFraction of the energy names the mode, otherwise it is coupled. Solid:
-/// the elastic deformation of coupled solids (their modal coordinates) dominates.
-enum class ModeKind { Lateral, Torsional, Axial, Coupled, Solid };
+/// the elastic deformation of coupled solids (their modal coordinates) dominates. Rigid: a
+/// rigid-body root (see RigidBodyTest), whatever its DOF family.
+enum class ModeKind { Lateral, Torsional, Axial, Coupled, Solid, Rigid };
 inline constexpr double kKindFraction = 0.8;
 
 constexpr std::string_view to_string(Whirl w) {
@@ -63,6 +66,8 @@ constexpr std::string_view to_string(ModeKind k) {
       return "coupled";
     case ModeKind::Solid:
       return "solid";
+    case ModeKind::Rigid:
+      return "rigid";
   }
   return "coupled";
 }
@@ -73,7 +78,7 @@ struct Mode {
   double frequency_hz = eig::kNaN;         ///< |lambda| / 2pi (undamped natural frequency)
   double damped_frequency_hz = eig::kNaN;  ///< |Im lambda| / 2pi
   double damping_ratio = eig::kNaN;        ///< -Re lambda / |lambda|
-  bool rigid_body = false;                 ///< |lambda|^2 below the rigid-body limit: f = 0
+  bool rigid_body = false;                 ///< a rigid-body root (RigidBodyTest): f = 0
   Whirl whirl = Whirl::None;
   ModeKind kind = ModeKind::Coupled;
   fe::ModeFamilies families;
@@ -91,6 +96,8 @@ struct ModalResult {
   std::string undamped_report;  ///< solver's brief_report()
   std::string complex_report;
   double stiffness_asymmetry = 0;  ///< ||K - K^T|| / ||K||: undamped modes use (K + K^T) / 2
+  /// Set when n_modes asked for more modes than the model has: what was returned instead.
+  std::string fewer_modes_note;
   double run_time_s = 0;
   /// The modes the tables lead with: complex when computed, else undamped.
   const std::vector<Mode>& primary() const { return complex_requested ? complex : undamped; }
@@ -111,8 +118,18 @@ AnalysisOutput modal_output(const model::Model& model, const ModalSettings& sett
                             const ModalResult& result, const Context& context);
 
 /// Logarithmic decrement ln(x_k / x_{k+1}) of successive peaks of a free decay with damping
-/// ratio zeta: 2 pi zeta / sqrt(1 - zeta^2) (NaN for zeta >= 1: no oscillation).
+/// ratio zeta: 2 pi zeta / sqrt(1 - zeta^2) (NaN for |zeta| >= 1: a real root, no oscillation).
+/// Negative for a growing oscillation.
 double log_decrement(double damping_ratio);
+
+/// A mode counts as unstable when its damping ratio is below -kUnstableDampingRatio. The margin
+/// keeps rounding from calling an undamped mode unstable: the eigen-solves give |zeta| up to
+/// 2e-6 on undamped rotors of 6000 beam elements. A mode with -1e-5 < zeta < 0 grows by less
+/// than 0.01 % per cycle and is reported as neutral (stable "yes").
+inline constexpr double kUnstableDampingRatio = 1e-5;
+/// True for a mode that grows: not rigid and damping ratio below -kUnstableDampingRatio (an
+/// overdamped root with lambda > 0 has damping ratio -1).
+bool is_unstable(const Mode& mode);
 
 // ---------------------------------------------------------------------------------------------
 // Pieces shared with the Campbell analysis.
@@ -139,12 +156,40 @@ ModeKind mode_kind(const fe::ModeFamilies& families);
 /// Conference, 1982).
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 
-/// |lambda|^2 below which a mode counts as rigid-body: 1e-10 max_i K_ii / M_ii.
-double rigid_body_limit(const fe::LinearSystem& system, double speed);
+/// Candidate rigid-body motions in equation space (n x c): for the whole model, each shaft and
+/// the set of nodes on no shaft, the three global translations, the three rotations about
+/// global axes through the set's centroid and the spin of the set (rz = 1 in the node frames);
+/// and the spin of the whole drive train, rz = speed_ratio at every node (gears turning
+/// together). Generalised coordinates (modal coordinates of coupled solids) are 0.
+Eigen::MatrixXd rigid_body_candidates(const fe::DofMap& dofs);
+
+/// Decides whether a computed root is a rigid-body root, from its shape, not from the size of
+/// lambda (whose rounding grows with mesh refinement, see eig/rigid_body.hpp):
+///   1. at least kRigidEnergyFraction of the mode's kinetic energy lies in the space of
+///      candidate motions that K_at(speed) leaves unstrained; and
+///   2. lambda is the zero root of that motion, not another root of it: on an unstrained motion
+///      x the quadratic problem reduces to lambda (lambda m + d) = 0, m = x^H M x,
+///      d = x^H D x (D = C + Omega G + modal damping), whose other root lambda_d = -d / m is a
+///      real physical root (a free rotor on dampers) or the gyroscopic precession of a free
+///      rotor's tilt (lambda_d = i Omega I_p / I_d for a disk). The root is rigid when lambda is
+///      nearer 0 than lambda_d: |lambda - lambda_d| >= |lambda| / 2.
+/// Undamped modes (no D) need only test 1.
+struct RigidBodyTest {
+  static constexpr double kRigidEnergyFraction = 0.99;
+  RigidBodyTest(const fe::LinearSystem& system, double speed,
+                const eig::QuadraticPencil* pencil = nullptr);
+  bool operator()(std::complex<double> lambda, const Eigen::VectorXcd& shape) const;
+  Eigen::Index dimension() const { return space_.dimension(); }
+
+ private:
+  const fe::LinearSystem* system_;
+  const eig::QuadraticPencil* pencil_;
+  eig::RigidBodySpace space_;
+};
 
 /// Fills every field of a Mode from lambda and its shape.
 Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
                    const Eigen::VectorXcd& shape, double residual, double speed,
-                   double rigid_limit);
+                   const RigidBodyTest& rigid);
 
 }  // namespace geardyn::analyses
