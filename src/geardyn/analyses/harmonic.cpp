@@ -848,6 +848,12 @@ FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settin
     result.sensors[k].rotational = is_rotation(sensors[k]->dof);
   }
   set_grid_status(result);  // again, now with the sensor names
+  result.stability = scan_stability(system, {settings.speed}, settings.f_max);
+  if (!result.stability.all_stable()) {
+    const std::string unstable = unstable_message(result.stability);
+    result.status = worse(result.status, Status::Unstable);
+    result.message = result.message.empty() ? unstable : result.message + "; also " + unstable;
+  }
   return result;
 }
 
@@ -996,6 +1002,31 @@ std::vector<std::string> harmonic_notes(const FrfResult& result, const fe::Linea
   return notes;
 }
 
+// A dashed vertical line at the natural frequency of every growing mode inside the range.
+void mark_unstable_modes(const FrfResult& result, Plot& amp_plot) {
+  if (result.stability.solves.empty() || result.frequencies.size() == 0) return;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const auto& t : amp_plot.traces)
+    for (double y : t.y)
+      if (y > 0.0 && std::isfinite(y)) {
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+      }
+  if (!(hi > 0.0)) return;
+  for (const auto& m : result.stability.solves.front().unstable) {
+    const double f = m.frequency;
+    if (f < result.frequencies[0] || f > result.frequencies[result.frequencies.size() - 1])
+      continue;
+    Trace line;
+    line.name = fmt::format("UNSTABLE {}", describe(m));
+    line.x = {f * kHzPerRadS, f * kHzPerRadS};
+    line.y = {lo, hi};
+    line.dash = "dash";
+    amp_plot.traces.push_back(std::move(line));
+  }
+  if (!result.stability.all_stable()) amp_plot.title += " - UNSTABLE (growing modes dashed)";
+}
+
 }  // namespace
 
 AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSettings& /*settings*/,
@@ -1014,6 +1045,10 @@ AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSett
   out.plots.push_back(std::move(amp_plot));
   out.plots.push_back(std::move(phase_plot));
   out.notes = harmonic_notes(result, context.system());
+  if (!result.stability.solves.empty()) {
+    out.notes.push_back(stability_note(result.stability));
+    mark_unstable_modes(result, out.plots.front());
+  }
   return out;
 }
 
