@@ -41,7 +41,11 @@ StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, d
     top = cx.eigenvalues.size() > 0 ? cx.eigenvalues.cwiseAbs().maxCoeff() : 0.0;
     // Enough: the band is covered, the system has no more modes, or nothing more to ask for.
     if (top >= want || cx.converged < n || n >= n_max) break;
-    n = std::min(2 * n, n_max);
+    // Rotor and beam frequencies grow about as the square of the mode number, so the count
+    // that reaches `want` is about n sqrt(want / top); 25 % more, at least n + 4, at most 2 n.
+    const double guess = top > 0.0 ? 1.25 * n * std::sqrt(want / top) : 2.0 * n;
+    const int next = static_cast<int>(std::ceil(std::min(guess, 2.0 * n)));
+    n = std::min(std::max(next, n + 4), n_max);
   }
   if (n_modes_hint != nullptr) *n_modes_hint = n;
   out.band_covered = top >= want;

@@ -213,6 +213,107 @@ void steady_orbits(const fe::LinearSystem& system,
   }
 }
 
+// The remainder of a least-squares fit by a constant and the harmonics at the excitation
+// frequencies over the steady part, per sensor (see Steadiness).
+struct FitRemainder {
+  double sync_rms = 0.0, rest_rms = 0.0, rest_first = 0.0, rest_second = 0.0;
+};
+
+std::vector<FitRemainder> fit_remainders(const TransientResult& r,
+                                         const std::vector<double>& omegas, Eigen::Index rows) {
+  const auto n_par = static_cast<Eigen::Index>(1 + 2 * omegas.size());
+  Eigen::MatrixXd A(rows, n_par);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const double t = r.time[static_cast<std::size_t>(r.steady_first + i)] - r.steady_start;
+    A(i, 0) = 1.0;
+    for (std::size_t k = 0; k < omegas.size(); ++k) {
+      A(i, static_cast<Eigen::Index>(1 + 2 * k)) = std::cos(omegas[k] * t);
+      A(i, static_cast<Eigen::Index>(2 + 2 * k)) = std::sin(omegas[k] * t);
+    }
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  const Eigen::Index half = rows / 2;
+  auto rms = [](const Eigen::Ref<const Eigen::VectorXd>& v) {
+    return v.size() > 0 ? std::sqrt(v.squaredNorm() / static_cast<double>(v.size())) : 0.0;
+  };
+  std::vector<FitRemainder> out;
+  for (Eigen::Index s = 0; s < r.values.cols(); ++s) {
+    const Eigen::VectorXd x = r.values.col(s).tail(rows);
+    const Eigen::VectorXd c = qr.solve(x);
+    const Eigen::VectorXd fit = A * c;
+    const Eigen::VectorXd rest = x - fit;
+    FitRemainder f;
+    f.sync_rms = rms(fit.array() - c[0]);
+    f.rest_rms = rms(rest);
+    f.rest_first = rms(rest.head(half));
+    f.rest_second = rms(rest.tail(rows - half));
+    out.push_back(f);
+  }
+  return out;
+}
+
+Steadiness measure_steadiness(const model::Model& model, const fe::LinearSystem& system,
+                              const TransientSettings& settings, const TransientResult& r,
+                              Eigen::Index rows) {
+  Steadiness st;
+  if (!std::isnan(settings.speed_end) && settings.speed_end != settings.speed) {
+    st.reason = "a run-up has no steady state";
+    return st;
+  }
+  std::vector<double> omegas;
+  if (settings.speed > 0.0)
+    for (double order : fe::unbalance_orders(model, system, settings.unbalances))
+      omegas.push_back(order * settings.speed);
+  if (omegas.empty()) {
+    st.reason = "no unbalance excitation (speed 0 or no unbalance on a spinning node)";
+    return st;
+  }
+  const double span = r.time.back() - r.steady_start;
+  const double revolution = units::kTwoPi / settings.speed;
+  st.revolutions = span / revolution;
+  const auto n_par = static_cast<Eigen::Index>(1 + 2 * omegas.size());
+  if (st.revolutions < 4.0 || rows < 8 * n_par) {
+    st.reason = fmt::format(
+        "the steady part ({:.3g} revolutions, {} samples) is too short to judge: at least 4 "
+        "revolutions and {} samples",
+        st.revolutions, rows, 8 * n_par);
+    return st;
+  }
+  const std::vector<FitRemainder> fits = fit_remainders(r, omegas, rows);
+  double worst = -1.0;
+  for (std::size_t s = 0; s < fits.size(); ++s) {
+    double largest = 0.0;  // of the same unit
+    for (std::size_t j = 0; j < fits.size(); ++j)
+      if (r.sensor_rotational[j] == r.sensor_rotational[s])
+        largest = std::max(largest, fits[j].sync_rms);
+    if (!(fits[s].sync_rms > 0.0) || fits[s].sync_rms < 1e-3 * largest) continue;
+    const double ratio = fits[s].rest_rms / fits[s].sync_rms;
+    if (ratio <= worst) continue;
+    worst = ratio;
+    st.sensor = r.sensor_names[s];
+    st.non_synchronous = ratio;
+    const double halves = 0.5 * st.revolutions;  // revolutions between the halves' centres
+    st.change_per_revolution =
+        fits[s].rest_first > 0.0
+            ? std::pow(fits[s].rest_second / fits[s].rest_first, 1.0 / halves) - 1.0
+            : 0.0;
+  }
+  if (worst < 0.0) {
+    st.reason = "no sensor responds at the excitation frequencies";
+    return st;
+  }
+  st.measured = true;
+  st.steady = st.non_synchronous <= Steadiness::kSteadyTolerance;
+  // Decaying: the remainder falls by exp(-d t); a longer duration D + dD moves the steady part's
+  // start by (1 - steady_fraction) dD.
+  const double decay = -std::log1p(st.change_per_revolution) / revolution;  // [1/s]
+  if (!st.steady && decay > 0.0 && settings.steady_fraction < 1.0)
+    st.duration_needed =
+        settings.duration + std::log(st.non_synchronous / Steadiness::kSteadyTolerance) /
+                                (decay * (1.0 - settings.steady_fraction));
+  return st;
+}
+
 }  // namespace
 
 TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
@@ -246,7 +347,9 @@ TransientResult run_transient(const model::Model& model, const TransientSettings
   const Eigen::Index steady_rows =
       static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
   steady_spectra(result, steady_rows);
-  steady_orbits(system, selected, result, steady_rows);
+  result.steadiness = measure_steadiness(model, system, settings, result, steady_rows);
+  if (result.steadiness.steady || !result.steadiness.measured)
+    steady_orbits(system, selected, result, steady_rows);
   return result;
 }
 
@@ -324,14 +427,19 @@ void add_spectra(const TransientResult& result, AnalysisOutput& out) {
   if (result.spectrum_frequency_hz.size() == 0) return;
   Table spectrum;
   spectrum.name = "spectrum";
-  spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s",
+  const Steadiness& st = result.steadiness;
+  const std::string part = st.measured && !st.steady
+                               ? fmt::format("the last part (NOT steady: {:.3g} % non-synchronous)",
+                                             100.0 * st.non_synchronous)
+                               : std::string("the steady part");
+  spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of {}, t >= {:.6g} s", part,
                                result.steady_start);
   const Eigen::VectorXd& f = result.spectrum_frequency_hz;
   const std::vector<double> fv(f.data(), f.data() + f.size());
   spectrum.add("frequency_hz", "Hz", fv);
   Plot plot;
   plot.name = "spectrum";
-  plot.title = "Amplitude spectra of the steady part (0-peak)";
+  plot.title = fmt::format("Amplitude spectra of {} (0-peak)", part);
   plot.x_label = "frequency [Hz]";
   plot.y_label = "amplitude (0-peak) [m or rad]";
   plot.y_log = true;
@@ -372,8 +480,9 @@ void add_orbits(const TransientResult& result, AnalysisOutput& out) {
     whirl.emplace_back(signal::to_string(o.whirl));
     Trace trace;
     trace.name = o.node;
+    const auto max_points = static_cast<Eigen::Index>(kMaxPlotPoints);
     const Eigen::Index stride =
-        std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
+        std::max<Eigen::Index>(1, (steady_rows + max_points - 1) / max_points);
     for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows; k += stride) {
       trace.x.push_back(result.values(k, o.sensor_x));
       trace.y.push_back(result.values(k, o.sensor_y));
@@ -433,6 +542,29 @@ void add_accuracy_notes(const TransientResult& result, const fe::LinearSystem& s
         "orbit; whirl relative to the spin");
 }
 
+// Whether the steady part is steady, and what to change when it is not.
+std::string steadiness_note(const TransientResult& result) {
+  const Steadiness& st = result.steadiness;
+  if (!st.measured) return "steadiness of the steady part not measured: " + st.reason;
+  const std::string measure = fmt::format(
+      "non-synchronous content (RMS of what a constant plus the excitation harmonics order x "
+      "speed do not fit over the steady part, relative to the harmonics' RMS) {:.3g} % at "
+      "sensor '{}' ({:.4g} revolutions), changing by {:+.3g} % per revolution",
+      100.0 * st.non_synchronous, st.sensor, st.revolutions, 100.0 * st.change_per_revolution);
+  if (st.steady)
+    return fmt::format("steady part steady: {} (limit {:g} %)", measure,
+                       100.0 * Steadiness::kSteadyTolerance);
+  return fmt::format(
+      "NOT steady: {} (limit {:g} %): the start-up transient has not died out, so no orbits are "
+      "given and the spectra show the transient too; {}",
+      measure, 100.0 * Steadiness::kSteadyTolerance,
+      std::isfinite(st.duration_needed)
+          ? fmt::format("raise duration to about {:.3g} s (from the decay measured), or add "
+                        "damping",
+                        st.duration_needed)
+          : std::string("the remainder does not decay: check the stability of the system"));
+}
+
 }  // namespace
 
 AnalysisOutput transient_output(const model::Model& /*model*/,
@@ -452,7 +584,10 @@ AnalysisOutput transient_output(const model::Model& /*model*/,
   out.notes.push_back("integration: " + result.integration.brief_report());
   if (result.integration.steps_taken > 0 && !result.integration.solver.empty())
     out.notes.push_back("iteration matrix factorised with " + result.integration.solver);
-  if (result.status == Status::Ok) add_accuracy_notes(result, system, out.notes);
+  if (result.status == Status::Ok) {
+    out.notes.insert(out.notes.begin(), steadiness_note(result));
+    add_accuracy_notes(result, system, out.notes);
+  }
   if (system.K_loss.nonZeros() > 0 && system.K_loss.norm() > 0.0)
     out.notes.push_back(
         "the model's hysteretic (structural) loss factors have no time-domain equivalent and are "
