@@ -15,7 +15,6 @@ namespace geardyn::analyses {
 namespace {
 
 constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
-constexpr double kMaxSteps = 1e8;
 constexpr int kMinSpectrumSamples = 16;
 constexpr std::size_t kMaxPlotPoints = 4000;
 
@@ -23,6 +22,53 @@ std::string unit_suffix(bool rotational) { return rotational ? "rad" : "m"; }
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
+}
+
+}  // namespace
+
+TransientCost estimate_cost(const TransientSettings& s, int n_sensors) {
+  TransientCost c;
+  // ceil, forgiving the rounding of duration / time_step (0.3 / 1e-4 = 2999.9999999999995).
+  c.steps = std::max(1.0, std::ceil(s.duration / s.time_step * (1.0 - 1e-9)));
+  c.samples = std::floor(c.steps / std::max(1, s.output_every)) + 1.0;
+  c.columns = 2 + n_sensors;
+  c.csv_bytes = c.samples * c.columns * TransientCost::kBytesPerValue;
+  c.memory_bytes = 2.0 * c.samples * c.columns * 8.0;
+  return c;
+}
+
+namespace {
+
+std::string bytes_text(double b) {
+  return b >= 1e9   ? fmt::format("{:.3g} GB", b / 1e9)
+         : b >= 1e6 ? fmt::format("{:.3g} MB", b / 1e6)
+                    : fmt::format("{:.3g} kB", b / 1e3);
+}
+
+}  // namespace
+
+std::string TransientCost::describe() const {
+  return fmt::format(
+      "{:.4g} steps, {:.4g} stored samples x {} columns: time_history.csv about {}, {} in "
+      "memory",
+      steps, samples, columns, bytes_text(csv_bytes), bytes_text(memory_bytes));
+}
+
+std::string TransientCost::excess() const {
+  if (steps > kMaxSteps)
+    return fmt::format("at most {:.0e} time steps (duration / time_step)", kMaxSteps);
+  if (csv_bytes > kMaxOutputBytes)
+    return fmt::format("a time history of at most {} (samples x columns x {:g} bytes)",
+                       bytes_text(kMaxOutputBytes), kBytesPerValue);
+  return "";
+}
+
+namespace {
+
+// "duration = 10 s, time_step = 1e-07 s, output_every = 1: 1e+08 steps, ...".
+std::string cost_found(const TransientSettings& s, const TransientCost& cost) {
+  return fmt::format("duration = {:g} s, time_step = {:g} s, output_every = {}: {}", s.duration,
+                     s.time_step, s.output_every, cost.describe());
 }
 
 void validate(const model::Model& model, const TransientSettings& s, const Context& context) {
@@ -36,9 +82,6 @@ void validate(const model::Model& model, const TransientSettings& s, const Conte
   if (s.time_step > s.duration)
     fail("time_step", fmt::format("a time step no longer than the duration ({} s)", s.duration),
          fmt::format("{}", s.time_step));
-  if (s.duration / s.time_step > kMaxSteps)
-    fail("time_step", fmt::format("at most {:.0e} steps over the duration", kMaxSteps),
-         fmt::format("{:.3g} steps", s.duration / s.time_step));
   if (!(s.speed >= 0.0) || !std::isfinite(s.speed))
     fail("speed_rpm", "a speed >= 0 [rpm]", fmt::format("{}", s.speed * kRadPerSToRpm));
   if (!std::isnan(s.speed_end) && (!(s.speed_end >= 0.0) || !std::isfinite(s.speed_end)))
@@ -55,6 +98,12 @@ void validate(const model::Model& model, const TransientSettings& s, const Conte
          fmt::format("at most the number of steps ({:.0f}) so that samples after t = 0 are stored",
                      steps),
          fmt::format("{}", s.output_every));
+  const int n_sensors =
+      static_cast<int>(s.sensors.empty() ? model.sensors.size() : s.sensors.size());
+  if (const TransientCost cost = estimate_cost(s, n_sensors); !cost.excess().empty())
+    throw context.error(cost.steps > TransientCost::kMaxSteps ? "time_step" : "output_every",
+                        cost.excess(), cost_found(s, cost),
+                        "raise time_step or output_every, or shorten duration");
   for (const auto& name : s.unbalances)
     if (std::none_of(model.unbalances.begin(), model.unbalances.end(),
                      [&](const model::Unbalance& u) { return u.name == name; }))
@@ -581,6 +630,11 @@ AnalysisOutput transient_output(const model::Model& /*model*/,
   add_orbits(result, out);
 
   // How far to trust it.
+  out.notes.push_back(
+      "cost estimate before the run: " +
+      estimate_cost(result.settings, static_cast<int>(result.sensor_names.size())).describe() +
+      fmt::format(" (refused above {:.0e} steps or a {:.0f} GB time history)",
+                  TransientCost::kMaxSteps, TransientCost::kMaxOutputBytes / 1e9));
   out.notes.push_back("integration: " + result.integration.brief_report());
   if (result.integration.steps_taken > 0 && !result.integration.solver.empty())
     out.notes.push_back("iteration matrix factorised with " + result.integration.solver);

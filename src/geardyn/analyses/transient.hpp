@@ -107,14 +107,35 @@ struct TransientResult {
   transient::IntegrationSummary integration;
 };
 
+/// What a transient will cost, from its settings alone (known at check time).
+struct TransientCost {
+  static constexpr double kMaxSteps = 1e8;        ///< refused above
+  static constexpr double kMaxOutputBytes = 2e9;  ///< time_history.csv refused above (2 GB)
+  static constexpr double kBytesPerValue = 24.0;  ///< a shortest round-trip double and a comma
+  double steps = 0.0;                             ///< ceil(duration / time_step)
+  double samples = 0.0;       ///< stored: floor(steps / output_every) + 1 (t = 0)
+  int columns = 0;            ///< time_s, speed_rpm and one per sensor
+  double csv_bytes = 0.0;     ///< time_history.csv, about samples x columns x kBytesPerValue
+  double memory_bytes = 0.0;  ///< the record in memory while it runs and is written (x 2)
+
+  /// "8e+04 steps, 4e+04 stored samples x 6 columns: time_history.csv about 5.8 MB, 3.8 MB in
+  /// memory".
+  std::string describe() const;
+  /// Empty when within the limits; else what is too large.
+  std::string excess() const;
+};
+
+/// The cost of `settings` with `n_sensors` recorded sensors.
+TransientCost estimate_cost(const TransientSettings& settings, int n_sensors);
+
 /// Validates the settings (InputError naming the analysis key: non-positive duration or
 /// time step, rho_infinity outside [0, 1], steady_fraction outside (0, 1], output_every < 1 or
-/// above the number of steps, negative speeds, unknown unbalance or sensor names, more than 1e8
-/// steps), builds the rotor system and integrates it. Numerical failures (divergence, singular
-/// mass matrix) come back as a non-Ok status with the samples up to the failure and no spectra
-/// or orbits. Measures the steadiness of the steady part (Steadiness); the orbits are left out
-/// when it is not steady. Runs on the context's linear system and reports progress per step to
-/// its progress.
+/// above the number of steps, negative speeds, unknown unbalance or sensor names, a cost above
+/// TransientCost's limits), builds the rotor system and integrates it. Numerical failures
+/// (divergence, singular mass matrix) come back as a non-Ok status with the samples up to the
+/// failure and no spectra or orbits. Measures the steadiness of the steady part (Steadiness); the
+/// orbits are left out when it is not steady. Runs on the context's linear system and reports
+/// progress per step to its progress.
 TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
                               const Context& context);
 
