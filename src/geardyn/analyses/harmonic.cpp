@@ -604,6 +604,28 @@ void set_grid_status(FrfResult& result) {
       result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
 }
 
+}  // namespace
+
+void diagnose_unresolved_peaks(FrfResult& result, int modes_in_band) {
+  if (result.status != Status::NotConverged || result.grid.converged) return;
+  std::vector<int> per_sensor(result.sensors.size(), 0);
+  for (const auto& p : result.peaks)
+    if (std::isfinite(p.q_factor) && !p.resolved) ++per_sensor[static_cast<std::size_t>(p.sensor)];
+  const auto worst = std::max_element(per_sensor.begin(), per_sensor.end());
+  if (worst == per_sensor.end() || *worst <= 2 * modes_in_band + 2) return;
+  const auto s = static_cast<std::size_t>(worst - per_sensor.begin());
+  result.message = fmt::format(
+      "adaptive frequency grid stopped at {} with {} points; sensor {} has {} unresolved peaks "
+      "but the system has only {} mode(s) in the frequency range: the response is not smooth, "
+      "a numerical fault (e.g. an inaccurate or inconsistent solve of D(w) X = F), not a "
+      "lightly damped resonance; adding damping will not help: check the model's "
+      "conditioning (stiffness and mass values far apart) and report it with the model",
+      result.grid.limit_hit, result.grid.final_points, result.sensors[s].name, *worst,
+      modes_in_band);
+}
+
+namespace {
+
 // The frequencies the next pass of the adaptive grid adds: those that would resolve the
 // unresolved peaks and bisect the jumps, inside the range and not within 1e-12 f_max of a
 // sample or of each other.
@@ -849,6 +871,13 @@ FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settin
   }
   set_grid_status(result);  // again, now with the sensor names
   result.stability = scan_stability(system, {settings.speed}, settings.f_max);
+  if (result.status == Status::NotConverged) {
+    int modes_in_band = 0;
+    for (const auto& l : result.stability.solves.front().eigenvalues)
+      if (std::abs(l) >= 0.9 * settings.f_min && std::abs(l) <= 1.1 * settings.f_max)
+        ++modes_in_band;
+    diagnose_unresolved_peaks(result, modes_in_band);
+  }
   if (!result.stability.all_stable()) {
     const std::string unstable = unstable_message(result.stability);
     result.status = worse(result.status, Status::Unstable);

@@ -185,6 +185,13 @@ FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settin
 FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
                        const Context& context);
 
+/// When the adaptive grid left peaks unresolved (NotConverged), tells a lightly damped resonance
+/// from a response that is not smooth: when one sensor has more than 2 x modes_in_band + 2
+/// unresolved peaks (a mode gives one peak per sensor), the response has maxima no mode
+/// explains, a numerical fault, and the message says so instead of advising damping.
+/// `modes_in_band`: modes whose natural frequency lies in the analysis's range (within 10 %).
+void diagnose_unresolved_peaks(FrfResult& result, int modes_in_band);
+
 /// Tables "frf" (frequency_hz, per sensor <sensor>_amplitude_<unit>, <sensor>_phase_deg) and
 /// "peaks" (the resonance-peak table of core/peak_table.hpp, curve = the response quantity),
 /// amplitude (log) and phase plots (growing modes in range marked by a dashed vertical line),

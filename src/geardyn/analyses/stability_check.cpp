@@ -51,6 +51,7 @@ StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, d
   out.band_covered = top >= want;
   out.covered = top;
   out.modes_checked = static_cast<int>(cx.eigenvalues.size());
+  out.eigenvalues.assign(cx.eigenvalues.begin(), cx.eigenvalues.end());
   // FewerModes only says that the system has fewer modes than asked for (every one computed).
   out.solver_status = cx.status == Status::FewerModes ? Status::Ok : cx.status;
   out.solver_message = cx.status == Status::FewerModes ? "" : cx.message;

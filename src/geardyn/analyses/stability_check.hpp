@@ -44,8 +44,9 @@ struct StabilityAtSpeed {
   bool band_covered = true;    ///< covered >= the band asked for (false: every mode was computed
                                ///< and the system has none higher, also fine; see message)
   StabilityMode least_damped;  ///< smallest damping ratio among the modes checked
-  std::vector<StabilityMode> unstable;  ///< growing modes, by frequency
-  Status solver_status = Status::Ok;    ///< of the eigen-solve
+  std::vector<StabilityMode> unstable;            ///< growing modes, by frequency
+  std::vector<std::complex<double>> eigenvalues;  ///< every mode checked, Im >= 0, by |lambda|
+  Status solver_status = Status::Ok;              ///< of the eigen-solve
   std::string solver_message;
 };
 
