@@ -28,7 +28,8 @@ StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, d
   out.speed = speed;
   const eig::QuadraticPencil pencil = assembly::pencil_at(system, speed);
   const int n_dofs = system.size();
-  const int n_max = 2 * n_dofs;  // every root real: 2n of them; complex pairs count once
+  // Every root real: 2n of them (complex pairs count once); at most kMaxModes.
+  const int n_max = std::min(2 * n_dofs, kMaxModes);
   const double want = kBandMargin * band_top;
   int n = std::clamp(n_modes_hint != nullptr ? *n_modes_hint : kMinModes, 1, n_max);
   n = std::max(n, std::min(kMinModes, n_max));
@@ -268,8 +269,9 @@ std::string stability_note(const StabilityScan& scan) {
   }
   std::string text = fmt::format(
       "Stability: complex modes of M q'' + (C + W G) q' + K q = 0 at {} speed(s){} ({} "
-      "eigen-solves), {} modes each, up to at least {:.6g} Hz ({} x the highest excitation "
-      "frequency {:.6g} Hz{}); a mode is unstable when Re(lambda) > {:g} x that frequency. "
+      "eigen-solves), {} modes each, up to at least {:.6g} Hz (wanted: {} x the highest "
+      "excitation frequency {:.6g} Hz{}); a mode is unstable when Re(lambda) > {:g} x the "
+      "highest frequency checked. "
       "Least damping ratio {:.3g} (at {:.6g} rpm).",
       scan.stable.size(),
       scan.subsampled
@@ -280,8 +282,11 @@ std::string stability_note(const StabilityScan& scan) {
           : "",
       scan.n_solves, lo == hi ? fmt::format("{}", lo) : fmt::format("{} to {}", lo, hi),
       covered / units::kTwoPi, kBandMargin, scan.band_top / units::kTwoPi,
-      band ? "" : "; the system has no more modes", kGrowthTolerance, least,
-      least_speed * kRpmPerRadS);
+      band ? ""
+           : fmt::format("; not reached everywhere: the check stops at the system's last mode "
+                         "or at {} modes",
+                         kMaxModes),
+      kGrowthTolerance, least, least_speed * kRpmPerRadS);
   if (!scan.all_stable()) {
     text += fmt::format(" UNSTABLE at {}", ranges_text(scan));
     for (const auto& c : scan.changes)

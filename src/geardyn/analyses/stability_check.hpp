@@ -9,9 +9,10 @@
 // Which modes (the rule): the modes of smallest |lambda| (the solver's automatic target), as
 // many as needed so that the highest natural frequency computed is at least
 // kBandMargin x the highest frequency the analysis excites (unbalance: largest order x speed;
-// harmonic: frequency_stop), and at least kMinModes; the count is doubled until that holds or
-// every mode of the system is computed. Modes above that band are not checked (the note says
-// up to which frequency the check holds).
+// harmonic: frequency_stop), and at least kMinModes; the count grows until that holds, every
+// mode of the system is computed, or kMaxModes is reached (the cost of one Arnoldi solve grows
+// with the modes asked for; a band that needs more is rare for rotors and the note then says
+// up to which frequency the check holds). Modes above the highest one computed are not checked.
 //
 // Verdict: a mode is unstable when its growth rate Re(lambda) exceeds
 // kGrowthTolerance x (the highest natural frequency checked). The eigenvalues carry a backward
@@ -52,6 +53,7 @@ struct StabilityAtSpeed {
 
 constexpr double kBandMargin = 2.0;
 constexpr int kMinModes = 8;
+constexpr int kMaxModes = 150;
 constexpr double kGrowthTolerance = 1e-6;
 
 /// The verdict at `speed` [rad/s], checking the modes up to kBandMargin x `band_top` [rad/s].
