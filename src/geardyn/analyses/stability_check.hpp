@@ -52,7 +52,7 @@ struct StabilityAtSpeed {
 };
 
 constexpr double kBandMargin = 2.0;
-constexpr int kMinModes = 8;
+constexpr int kMinModes = 24;  // one solve covers twice the top excitation of most rotors
 constexpr int kMaxModes = 150;
 constexpr double kGrowthTolerance = 1e-6;
 
