@@ -78,6 +78,31 @@ TEST(FrequencyResponse, PointLimitLeavesTheGridNotConverged) {
   EXPECT_LE(r.grid.final_points, 45);
 }
 
+TEST(FrequencyResponse, ManyMorePeaksThanModesIsANumericalFaultNotLightDamping) {
+  // A lightly damped SDOF with too small a point budget: one unresolved peak, one mode in the
+  // range: the advice is damping. The same result with 12 unresolved maxima on one sensor (a
+  // mode gives one per sensor, so at most 2 x 1 + 2 are explained with margin): not smooth.
+  const double k = 1e6, m = 1.0;
+  const fe::LinearSystem s = sdof(m, k, 2.0 * 1e-4 * std::sqrt(k * m));
+  AdaptiveGridOptions options;
+  options.max_points = 45;
+  FrfResult r = frequency_response(s, Eigen::VectorXcd::Ones(1), {0}, grid(0.0, 3000.0, 40, true),
+                                   Context("harmonic"), options);
+  ASSERT_EQ(r.status, Status::NotConverged);
+  diagnose_unresolved_peaks(r, 1);
+  EXPECT_NE(r.message.find("add damping"), std::string::npos) << r.message;
+  FrfPeak noise = r.peaks.front();
+  noise.resolved = false;
+  noise.q_factor = 50.0;
+  r.peaks.assign(12, noise);
+  diagnose_unresolved_peaks(r, 1);
+  EXPECT_EQ(r.status, Status::NotConverged);
+  EXPECT_NE(r.message.find("not smooth"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("12 unresolved peaks"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("only 1 mode(s)"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("add damping"), std::string::npos) << r.message;
+}
+
 TEST(FrfResult, UnitsOfRotationsAndMoments) {
   FrfResult r;
   r.sensors = {{"a", 0, true}, {"b", 1, false}};

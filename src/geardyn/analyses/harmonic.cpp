@@ -604,6 +604,28 @@ void set_grid_status(FrfResult& result) {
       result.sensors[static_cast<std::size_t>(first->sensor)].name, first->frequency * kHzPerRadS);
 }
 
+}  // namespace
+
+void diagnose_unresolved_peaks(FrfResult& result, int modes_in_band) {
+  if (result.status != Status::NotConverged || result.grid.converged) return;
+  std::vector<int> per_sensor(result.sensors.size(), 0);
+  for (const auto& p : result.peaks)
+    if (std::isfinite(p.q_factor) && !p.resolved) ++per_sensor[static_cast<std::size_t>(p.sensor)];
+  const auto worst = std::max_element(per_sensor.begin(), per_sensor.end());
+  if (worst == per_sensor.end() || *worst <= 2 * modes_in_band + 2) return;
+  const auto s = static_cast<std::size_t>(worst - per_sensor.begin());
+  result.message = fmt::format(
+      "adaptive frequency grid stopped at {} with {} points; sensor {} has {} unresolved peaks "
+      "but the system has only {} mode(s) in the frequency range: the response is not smooth, "
+      "a numerical fault (e.g. an inaccurate or inconsistent solve of D(w) X = F), not a "
+      "lightly damped resonance; adding damping will not help: check the model's "
+      "conditioning (stiffness and mass values far apart) and report it with the model",
+      result.grid.limit_hit, result.grid.final_points, result.sensors[s].name, *worst,
+      modes_in_band);
+}
+
+namespace {
+
 // The frequencies the next pass of the adaptive grid adds: those that would resolve the
 // unresolved peaks and bisect the jumps, inside the range and not within 1e-12 f_max of a
 // sample or of each other.
@@ -848,6 +870,19 @@ FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settin
     result.sensors[k].rotational = is_rotation(sensors[k]->dof);
   }
   set_grid_status(result);  // again, now with the sensor names
+  result.stability = scan_stability(system, {settings.speed}, settings.f_max);
+  if (result.status == Status::NotConverged) {
+    int modes_in_band = 0;
+    for (const auto& l : result.stability.solves.front().eigenvalues)
+      if (std::abs(l) >= 0.9 * settings.f_min && std::abs(l) <= 1.1 * settings.f_max)
+        ++modes_in_band;
+    diagnose_unresolved_peaks(result, modes_in_band);
+  }
+  if (!result.stability.all_stable()) {
+    const std::string unstable = unstable_message(result.stability);
+    result.status = worse(result.status, Status::Unstable);
+    result.message = result.message.empty() ? unstable : result.message + "; also " + unstable;
+  }
   return result;
 }
 
@@ -996,6 +1031,31 @@ std::vector<std::string> harmonic_notes(const FrfResult& result, const fe::Linea
   return notes;
 }
 
+// A dashed vertical line at the natural frequency of every growing mode inside the range.
+void mark_unstable_modes(const FrfResult& result, Plot& amp_plot) {
+  if (result.stability.solves.empty() || result.frequencies.size() == 0) return;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const auto& t : amp_plot.traces)
+    for (double y : t.y)
+      if (y > 0.0 && std::isfinite(y)) {
+        lo = std::min(lo, y);
+        hi = std::max(hi, y);
+      }
+  if (!(hi > 0.0)) return;
+  for (const auto& m : result.stability.solves.front().unstable) {
+    const double f = m.frequency;
+    if (f < result.frequencies[0] || f > result.frequencies[result.frequencies.size() - 1])
+      continue;
+    Trace line;
+    line.name = fmt::format("UNSTABLE {}", describe(m));
+    line.x = {f * kHzPerRadS, f * kHzPerRadS};
+    line.y = {lo, hi};
+    line.dash = "dash";
+    amp_plot.traces.push_back(std::move(line));
+  }
+  if (!result.stability.all_stable()) amp_plot.title += " - UNSTABLE (growing modes dashed)";
+}
+
 }  // namespace
 
 AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSettings& /*settings*/,
@@ -1014,6 +1074,10 @@ AnalysisOutput harmonic_output(const model::Model& /*model*/, const HarmonicSett
   out.plots.push_back(std::move(amp_plot));
   out.plots.push_back(std::move(phase_plot));
   out.notes = harmonic_notes(result, context.system());
+  if (!result.stability.solves.empty()) {
+    out.notes.push_back(stability_note(result.stability));
+    mark_unstable_modes(result, out.plots.front());
+  }
   return out;
 }
 

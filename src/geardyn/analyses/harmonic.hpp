@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "geardyn/analyses/context.hpp"
+#include "geardyn/analyses/stability_check.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -156,6 +157,9 @@ struct FrfResult {
   Eigen::MatrixXcd displacement;
   std::vector<FrfPeak> peaks;  ///< by sensor, then frequency
   GridSummary grid;
+  /// Stability at the speed (run_harmonic only; frequency_response leaves it empty): an
+  /// unstable mode makes the status Unstable.
+  StabilityScan stability;
 
   /// The requested quantity: displacement x (i w)^p with p = 0, 1, 2.
   Eigen::MatrixXcd response() const;
@@ -172,17 +176,26 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
                              const Context& context, const AdaptiveGridOptions& options = {});
 
 /// The harmonic analysis of DESIGN 4.1 on the context's linear system: resolves input node /
-/// forces and sensors by name (InputError when unknown or constrained) and runs
-/// frequency_response.
+/// forces and sensors by name (InputError when unknown or constrained), runs
+/// frequency_response and checks the stability at the speed (analyses/stability_check.hpp,
+/// modes up to twice frequency_stop): Status::Unstable when a mode grows.
 FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
                        const Context& context, const AdaptiveGridOptions& options);
 /// The same with the default grid options (the driver the registry runs).
 FrfResult run_harmonic(const model::Model& model, const HarmonicSettings& settings,
                        const Context& context);
 
+/// When the adaptive grid left peaks unresolved (NotConverged), tells a lightly damped resonance
+/// from a response that is not smooth: when one sensor has more than 2 x modes_in_band + 2
+/// unresolved peaks (a mode gives one peak per sensor), the response has maxima no mode
+/// explains, a numerical fault, and the message says so instead of advising damping.
+/// `modes_in_band`: modes whose natural frequency lies in the analysis's range (within 10 %).
+void diagnose_unresolved_peaks(FrfResult& result, int modes_in_band);
+
 /// Tables "frf" (frequency_hz, per sensor <sensor>_amplitude_<unit>, <sensor>_phase_deg) and
 /// "peaks" (the resonance-peak table of core/peak_table.hpp, curve = the response quantity),
-/// amplitude (log) and phase plots, notes on the grid refinement.
+/// amplitude (log) and phase plots (growing modes in range marked by a dashed vertical line),
+/// notes on the grid refinement and the stability check.
 AnalysisOutput harmonic_output(const model::Model& model, const HarmonicSettings& settings,
                                const FrfResult& result, const Context& context);
 

@@ -15,7 +15,6 @@ namespace geardyn::analyses {
 namespace {
 
 constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
-constexpr double kMaxSteps = 1e8;
 constexpr int kMinSpectrumSamples = 16;
 constexpr std::size_t kMaxPlotPoints = 4000;
 
@@ -23,6 +22,53 @@ std::string unit_suffix(bool rotational) { return rotational ? "rad" : "m"; }
 
 bool is_rotation(model::Component c) {
   return c == model::Component::Rx || c == model::Component::Ry || c == model::Component::Rz;
+}
+
+}  // namespace
+
+TransientCost estimate_cost(const TransientSettings& s, int n_sensors) {
+  TransientCost c;
+  // ceil, forgiving the rounding of duration / time_step (0.3 / 1e-4 = 2999.9999999999995).
+  c.steps = std::max(1.0, std::ceil(s.duration / s.time_step * (1.0 - 1e-9)));
+  c.samples = std::floor(c.steps / std::max(1, s.output_every)) + 1.0;
+  c.columns = 2 + n_sensors;
+  c.csv_bytes = c.samples * c.columns * TransientCost::kBytesPerValue;
+  c.memory_bytes = 2.0 * c.samples * c.columns * 8.0;
+  return c;
+}
+
+namespace {
+
+std::string bytes_text(double b) {
+  return b >= 1e9   ? fmt::format("{:.3g} GB", b / 1e9)
+         : b >= 1e6 ? fmt::format("{:.3g} MB", b / 1e6)
+                    : fmt::format("{:.3g} kB", b / 1e3);
+}
+
+}  // namespace
+
+std::string TransientCost::describe() const {
+  return fmt::format(
+      "{:.4g} steps, {:.4g} stored samples x {} columns: time_history.csv about {}, {} in "
+      "memory",
+      steps, samples, columns, bytes_text(csv_bytes), bytes_text(memory_bytes));
+}
+
+std::string TransientCost::excess() const {
+  if (steps > kMaxSteps)
+    return fmt::format("at most {:.0e} time steps (duration / time_step)", kMaxSteps);
+  if (csv_bytes > kMaxOutputBytes)
+    return fmt::format("a time history of at most {} (samples x columns x {:g} bytes)",
+                       bytes_text(kMaxOutputBytes), kBytesPerValue);
+  return "";
+}
+
+namespace {
+
+// "duration = 10 s, time_step = 1e-07 s, output_every = 1: 1e+08 steps, ...".
+std::string cost_found(const TransientSettings& s, const TransientCost& cost) {
+  return fmt::format("duration = {:g} s, time_step = {:g} s, output_every = {}: {}", s.duration,
+                     s.time_step, s.output_every, cost.describe());
 }
 
 void validate(const model::Model& model, const TransientSettings& s, const Context& context) {
@@ -36,9 +82,6 @@ void validate(const model::Model& model, const TransientSettings& s, const Conte
   if (s.time_step > s.duration)
     fail("time_step", fmt::format("a time step no longer than the duration ({} s)", s.duration),
          fmt::format("{}", s.time_step));
-  if (s.duration / s.time_step > kMaxSteps)
-    fail("time_step", fmt::format("at most {:.0e} steps over the duration", kMaxSteps),
-         fmt::format("{:.3g} steps", s.duration / s.time_step));
   if (!(s.speed >= 0.0) || !std::isfinite(s.speed))
     fail("speed_rpm", "a speed >= 0 [rpm]", fmt::format("{}", s.speed * kRadPerSToRpm));
   if (!std::isnan(s.speed_end) && (!(s.speed_end >= 0.0) || !std::isfinite(s.speed_end)))
@@ -55,6 +98,12 @@ void validate(const model::Model& model, const TransientSettings& s, const Conte
          fmt::format("at most the number of steps ({:.0f}) so that samples after t = 0 are stored",
                      steps),
          fmt::format("{}", s.output_every));
+  const int n_sensors =
+      static_cast<int>(s.sensors.empty() ? model.sensors.size() : s.sensors.size());
+  if (const TransientCost cost = estimate_cost(s, n_sensors); !cost.excess().empty())
+    throw context.error(cost.steps > TransientCost::kMaxSteps ? "time_step" : "output_every",
+                        cost.excess(), cost_found(s, cost),
+                        "raise time_step or output_every, or shorten duration");
   for (const auto& name : s.unbalances)
     if (std::none_of(model.unbalances.begin(), model.unbalances.end(),
                      [&](const model::Unbalance& u) { return u.name == name; }))
@@ -213,6 +262,107 @@ void steady_orbits(const fe::LinearSystem& system,
   }
 }
 
+// The remainder of a least-squares fit by a constant and the harmonics at the excitation
+// frequencies over the steady part, per sensor (see Steadiness).
+struct FitRemainder {
+  double sync_rms = 0.0, rest_rms = 0.0, rest_first = 0.0, rest_second = 0.0;
+};
+
+std::vector<FitRemainder> fit_remainders(const TransientResult& r,
+                                         const std::vector<double>& omegas, Eigen::Index rows) {
+  const auto n_par = static_cast<Eigen::Index>(1 + 2 * omegas.size());
+  Eigen::MatrixXd A(rows, n_par);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const double t = r.time[static_cast<std::size_t>(r.steady_first + i)] - r.steady_start;
+    A(i, 0) = 1.0;
+    for (std::size_t k = 0; k < omegas.size(); ++k) {
+      A(i, static_cast<Eigen::Index>(1 + 2 * k)) = std::cos(omegas[k] * t);
+      A(i, static_cast<Eigen::Index>(2 + 2 * k)) = std::sin(omegas[k] * t);
+    }
+  }
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  const Eigen::Index half = rows / 2;
+  auto rms = [](const Eigen::Ref<const Eigen::VectorXd>& v) {
+    return v.size() > 0 ? std::sqrt(v.squaredNorm() / static_cast<double>(v.size())) : 0.0;
+  };
+  std::vector<FitRemainder> out;
+  for (Eigen::Index s = 0; s < r.values.cols(); ++s) {
+    const Eigen::VectorXd x = r.values.col(s).tail(rows);
+    const Eigen::VectorXd c = qr.solve(x);
+    const Eigen::VectorXd fit = A * c;
+    const Eigen::VectorXd rest = x - fit;
+    FitRemainder f;
+    f.sync_rms = rms(fit.array() - c[0]);
+    f.rest_rms = rms(rest);
+    f.rest_first = rms(rest.head(half));
+    f.rest_second = rms(rest.tail(rows - half));
+    out.push_back(f);
+  }
+  return out;
+}
+
+Steadiness measure_steadiness(const model::Model& model, const fe::LinearSystem& system,
+                              const TransientSettings& settings, const TransientResult& r,
+                              Eigen::Index rows) {
+  Steadiness st;
+  if (!std::isnan(settings.speed_end) && settings.speed_end != settings.speed) {
+    st.reason = "a run-up has no steady state";
+    return st;
+  }
+  std::vector<double> omegas;
+  if (settings.speed > 0.0)
+    for (double order : fe::unbalance_orders(model, system, settings.unbalances))
+      omegas.push_back(order * settings.speed);
+  if (omegas.empty()) {
+    st.reason = "no unbalance excitation (speed 0 or no unbalance on a spinning node)";
+    return st;
+  }
+  const double span = r.time.back() - r.steady_start;
+  const double revolution = units::kTwoPi / settings.speed;
+  st.revolutions = span / revolution;
+  const auto n_par = static_cast<Eigen::Index>(1 + 2 * omegas.size());
+  if (st.revolutions < 4.0 || rows < 8 * n_par) {
+    st.reason = fmt::format(
+        "the steady part ({:.3g} revolutions, {} samples) is too short to judge: at least 4 "
+        "revolutions and {} samples",
+        st.revolutions, rows, 8 * n_par);
+    return st;
+  }
+  const std::vector<FitRemainder> fits = fit_remainders(r, omegas, rows);
+  double worst = -1.0;
+  for (std::size_t s = 0; s < fits.size(); ++s) {
+    double largest = 0.0;  // of the same unit
+    for (std::size_t j = 0; j < fits.size(); ++j)
+      if (r.sensor_rotational[j] == r.sensor_rotational[s])
+        largest = std::max(largest, fits[j].sync_rms);
+    if (!(fits[s].sync_rms > 0.0) || fits[s].sync_rms < 1e-3 * largest) continue;
+    const double ratio = fits[s].rest_rms / fits[s].sync_rms;
+    if (ratio <= worst) continue;
+    worst = ratio;
+    st.sensor = r.sensor_names[s];
+    st.non_synchronous = ratio;
+    const double halves = 0.5 * st.revolutions;  // revolutions between the halves' centres
+    st.change_per_revolution =
+        fits[s].rest_first > 0.0
+            ? std::pow(fits[s].rest_second / fits[s].rest_first, 1.0 / halves) - 1.0
+            : 0.0;
+  }
+  if (worst < 0.0) {
+    st.reason = "no sensor responds at the excitation frequencies";
+    return st;
+  }
+  st.measured = true;
+  st.steady = st.non_synchronous <= Steadiness::kSteadyTolerance;
+  // Decaying: the remainder falls by exp(-d t); a longer duration D + dD moves the steady part's
+  // start by (1 - steady_fraction) dD.
+  const double decay = -std::log1p(st.change_per_revolution) / revolution;  // [1/s]
+  if (!st.steady && decay > 0.0 && settings.steady_fraction < 1.0)
+    st.duration_needed =
+        settings.duration + std::log(st.non_synchronous / Steadiness::kSteadyTolerance) /
+                                (decay * (1.0 - settings.steady_fraction));
+  return st;
+}
+
 }  // namespace
 
 TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
@@ -246,7 +396,9 @@ TransientResult run_transient(const model::Model& model, const TransientSettings
   const Eigen::Index steady_rows =
       static_cast<Eigen::Index>(result.time.size()) - result.steady_first;
   steady_spectra(result, steady_rows);
-  steady_orbits(system, selected, result, steady_rows);
+  result.steadiness = measure_steadiness(model, system, settings, result, steady_rows);
+  if (result.steadiness.steady || !result.steadiness.measured)
+    steady_orbits(system, selected, result, steady_rows);
   return result;
 }
 
@@ -324,14 +476,19 @@ void add_spectra(const TransientResult& result, AnalysisOutput& out) {
   if (result.spectrum_frequency_hz.size() == 0) return;
   Table spectrum;
   spectrum.name = "spectrum";
-  spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of the steady part, t >= {:.6g} s",
+  const Steadiness& st = result.steadiness;
+  const std::string part = st.measured && !st.steady
+                               ? fmt::format("the last part (NOT steady: {:.3g} % non-synchronous)",
+                                             100.0 * st.non_synchronous)
+                               : std::string("the steady part");
+  spectrum.title = fmt::format("Amplitude spectra (0-peak, Hann) of {}, t >= {:.6g} s", part,
                                result.steady_start);
   const Eigen::VectorXd& f = result.spectrum_frequency_hz;
   const std::vector<double> fv(f.data(), f.data() + f.size());
   spectrum.add("frequency_hz", "Hz", fv);
   Plot plot;
   plot.name = "spectrum";
-  plot.title = "Amplitude spectra of the steady part (0-peak)";
+  plot.title = fmt::format("Amplitude spectra of {} (0-peak)", part);
   plot.x_label = "frequency [Hz]";
   plot.y_label = "amplitude (0-peak) [m or rad]";
   plot.y_log = true;
@@ -372,8 +529,9 @@ void add_orbits(const TransientResult& result, AnalysisOutput& out) {
     whirl.emplace_back(signal::to_string(o.whirl));
     Trace trace;
     trace.name = o.node;
+    const auto max_points = static_cast<Eigen::Index>(kMaxPlotPoints);
     const Eigen::Index stride =
-        std::max<Eigen::Index>(1, steady_rows / static_cast<Eigen::Index>(kMaxPlotPoints));
+        std::max<Eigen::Index>(1, (steady_rows + max_points - 1) / max_points);
     for (Eigen::Index k = result.steady_first; k < result.steady_first + steady_rows; k += stride) {
       trace.x.push_back(result.values(k, o.sensor_x));
       trace.y.push_back(result.values(k, o.sensor_y));
@@ -433,6 +591,29 @@ void add_accuracy_notes(const TransientResult& result, const fe::LinearSystem& s
         "orbit; whirl relative to the spin");
 }
 
+// Whether the steady part is steady, and what to change when it is not.
+std::string steadiness_note(const TransientResult& result) {
+  const Steadiness& st = result.steadiness;
+  if (!st.measured) return "steadiness of the steady part not measured: " + st.reason;
+  const std::string measure = fmt::format(
+      "non-synchronous content (RMS of what a constant plus the excitation harmonics order x "
+      "speed do not fit over the steady part, relative to the harmonics' RMS) {:.3g} % at "
+      "sensor '{}' ({:.4g} revolutions), changing by {:+.3g} % per revolution",
+      100.0 * st.non_synchronous, st.sensor, st.revolutions, 100.0 * st.change_per_revolution);
+  if (st.steady)
+    return fmt::format("steady part steady: {} (limit {:g} %)", measure,
+                       100.0 * Steadiness::kSteadyTolerance);
+  return fmt::format(
+      "NOT steady: {} (limit {:g} %): the start-up transient has not died out, so no orbits are "
+      "given and the spectra show the transient too; {}",
+      measure, 100.0 * Steadiness::kSteadyTolerance,
+      std::isfinite(st.duration_needed)
+          ? fmt::format("raise duration to about {:.3g} s (from the decay measured), or add "
+                        "damping",
+                        st.duration_needed)
+          : std::string("the remainder does not decay: check the stability of the system"));
+}
+
 }  // namespace
 
 AnalysisOutput transient_output(const model::Model& /*model*/,
@@ -449,10 +630,18 @@ AnalysisOutput transient_output(const model::Model& /*model*/,
   add_orbits(result, out);
 
   // How far to trust it.
+  out.notes.push_back(
+      "cost estimate before the run: " +
+      estimate_cost(result.settings, static_cast<int>(result.sensor_names.size())).describe() +
+      fmt::format(" (refused above {:.0e} steps or a {:.0f} GB time history)",
+                  TransientCost::kMaxSteps, TransientCost::kMaxOutputBytes / 1e9));
   out.notes.push_back("integration: " + result.integration.brief_report());
   if (result.integration.steps_taken > 0 && !result.integration.solver.empty())
     out.notes.push_back("iteration matrix factorised with " + result.integration.solver);
-  if (result.status == Status::Ok) add_accuracy_notes(result, system, out.notes);
+  if (result.status == Status::Ok) {
+    out.notes.insert(out.notes.begin(), steadiness_note(result));
+    add_accuracy_notes(result, system, out.notes);
+  }
   if (system.K_loss.nonZeros() > 0 && system.K_loss.norm() > 0.0)
     out.notes.push_back(
         "the model's hysteretic (structural) loss factors have no time-domain equivalent and are "

@@ -54,6 +54,32 @@ struct TransientOrbit {
   double speed_ratio = 0.0;
 };
 
+/// Is the steady part steady? The response of a linear system to unbalance at constant speed
+/// settles to a sum of harmonics at the excitation frequencies order x speed. Over the steady
+/// part every sensor is fitted (least squares) by a constant plus those harmonics; what remains
+/// is the start-up transient (free vibration at the natural frequencies) or any other
+/// non-synchronous content. The part is steady when that remainder's RMS is at most
+/// kSteadyTolerance of the synchronous part's (for every sensor whose synchronous RMS is at
+/// least 1e-3 of the largest of its unit): its orbits and spectra are then within about that
+/// fraction of the steady state. The decay per revolution is from the remainder's RMS over the
+/// first and second halves of the steady part.
+struct Steadiness {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  static constexpr double kSteadyTolerance = 0.01;
+  bool measured = false;          ///< false: run-up, no excitation, or too short (see `reason`)
+  bool steady = false;            ///< measured and within kSteadyTolerance
+  std::string reason;             ///< why not measured
+  std::string sensor;             ///< the sensor with the largest non-synchronous fraction
+  double non_synchronous = kNaN;  ///< RMS(remainder) / RMS(synchronous), that sensor
+  /// Relative change of the remainder's RMS per revolution of the reference shaft (negative:
+  /// decaying), from the two halves of the steady part.
+  double change_per_revolution = kNaN;
+  double revolutions = kNaN;  ///< in the steady part
+  /// Estimate of the duration [s] at which the steady part would be steady (NaN: not
+  /// decaying, or already steady).
+  double duration_needed = kNaN;
+};
+
 struct TransientResult {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   Status status = Status::Ok;
@@ -75,23 +101,48 @@ struct TransientResult {
   Eigen::VectorXd spectrum_frequency_hz;
   Eigen::MatrixXd spectrum_amplitude;  ///< bins x sensors, 0-peak, Hann, coherent-gain corrected
   double spectrum_resolution_hz = kNaN;
-  std::vector<TransientOrbit> orbits;
+  std::vector<TransientOrbit> orbits;  ///< empty when the steady part is not steady
+  Steadiness steadiness;
 
   transient::IntegrationSummary integration;
 };
 
+/// What a transient will cost, from its settings alone (known at check time).
+struct TransientCost {
+  static constexpr double kMaxSteps = 1e8;        ///< refused above
+  static constexpr double kMaxOutputBytes = 2e9;  ///< time_history.csv refused above (2 GB)
+  static constexpr double kBytesPerValue = 24.0;  ///< a shortest round-trip double and a comma
+  double steps = 0.0;                             ///< ceil(duration / time_step)
+  double samples = 0.0;       ///< stored: floor(steps / output_every) + 1 (t = 0)
+  int columns = 0;            ///< time_s, speed_rpm and one per sensor
+  double csv_bytes = 0.0;     ///< time_history.csv, about samples x columns x kBytesPerValue
+  double memory_bytes = 0.0;  ///< the record in memory while it runs and is written (x 2)
+
+  /// "8e+04 steps, 4e+04 stored samples x 6 columns: time_history.csv about 5.8 MB, 3.8 MB in
+  /// memory".
+  std::string describe() const;
+  /// Empty when within the limits; else what is too large.
+  std::string excess() const;
+};
+
+/// The cost of `settings` with `n_sensors` recorded sensors.
+TransientCost estimate_cost(const TransientSettings& settings, int n_sensors);
+
 /// Validates the settings (InputError naming the analysis key: non-positive duration or
 /// time step, rho_infinity outside [0, 1], steady_fraction outside (0, 1], output_every < 1 or
-/// above the number of steps, negative speeds, unknown unbalance or sensor names, more than 1e8
-/// steps), builds the rotor system and integrates it. Numerical failures (divergence, singular
-/// mass matrix) come back as a non-Ok status with the samples up to the failure and no spectra
-/// or orbits. Runs on the context's linear system and reports progress per step to its progress.
+/// above the number of steps, negative speeds, unknown unbalance or sensor names, a cost above
+/// TransientCost's limits), builds the rotor system and integrates it. Numerical failures
+/// (divergence, singular mass matrix) come back as a non-Ok status with the samples up to the
+/// failure and no spectra or orbits. Measures the steadiness of the steady part (Steadiness); the
+/// orbits are left out when it is not steady. Runs on the context's linear system and reports
+/// progress per step to its progress.
 TransientResult run_transient(const model::Model& model, const TransientSettings& settings,
                               const Context& context);
 
 /// Tables "time_history" (time_s, speed_rpm, per sensor <name>_m or <name>_rad), "spectrum"
 /// (frequency_hz, per sensor <name>_m or <name>_rad: 0-peak amplitude) and "orbits" (node,
-/// major_m, minor_m, whirl); plots of the time histories (one per unit), the orbits (equal
+/// major_m, minor_m, whirl; only when the steady part is steady, otherwise a note says why);
+/// plots of the time histories (one per unit), the orbits (equal
 /// aspect) and the spectra (log amplitude); notes on accuracy and the integrator's work.
 AnalysisOutput transient_output(const model::Model& model, const TransientSettings& settings,
                                 const TransientResult& result, const Context& context);

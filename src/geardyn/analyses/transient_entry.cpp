@@ -31,6 +31,14 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   check.check_named(path + ".unbalances", t.unbalances, model::names_of(m.unbalances), "unbalance",
                     "unbalances");
   check.check_named(path + ".sensors", t.sensors, model::names_of(m.sensors), "sensor", "sensors");
+  // The cost, before anything runs: steps and the size of the time history.
+  const int n_sensors = static_cast<int>(t.sensors.empty() ? m.sensors.size() : t.sensors.size());
+  if (const TransientCost cost = estimate_cost(t, n_sensors); !cost.excess().empty())
+    check.fail(path + (cost.steps > TransientCost::kMaxSteps ? ".time_step" : ".output_every"),
+               cost.excess(),
+               fmt::format("duration = {:g} s, time_step = {:g} s, output_every = {}: {}",
+                           t.duration, t.time_step, t.output_every, cost.describe()),
+               "raise time_step or output_every, or shorten duration");
 }
 
 std::vector<model::Field> keys() {

@@ -22,6 +22,8 @@ bool is_rotation(model::Component c) {
 
 std::string order_label(double order) { return fmt::format("{:g}x", order); }
 
+std::string yes_no(bool b) { return b ? "yes" : "no"; }
+
 }  // namespace
 
 double UnbalanceResult::phase_lag_deg(std::complex<double> x) {
@@ -82,6 +84,15 @@ std::vector<int> sensor_equations(const model::Model& model, const fe::DofMap& d
     result.sensors.push_back({s->name, eq, is_rotation(s->dof)});
   }
   return sensor_eq;
+}
+
+// The stability scan over the speeds; Unstable status and message when a speed is unstable.
+void check_unbalance_stability(const fe::LinearSystem& system, UnbalanceResult& result) {
+  const double top_speed = *std::max_element(result.speeds.begin(), result.speeds.end());
+  result.stability = scan_stability(system, result.speeds, result.orders.back() * top_speed);
+  if (result.stability.all_stable()) return;
+  result.status = worse(result.status, Status::Unstable);
+  if (result.message.empty()) result.message = unstable_message(result.stability);
 }
 
 }  // namespace
@@ -165,6 +176,7 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
     progress.update(i + 1);
   }
   progress.finish();
+  check_unbalance_stability(system, result);
   return result;
 }
 
@@ -178,13 +190,14 @@ Table orbits_table(const UnbalanceResult& result, const std::vector<double>& rpm
   orbits.name = "orbits";
   orbits.title = "Orbits (semi-axes, inclination of the major axis from e1, whirl vs spin)";
   std::vector<double> o_rpm, o_order, o_major, o_minor, o_incl;
-  std::vector<std::string> o_node, o_whirl;
+  std::vector<std::string> o_node, o_whirl, o_stable;
   for (std::size_t o = 0; o < n_orders; ++o)
     for (std::size_t i = 0; i < n_speeds; ++i)
       for (std::size_t k = 0; k < result.orbit_nodes.size(); ++k) {
         const NodeOrbit& no = result.orbits[o][i][k];
         o_rpm.push_back(rpm[i]);
         o_order.push_back(result.orders[o]);
+        o_stable.push_back(yes_no(result.stability.stable[i]));
         o_node.push_back(result.orbit_nodes[k]);
         o_major.push_back(no.orbit.major);
         o_minor.push_back(no.orbit.minor);
@@ -193,6 +206,7 @@ Table orbits_table(const UnbalanceResult& result, const std::vector<double>& rpm
       }
   orbits.add("speed_rpm", "rpm", o_rpm);
   orbits.add("order", "", o_order);
+  orbits.add_text("stable", o_stable);
   orbits.add_text("node", o_node);
   orbits.add("major_m", "m", o_major);
   orbits.add("minor_m", "m", o_minor);
@@ -200,6 +214,24 @@ Table orbits_table(const UnbalanceResult& result, const std::vector<double>& rpm
   orbits.add_text("whirl", o_whirl);
 
   return orbits;
+}
+
+// Marks the unstable speeds of a plot: a marker on every trace point at an unstable speed (a
+// trace of its own, "unstable: not reached") and the range in the title.
+void mark_unstable(const UnbalanceResult& result, const std::vector<double>& rpm, Plot& plot) {
+  Trace marks;
+  marks.name = "unstable (not reached)";
+  marks.mode = Trace::Mode::Markers;
+  const std::size_t n_traces = plot.traces.size();
+  for (std::size_t t = 0; t < n_traces; ++t)
+    for (std::size_t i = 0; i < plot.traces[t].x.size(); ++i)
+      if (!result.stability.stable[i]) {
+        marks.x.push_back(rpm[i]);
+        marks.y.push_back(plot.traces[t].y[i]);
+        marks.hover.push_back(plot.traces[t].name + ": unstable speed");
+      }
+  plot.traces.push_back(std::move(marks));
+  plot.title += " - UNSTABLE speeds marked";
 }
 
 }  // namespace
@@ -225,13 +257,16 @@ AnalysisOutput unbalance_output(const model::Model& /*model*/,
   response.name = "response";
   response.title = "Unbalance response per speed and order (phase: lag behind the reference mark)";
   std::vector<double> col_rpm, col_order;
+  std::vector<std::string> col_stable;
   for (std::size_t o = 0; o < n_orders; ++o)
     for (std::size_t i = 0; i < n_speeds; ++i) {
       col_rpm.push_back(rpm[i]);
       col_order.push_back(result.orders[o]);
+      col_stable.push_back(yes_no(result.stability.stable[i]));
     }
   response.add("speed_rpm", "rpm", col_rpm);
   response.add("order", "", col_order);
+  response.add_text("stable", col_stable);
 
   Plot amp_plot;
   amp_plot.name = "amplitude";
@@ -274,6 +309,10 @@ AnalysisOutput unbalance_output(const model::Model& /*model*/,
                      : any_rotation                  ? "amplitude [rad]"
                                                      : "amplitude [m]";
 
+  if (!result.stability.all_stable()) {
+    mark_unstable(result, rpm, amp_plot);
+    mark_unstable(result, rpm, phase_plot);
+  }
   out.tables.push_back(std::move(response));
   out.tables.push_back(orbits_table(result, rpm));
   out.plots.push_back(std::move(amp_plot));
@@ -291,6 +330,7 @@ AnalysisOutput unbalance_output(const model::Model& /*model*/,
       "Phase = lag of the response behind the reference mark (direction of a phase-0 unbalance "
       "along e1 at t = 0), -arg(X) in [0, 360) deg with x = Re(X e^(iwt)): for one unbalance it is "
       "the lag of ux behind the ux force; uy reads 90 deg more in forward whirl.");
+  out.notes.push_back(stability_note(result.stability));
   out.notes.push_back(
       "Peaks between listed speeds are not resolved: the speed list is the grid (use a harmonic "
       "analysis or a finer list near critical speeds). Whirl is relative to the node's spin "

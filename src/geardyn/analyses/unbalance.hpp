@@ -18,6 +18,7 @@
 
 #include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/harmonic.hpp"
+#include "geardyn/analyses/stability_check.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/fe/linear_system.hpp"
@@ -51,6 +52,9 @@ struct UnbalanceResult {
   /// orbits[o][i][k]: node orbit_nodes[k] at speeds[i] for orders[o].
   std::vector<std::vector<std::vector<NodeOrbit>>> orbits;
   bool modal_damping = false;
+  /// Stability of the system at the speeds (analyses/stability_check.hpp); any unstable speed
+  /// makes the status Unstable.
+  StabilityScan stability;
 
   /// Phase lag [deg] in [0, 360) of a complex amplitude (see the header comment).
   static double phase_lag_deg(std::complex<double> x);
@@ -64,9 +68,10 @@ struct UnbalanceResult {
 UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings& settings,
                               const Context& context);
 
-/// Tables "response" (speed_rpm, order, per sensor <sensor>_amplitude_m|rad and
-/// <sensor>_phase_deg) and "orbits" (speed_rpm, order, node, major_m, minor_m,
-/// inclination_deg, whirl); plots of amplitude (log) and phase lag versus speed.
+/// Tables "response" (speed_rpm, order, stable, per sensor <sensor>_amplitude_m|rad and
+/// <sensor>_phase_deg) and "orbits" (speed_rpm, order, stable, node, major_m, minor_m,
+/// inclination_deg, whirl); plots of amplitude (log) and phase lag versus speed, unstable speeds
+/// marked.
 AnalysisOutput unbalance_output(const model::Model& model, const UnbalanceSettings& settings,
                                 const UnbalanceResult& result, const Context& context);
 
