@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Reference timing: the 500-speed dynamic-mesh sweep of geardyn, done with scipy.integrate.solve_ivp.
 
-Same model as src/geardyn/gear/dynamic_mesh.hpp (DESIGN 4.5) and the same case as the C++ test
+Same model as src/geardyn/gear/dynamic_mesh.hpp (docs/theory.md §13) and the same case as the C++ test
 DynamicMesh.FiveHundredSpeedSweep (tests/gear_dynamics/dynamic_mesh_test.cpp):
 
     m x'' + c x' + k(t) x H(x) = F_s,   m = 1 kg, F_s = 1000 N, zeta = 0.05,

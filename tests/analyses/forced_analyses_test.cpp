@@ -249,8 +249,8 @@ TEST(ForcedWiring, GrooveElementSizeRefinesTheGrooveOnly) {
 }
 
 // Craig-Bampton: the analysis keeps the interfaces, the excitation and the sensor nodes as
-// masters (DESIGN 4.2) and sums every mode of the reduced sector. Oracle: the direct solve of
-// the same reduced sector (masters as documented, 12 fixed-interface modes), on which loads and
+// masters (docs/theory.md §9) and sums every mode of the reduced sector. Oracle: the direct solve
+// of the same reduced sector (masters as documented, 12 fixed-interface modes), on which loads and
 // sensors are physical DOFs; same tolerance argument as above.
 TEST(ForcedWiring, CyclicCraigBamptonKeepsExcitationAndSensorsAsMasters) {
   const CyclicCase c = cyclic_case("reduction = \"craig_bampton\"\nreduced_modes = 12");

@@ -4,7 +4,7 @@
 // Systems:
 //   spur pair z1 = 20, z2 = 40, m = 3 mm, alpha = 20 deg, b = 20 mm, T1 = 100 N m
 //        r1 = 30 mm  (pinion) ----o---- r2 = 60 mm (wheel), a = 90 mm
-//   one-DOF mesh along the line of action (DESIGN 4.5):
+//   one-DOF mesh along the line of action (docs/theory.md §13):
 //        F_s ---> [ m_e ] ---/\/\/ k(t) ---|  (the other flank)
 //                         ----[ c ]--------|
 #include <fmt/format.h>
@@ -56,10 +56,10 @@ bool has_note(const AnalysisOutput& out, const std::string& text) {
 }
 
 // Tooth forces: F_t = T / r = 100 N m / 0.030 m = 3333.333333 N and F_r = F_t tan(20 deg)
-// (spur formulas, DESIGN 4.4); the wheel carries the same tangential force (no losses).
+// (spur formulas, docs/theory.md §11.2); the wheel carries the same tangential force (no losses).
 // Contact ratio: eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin(alpha)) /
-// (pi m cos(alpha)) with ra = r + m (DESIGN 4.4). Both to 1e-12 relative: closed forms, only
-// rounding differs.
+// (pi m cos(alpha)) with ra = r + m (docs/theory.md (11.2)). Both to 1e-12 relative: closed forms,
+// only rounding differs.
 TEST(GearanValidation, GearPairToothForcesAndContactRatioOfASpurPair) {
   const fs::path dir = fresh_dir("gear_pair_spur");
   const model::Model m = load(dir, kHeader + spur_pair() + R"([[analyses]]
@@ -278,7 +278,7 @@ contact_loss = false
 
 // Engine-order harmonics of a constant mesh force (constant STE, infinite inertias): the tooth
 // force is F_t w(phi), so its harmonics are the window's closed-form Fourier coefficients
-// (DESIGN 4.4, gear/load_window.hpp):
+// (docs/theory.md §12, gear/load_window.hpp):
 //   A_k = 2 F_t |W_k|,  W_k = (1/N) e^{-i k CR p / 2} sinc(k p / 2) sinc(k L / 2),
 //   p = 2 pi / N, L = (CR - 1) p,
 // zero at k = N (order of h = 0), and radial = F_t tan(alpha) per tangential (spur).

@@ -55,7 +55,7 @@ void write(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// F_t = T / r = 100 N m / 0.030 m (spur, DESIGN 4.4); 1e-6 N: the CSV's printed digits.
+// F_t = T / r = 100 N m / 0.030 m (spur, docs/theory.md §11.2); 1e-6 N: the CSV's printed digits.
 TEST(GearanCli, GearOnlyModelRunsTheWholeChain) {
   const fs::path dir = fresh_dir("gearan_chain");
   write(dir / "in" / "model.toml", kModel);

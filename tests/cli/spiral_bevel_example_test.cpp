@@ -32,7 +32,7 @@ std::size_t find_row(std::map<std::string, std::vector<std::string>>& csv,
 
 // The pinion: 24 teeth, one tooth per sector (N = 24), nodal diameters 2 and 3, engine orders
 // k = h (backward wave, standing under the mesh) and k = N - h (forward wave, the mesh
-// frequency in the stationary frame), DESIGN 4.3-4.4.
+// frequency in the stationary frame), docs/theory.md §10, §12.3.
 TEST(SpiralBevelExample, EngineOrderResonancesAndHarmonics) {
   const fs::path out = fresh_dir("spiral_bevel_gear_sector");
   const ProcessResult r =

@@ -1,6 +1,6 @@
 // The core module: unit conversions, error messages, tables and the one peak table.
 // References: exact definitions (1 rpm = 2 pi / 60 rad/s, 1 Hz = 2 pi rad/s, 180 deg = pi rad);
-// the message format of DESIGN §5 (file:line:column, key, expected, found, hint).
+// the message format of README.md, "Using it" (file:line:column, key, expected, found, hint).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Validation of the gear-mesh element: torsional frequency of a spur pair against the reduced
 // inertia closed form, and the bevel / spiral bevel line of action against the tooth-force
-// formulas of DESIGN 4.4 and the tooth-surface geometry.
+// formulas of docs/theory.md §11.2 and the tooth-surface geometry.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,7 +37,8 @@ model::GearMesh spur_mesh(std::string gear1, std::string gear2, double base_radi
 //
 // Mesh compression delta = r_b1 theta1 + r_b2 theta2, so J1 theta1'' + k r_b1 delta = 0,
 // J2 theta2'' + k r_b2 delta = 0: one rigid mode and omega^2 = k (r_b1^2 / J1 + r_b2^2 / J2),
-// i.e. k / m_e with the reduced mesh mass m_e = J1 J2 / (J1 r_b2^2 + J2 r_b1^2) of DESIGN 4.5.
+// i.e. k / m_e with the reduced mesh mass m_e = J1 J2 / (J1 r_b2^2 + J2 r_b1^2) of docs/theory.md
+// (13.3).
 TEST(GearMeshValidation, SpurPairTorsionalFrequency) {
   const double alpha = 20.0 * kPi / 180, r_p1 = 0.04, r_p2 = 0.1, k = 3e8;
   const double J1 = 2e-3, J2 = 5e-2;
@@ -84,8 +85,9 @@ TEST(GearMeshValidation, SpurPairTorsionalFrequency) {
 //
 // z1 = 20, z2 = 40 (pitch cone delta1 = atan(20/40)), alpha = 20 deg, F_t = 5000 N:
 // F_a = F_t tan(alpha) sin(delta1) = 813.862186 N (pinion pushed away from the apex, -z),
-// F_r = F_t tan(alpha) cos(delta1) = 1627.724371 N (towards the pinion axis) (DESIGN 4.4; e.g.
-// Budynas & Nisbett, Shigley's Mechanical Engineering Design, ch. 13, bevel-gear force analysis).
+// F_r = F_t tan(alpha) cos(delta1) = 1627.724371 N (towards the pinion axis) (docs/theory.md
+// (11.3); e.g. Budynas & Nisbett, Shigley's Mechanical Engineering Design, ch. 13, bevel-gear force
+// analysis).
 struct BevelPair {
   model::GearMesh mesh;
   NodeInfo pinion, gear;
@@ -144,8 +146,9 @@ TEST(GearMeshValidation, StraightBevelLineOfActionMatchesToothForces) {
 // tooth line lies in the pitch-cone tangent plane at the spiral angle beta from the cone
 // generator g (pointing away from the apex); right hand (AGMA): the tooth advances in the sense
 // of positive rotation about u_a when moving outward, h = cos(beta) g + sin(beta) e_t(u_a).
-// The normal makes the normal pressure angle alpha_n with the tangent plane. DESIGN 4.4's
-// formulas with the upper signs must hold for a right-hand driver turning positively about u_a.
+// The normal makes the normal pressure angle alpha_n with the tangent plane. docs/theory.md
+// (11.3)'s formulas with the upper signs must hold for a right-hand driver turning positively about
+// u_a.
 TEST(GearMeshValidation, SpiralBevelLineOfActionIsNormalToTheTooth) {
   const double beta = 35.0 * kPi / 180, alpha = 20.0 * kPi / 180;
   for (const model::Hand hand : {model::Hand::Right, model::Hand::Left}) {
@@ -171,7 +174,7 @@ TEST(GearMeshValidation, SpiralBevelLineOfActionIsNormalToTheTooth) {
       // The force on the pinion presses it towards its axis (separating), i.e. n . m > 0.
       EXPECT_GT(n.dot(cone_normal), 0.0);
       // The pinion turns positively about u_a iff rotation * (u_a . e_a) > 0; with the hand
-      // this selects the sign in DESIGN 4.4.
+      // this selects the sign in docs/theory.md (11.3).
       const double s = h * rotation * u_a.dot(pair.pinion.frame.col(2));
       EXPECT_NEAR(g.axial_force,
                   (std::tan(alpha) * std::sin(delta) + s * std::sin(beta) * std::cos(delta)) /

@@ -91,7 +91,7 @@ TEST(FriswellExample591, LateralNaturalFrequenciesAt0And4000Rpm) {
       EXPECT_LT(std::abs(lateral[i].lambda.real()), 1e-8 * value);
     }
     if (rpm > 0) {
-      // Gyroscopic stiffening (DESIGN 4.1 sign): in each split pair the lower mode whirls
+      // Gyroscopic stiffening (docs/theory.md §1 sign): in each split pair the lower mode whirls
       // backward and the upper forward.
       for (std::size_t i = 0; i < 6; i += 2) {
         EXPECT_FALSE(is_forward(s, lateral[i].shape)) << "mode " << i + 1;

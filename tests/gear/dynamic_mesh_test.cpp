@@ -1,4 +1,4 @@
-// Dynamic mesh force model (DESIGN 4.5): validation against reference values of a linear
+// Dynamic mesh force model (docs/theory.md §13): validation against reference values of a linear
 // time-periodic oscillator, the monodromy fixed point, quasi-static and infinite-inertia limits,
 // the mean-force identity, observed convergence order, contact loss with jump/hysteresis,
 // backlash and parametric instability.
@@ -148,7 +148,7 @@ TEST(DynamicMesh, MeanDynamicForceEqualsStaticForce) {
   }
 }
 
-// Quasi-static limit (DESIGN 4.5: at low speed F_d -> F_s and the DTE -> STE). A smooth STE
+// Quasi-static limit (docs/theory.md §13: at low speed F_d -> F_s and the DTE -> STE). A smooth STE
 // e(u) = e0 (1 + 0.2 sin 2 pi u) at r = f_m / f_n = 0.002: the damper makes x lag e by the phase
 // 2 zeta r, so x - e ~ 0.2 e0 * 2 zeta r = 6.4e-5 e0 and F_d - F_s ~ c x' ~ 6.4e-5 F_s (inertia
 // adds only r^2 = 4e-6); bounds 1.5e-4 allow for the harmonics of 1 / (1 + 0.2 sin).

@@ -25,7 +25,8 @@ GearPairSpec spur(int z1, int z2, double m) {
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
-// Reference: the contact-ratio figures of the [mesh-excitation] issue, DESIGN 4.4 formula
+// Reference: the contact-ratio figures of the [mesh-excitation] issue, docs/theory.md (11.2)
+// formula
 //   eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin(alpha_w)) / (pi m cos alpha).
 //    pinion (z1) --- a --- wheel (z2), standard addendum 1 m, standard centre distance.
 // 62/62, m = 2 mm, alpha = 20 deg: ra = 64 mm, rb = 62 cos 20 mm, a = 124 mm -> 1.7897798668.

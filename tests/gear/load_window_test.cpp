@@ -1,4 +1,4 @@
-// Tooth-load window and engine-order harmonics (DESIGN 4.4; damper-ring thesis, 3.3-3.4).
+// Tooth-load window and engine-order harmonics (docs/theory.md §12; damper-ring thesis, 3.3-3.4).
 #include "geardyn/gear/load_window.hpp"
 
 #include <gtest/gtest.h>
@@ -40,8 +40,8 @@ TEST(LoadWindow, ConstantForceRectangularWindowVanishesAtMultiplesOfN) {
   }
 }
 
-// DESIGN 4.4: the windows of all teeth, w(phi - j p), sum to one at every phi. Checked at 997
-// samples (not a multiple of N, so no sample sits on a symmetric grid) for several CR and
+// docs/theory.md §12.1: the windows of all teeth, w(phi - j p), sum to one at every phi. Checked at
+// 997 samples (not a multiple of N, so no sample sits on a symmetric grid) for several CR and
 // shifts. The sum is exact up to rounding: the angle in pitch units (up to N = 17) carries about
 // N eps ~ 4e-15, amplified by the ramp slope 1/(CR - 1) <= 3.3: tolerance 1e-13.
 TEST(LoadWindow, WindowsOfAllTeethSumToOne) {
@@ -55,8 +55,9 @@ TEST(LoadWindow, WindowsOfAllTeethSumToOne) {
     }
 }
 
-// Window shapes (DESIGN 4.4): rectangle at CR = 1, triangle at CR = 2 (peak 1 at one pitch),
-// trapezoid with plateau 1 for 1 < CR < 2 and plateau 1/(CR - 1) for 2 < CR <= 3; support CR p.
+// Window shapes (docs/theory.md §12.1): rectangle at CR = 1, triangle at CR = 2 (peak 1 at one
+// pitch), trapezoid with plateau 1 for 1 < CR < 2 and plateau 1/(CR - 1) for 2 < CR <= 3; support
+// CR p.
 TEST(LoadWindow, WindowShapes) {
   const int N = 24;
   const double p = kTwoPi / N;
@@ -147,7 +148,7 @@ TEST(LoadWindow, HarmonicAmplitudeAndPhaseConvention) {
   EXPECT_THROW(engine_order_harmonics(f, {-1}), geardyn::InputError);
 }
 
-// Orders exciting nodal diameter h (DESIGN 4.4): k = +-h (mod N), lowest first.
+// Orders exciting nodal diameter h (docs/theory.md §12.3): k = +-h (mod N), lowest first.
 TEST(LoadWindow, NodalDiameterOrders) {
   EXPECT_EQ(nodal_diameter_orders(20, 3), (std::vector<int>{3, 17}));
   EXPECT_EQ(nodal_diameter_orders(20, 3, 4), (std::vector<int>{3, 17, 23, 37}));
@@ -168,7 +169,7 @@ TEST(LoadWindow, InvalidWindowArgumentsAreRefused) {
 }
 
 // Whole chain on a spur pair, z = 20/40, T1 = 100 N·m: ISO stiffness curve -> algebraic dynamic
-// force of the infinite-inertia model F_d = F_s k(t) / k_mean (DESIGN 4.5) over one pinion
+// force of the infinite-inertia model F_d = F_s k(t) / k_mean (docs/theory.md §13) over one pinion
 // revolution -> tooth load with CR = eps_alpha -> harmonics -> 3D components and tables.
 // Checks: the mean tooth load is F_s / N exactly when n is a multiple of N (partition of unity on
 // a grid invariant under one pitch), components follow the spur ratio tan(alpha), and the table

@@ -146,7 +146,7 @@ TEST(MeshStiffness, HelicalIntegerOverlapRatioGivesConstantStiffness) {
 }
 
 // Synthetic STE: e(u) k(u) = F_s with F_s = T1 / r_b1, sample 0 (double contact, stiffest) has
-// the smallest STE. DESIGN 4.5 inverted.
+// the smallest STE. docs/theory.md (11.5) inverted.
 TEST(MeshStiffness, SyntheticSteInvertsTheStiffness) {
   const GearPairGeometry g = gear_pair_geometry(spur(20, 40, 3e-3, 20e-3));
   const MeshStiffnessCurve c = time_varying_mesh_stiffness(g, {});

@@ -1,10 +1,10 @@
 // Tooth forces: spur, helical, straight and spiral bevel (all hand / rotation / flank cases),
 // hypoid, and the per-pair table.
 //
-// Reference figures: the [mesh-excitation] issue, computed from DESIGN 4.4's formulas (Gleason /
-// AGMA 2005 bevel thrust formulas as printed in Machinery's Handbook). They are given to 10
-// significant digits, so they are checked to 1e-9 relative; the computation itself rounds at
-// ~1e-15.
+// Reference figures: the [mesh-excitation] issue, computed from the formulas of docs/theory.md
+// §11.2 (Gleason / AGMA 2005 bevel thrust formulas as printed in Machinery's Handbook). They are
+// given to 10 significant digits, so they are checked to 1e-9 relative; the computation itself
+// rounds at ~1e-15.
 #include "geardyn/gear/tooth_forces.hpp"
 
 #include <gtest/gtest.h>

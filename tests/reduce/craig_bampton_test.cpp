@@ -38,7 +38,7 @@ TEST(CraigBampton, AllInteriorModesReproduceTheEigenvaluesExactly) {
   for (Eigen::Index k = 0; k < full.size(); ++k)
     EXPECT_NEAR(reduced[k], full[k], 1e-10 * scale) << "mode " << k + 1;
 
-  // The Craig-Bampton structure (DESIGN.md §4.2): K_r = [K_bb + K_bi Psi, 0; 0, Lambda],
+  // The Craig-Bampton structure (docs/theory.md §9): K_r = [K_bb + K_bi Psi, 0; 0, Lambda],
   // M_etaeta = I (mass-normalised fixed-interface modes).
   const Eigen::MatrixXd Kbe = rc.K.topRightCorner(2, 10);
   EXPECT_LE(Kbe.cwiseAbs().maxCoeff(), 1e-10 * scale);

@@ -231,7 +231,8 @@ TEST(CyclicForced, SectorMatchesFullWheelForEveryOrderType) {
 //      `recovery` argument). Keeping every fixed-interface mode makes T square and invertible,
 //      so the reduced sector is the unreduced one in other coordinates and its modal sum must
 //      equal the unreduced sector's direct solve (1e-7, as above).
-//  (b) Masters = interfaces + the load and sensor nodes (DESIGN 4.2: excitation and sensor nodes
+//  (b) Masters = interfaces + the load and sensor nodes (docs/theory.md §9: excitation and sensor
+//  nodes
 //      stay physical), half of the fixed-interface modes: the truncation error must stay below
 //      1e-2 of the largest response (measured figure printed).
 TEST(CyclicForced, CraigBamptonSectorWithRecoveryAndTruncation) {

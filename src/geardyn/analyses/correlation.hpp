@@ -3,12 +3,12 @@
 // and how they compare with a reference (computed) peak.
 //
 // Resonance peaks of a measured response, Q by the half-power method with interpolated
-// crossings, and the comparison with a reference peak (DESIGN 4.4-4.5; issue [mesh-excitation]):
-// run_correlation finds the peaks (CorrelationResult), correlation_output writes the peak table
-// (core/peak_table.hpp), the comparison, the plot and notes. Bad input throws InputError
-// (call check_gear_pairs and the type's own input check, through analyses::check_inputs, before
-// running, so it shows before any result); a numerical failure throws NumericalError naming the
-// analysis.
+// crossings, and the comparison with a reference peak (docs/theory.md §14; issue
+// [mesh-excitation]): run_correlation finds the peaks (CorrelationResult), correlation_output
+// writes the peak table (core/peak_table.hpp), the comparison, the plot and notes. Bad input throws
+// InputError (call check_gear_pairs and the type's own input check, through analyses::check_inputs,
+// before running, so it shows before any result); a numerical failure throws NumericalError naming
+// the analysis.
 #include <optional>
 #include <string>
 #include <vector>

@@ -48,7 +48,7 @@ Table without_superposition(const Table& t) {
 
 /// The sector solved and its cyclic interfaces: the assembled mesh or its Craig-Bampton
 /// reduction (masters: the interfaces, the excitation and sensor nodes and the master sets;
-/// DESIGN 4.2).
+/// docs/theory.md §9).
 struct Sector {
   SolvedSector solved;
   cyclic::CyclicSector cyclic;

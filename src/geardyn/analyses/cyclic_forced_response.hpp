@@ -3,7 +3,8 @@
 // under the engine-order harmonics of its tooth force, per nodal diameter and engine order.
 //
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
-// sections 6 and 7; DESIGN 4.3-4.5): run_cyclic_forced_response solves (model, settings, context)
+// sections 6 and 7; docs/theory.md §10-13): run_cyclic_forced_response solves (model, settings,
+// context)
 // -> CyclicForcedResponseResult; cyclic_forced_response_output writes its tables, plots and
 // notes. Bad input throws InputError located by the context (analyses::check_inputs runs
 // check_cyclic_forced_response_inputs before running, so it shows before any result); a numerical
@@ -44,9 +45,9 @@
 namespace geardyn::analyses {
 
 /// Forced response of a cyclic solid to the engine-order harmonics of its tooth force, over the
-/// speed of that solid, by modal summation per (nodal diameter, engine order) (DESIGN 4.3-4.4;
-/// response/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry (computed
-/// as mesh_harmonics does) or are given as force_amplitude.
+/// speed of that solid, by modal summation per (nodal diameter, engine order) (docs/theory.md §10,
+/// §12.4; response/cyclic_forced_response.hpp). The harmonics come from a [[gear_pairs]] entry
+/// (computed as mesh_harmonics does) or are given as force_amplitude.
 struct CyclicForcedResponseSettings : model::SettingsOf<CyclicForcedResponseSettings> {
   std::string solid;
   std::string pair;  ///< [[gear_pairs]] entry (empty: force_amplitude)

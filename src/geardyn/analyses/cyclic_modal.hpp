@@ -2,9 +2,9 @@
 // cyclic_modal: the natural frequencies of a cyclic solid per nodal diameter, computed on one
 // sector, and the speeds at which engine orders meet them in the rotating frame.
 //
-// Modes per nodal diameter from one sector (DESIGN §4.3), optionally after Craig-Bampton
-// reduction of the sector and interface-mode (Tran) reduction per nodal diameter (DESIGN §4.2),
-// the nodal-diameter diagram, the rotating-frame Campbell diagram with its resonance table,
+// Modes per nodal diameter from one sector (docs/theory.md §10), optionally after Craig-Bampton
+// reduction of the sector and interface-mode (Tran) reduction per nodal diameter (docs/theory.md
+// §9), the nodal-diameter diagram, the rotating-frame Campbell diagram with its resonance table,
 // full-wheel shapes, and optionally the check against the replicated 360 deg mesh:
 // run_cyclic_modal solves (the component from context.solid), cyclic_modal_output writes tables,
 // plots, notes and mode-shape files. Numerical failures throw NumericalError (the caller reports

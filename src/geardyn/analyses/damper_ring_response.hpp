@@ -1,7 +1,7 @@
 #pragma once
 // damper_ring_response: the friction-damped forced response of a cyclic gear with a damper ring
 // in a groove of its rim, wired to the model file (issue [friction-hbm] sections 3, 4 and 7;
-// DESIGN 4.6-4.7; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
+// docs/theory.md §8; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
 // Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, ch. 4 and sec. 5.3).
 // run_damper_ring_response solves (model, settings, context) -> DamperRingResponseResult;
 // damper_ring_response_output writes its tables, plots and notes.
@@ -45,7 +45,7 @@
 namespace geardyn::analyses {
 
 /// Friction-damped forced response of a cyclic gear with a damper ring in a groove, by harmonic
-/// balance condensed to the ring's contacts (damper/damper_ring.hpp, DESIGN 4.6-4.7). It is a
+/// balance condensed to the ring's contacts (damper/damper_ring.hpp, docs/theory.md §8). It is a
 /// cyclic forced response (the excitation, sensor, damping and speed keys are the same, for one
 /// engine order) plus the ring: its contacts, the harmonics balanced and an optional
 /// performance sweep.

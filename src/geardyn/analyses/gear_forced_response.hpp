@@ -3,7 +3,8 @@
 // harmonics of one of its gear meshes, at its sensors.
 //
 // A forced response to gear-mesh excitation, wired to the model file (issue [mesh-excitation]
-// sections 6 and 7; DESIGN 4.3-4.5): run_gear_forced_response solves (model, settings, context)
+// sections 6 and 7; docs/theory.md §11-13): run_gear_forced_response solves (model, settings,
+// context)
 // -> GearForcedResponseResult; gear_forced_response_output writes its tables, plots and notes.
 // Bad input throws InputError located by the context (check_gear_forced_response_inputs runs
 // before any analysis, through analyses::check_inputs, so it shows before any result); a numerical

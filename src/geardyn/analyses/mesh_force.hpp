@@ -4,7 +4,7 @@
 //
 // The dynamic mesh model over a speed range of gear 1, swept up and/or down: dynamic factor, DTE
 // and contact loss versus speed, the mesh resonance speed (f_n = sqrt(k_mean / m_e) / 2 pi), time
-// histories at `detail_rpm` (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_force solves
+// histories at `detail_rpm` (docs/theory.md §12-13; issue [mesh-excitation]): run_mesh_force solves
 // (MeshForceResult), mesh_force_output writes tables, plots and notes. Bad input throws InputError
 // (call check_gear_pairs and the type's own input check, through analyses::check_inputs, before
 // running, so it shows before any result); a numerical failure throws NumericalError naming the
@@ -25,7 +25,7 @@ namespace geardyn::analyses {
 /// The direction(s) a mesh_force sweep runs through its speeds.
 enum class SweepDirectionKind { Up, Down, Both };
 
-/// The dynamic mesh force over a speed range of gear 1 (DESIGN 4.5).
+/// The dynamic mesh force over a speed range of gear 1 (docs/theory.md §13).
 struct MeshForceSettings : model::SettingsOf<MeshForceSettings> {
   std::string pair;            ///< empty: the model's only gear pair
   std::vector<double> speeds;  ///< speeds of gear 1 [rad/s], increasing

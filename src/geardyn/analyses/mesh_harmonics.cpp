@@ -157,8 +157,8 @@ void add_notes(AnalysisOutput& out, const MeshHarmonicsSettings& settings,
   out.notes.push_back(
       "Phases are cosine phases in the rotation angle of the gear, zero when the loaded tooth "
       "enters contact (the STE cycle start); a mode with h nodal diameters is excited by the "
-      "orders k = h and k = N - h first (DESIGN 4.4). Order 0 of the spectrum is the mean tooth "
-      "load, not a harmonic.");
+      "orders k = h and k = N - h first (docs/theory.md §12.3). Order 0 of the spectrum is the "
+      "mean tooth load, not a harmonic.");
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 // At one speed: the dynamic mesh force over one mesh cycle, tiled to one revolution of the
 // chosen gear, times the tooth-load window -> the filtered tooth force -> its order spectrum ->
 // the engine-order harmonics k = h, N - h (...) per nodal diameter h, in tangential, radial and
-// axial components (DESIGN 4.4-4.5; issue [mesh-excitation]): run_mesh_harmonics solves
+// axial components (docs/theory.md §12-13; issue [mesh-excitation]): run_mesh_harmonics solves
 // (MeshHarmonicsResult), mesh_harmonics_output writes tables, plots and notes. Bad input throws
 // InputError (call
 // check_gear_pairs and the type's own input check, through analyses::check_inputs, before running,
@@ -23,7 +23,7 @@
 
 namespace geardyn::analyses {
 
-/// Engine-order harmonics of the tooth force of one gear at one speed (DESIGN 4.4).
+/// Engine-order harmonics of the tooth force of one gear at one speed (docs/theory.md §12.2).
 struct MeshHarmonicsSettings : model::SettingsOf<MeshHarmonicsSettings> {
   std::string pair;
   double speed = 0.0;  ///< speed of gear 1 [rad/s]

@@ -1,8 +1,9 @@
 #pragma once
-// One [[gear_pairs]] entry of a model turned into the inputs of the gear library (DESIGN 4.4-4.5):
-// the geometry (gear::gear_pair_geometry), the ISO 6336-1 stiffness options, the tooth forces for
-// drive and coast, and the static transmission error that drives the dynamic mesh model — read
-// from the pair's `ste_file` or synthetic, e = F_s / k, from the ISO 6336 mesh stiffness curve.
+// One [[gear_pairs]] entry of a model turned into the inputs of the gear library (docs/theory.md
+// §11-13): the geometry (gear::gear_pair_geometry), the ISO 6336-1 stiffness options, the tooth
+// forces for drive and coast, and the static transmission error that drives the dynamic mesh model
+// — read from the pair's `ste_file` or synthetic, e = F_s / k, from the ISO 6336 mesh stiffness
+// curve.
 //
 // Conventions (stated once here, used by every gear analysis):
 //   * gear 1 is the pinion and carries `torque`; its speed is the speed of the analyses;

@@ -1,7 +1,7 @@
 #pragma once
 // The load on one tooth of a gear of a [[gear_pairs]] entry over one revolution, and the mesh
 // force of the pair over one mesh cycle: the step shared by mesh_harmonics and the forced
-// responses (DESIGN 4.4-4.5).
+// responses (docs/theory.md §11.2, §12).
 //
 // Tooth force: the dynamic (or infinite-inertia) mesh force at gear 1's speed, solved to its
 // periodic steady state, tiled over one revolution of the chosen gear (N = its teeth mesh

@@ -1,7 +1,7 @@
 #pragma once
-// Unit conversions at the edges of geardyn (DESIGN §3: SI inside; `*_rpm`, `*_hz`, `*_deg` keys
-// and result columns that say their unit). One definition of pi and of each factor; nothing else
-// in the code base spells them out.
+// Unit conversions at the edges of geardyn (docs/theory.md, introduction: SI inside; `*_rpm`,
+// `*_hz`, `*_deg` keys and result columns that say their unit). One definition of pi and of each
+// factor; nothing else in the code base spells them out.
 #include <numbers>
 
 namespace geardyn::units {

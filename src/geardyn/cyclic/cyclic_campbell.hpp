@@ -1,5 +1,5 @@
 #pragma once
-// Campbell diagram of a cyclic structure in the rotating frame (DESIGN.md section 4.4;
+// Campbell diagram of a cyclic structure in the rotating frame (docs/theory.md §12.3;
 // damper-ring thesis, sections 1.3.3 and 5.1, Figure 5-3).
 //
 // In the frame that rotates with the wheel, a mode of nodal diameter h keeps its frequency f_h

@@ -1,6 +1,6 @@
 #pragma once
 // Cyclic symmetry of a structure made of N identical sectors about an axis through the origin
-// (DESIGN.md section 4.3).
+// (docs/theory.md §10).
 //
 // The sector's DOFs are listed as solid::DofInfo (node id, component 0..5 = ux uy uz rx ry rz in
 // global Cartesian axes, or -1 for a generalised coordinate, and the node position). Its

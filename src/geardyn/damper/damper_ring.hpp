@@ -1,7 +1,7 @@
 #pragma once
 // Damper ring in a gear-web groove: the friction-damped forced response of a cyclic gear to one
 // engine order of its tooth force, by harmonic balance condensed to the contact coordinates
-// (DESIGN 4.6-4.7; the damper-ring thesis: A. Durastante, "Simulation of the Dynamic Response of
+// (docs/theory.md §8; the damper-ring thesis: A. Durastante, "Simulation of the Dynamic Response of
 // Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, ch. 4
 // and sec. 5.3).
 //

@@ -26,16 +26,16 @@
 //   helical:  -sigma e_t - tan(alpha_n)/cos(beta) e_r + sigma h tan(beta) e_a,
 //             h = +1 for a right-hand helix of gear 1 (tooth line advances along +e_a for a
 //             positive turn, like a right-hand screw), -1 for left hand.
-//   straight / spiral bevel and hypoid (equivalent spur gear at mid face, DESIGN 4.4):
+//   straight / spiral bevel and hypoid (equivalent spur gear at mid face, docs/theory.md §11.2):
 //             -sigma e_t + F_a u_a - F_r e_r with s = h sigma (u_a . e_a),
 //             F_a = (tan(alpha_n) sin(delta1) + s sin(beta) cos(delta1)) / cos(beta)  (away
 //             from the apex when positive), F_r = (tan(alpha_n) cos(delta1) - s sin(beta)
 //             sin(delta1)) / cos(beta) (towards gear 1's axis, separating, when positive).
 //             Hand as in AGMA 2005 / ISO 23509: right hand when the outer half of the tooth is
 //             inclined clockwise for an observer looking at the face of the gear (from the apex
-//             side). So s = +1 (upper signs of DESIGN 4.4) is a right-hand gear 1 driving
-//             counter-clockwise as seen looking from its back towards the apex, or a left-hand
-//             one driving clockwise: both push gear 1 away from the apex.
+//             side). So s = +1 (upper signs of docs/theory.md (11.3)) is a right-hand gear 1
+//             driving counter-clockwise as seen looking from its back towards the apex, or a
+//             left-hand one driving clockwise: both push gear 1 away from the apex.
 // Torsion of a spur pair: (P - x1) x n . e_a = sigma r_b1, so only-rz motion gives the reduced
 // system omega^2 = k (r_b1^2 / J1 + r_b2^2 / J2).
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The assembled linear model of a rotor-bearing system (DESIGN 4.1):
+// The assembled linear model of a rotor-bearing system (docs/theory.md §1):
 //   M q'' + (C(Omega) + Omega G) q' + K(Omega) q = f(t),   frequency domain adds i K_s (hysteretic)
 // Omega is the reference speed [rad/s]; each shaft spins at speed_ratio x Omega, and G already
 // carries the speed ratios. All matrices are sparse, symmetric except G (skew) and
@@ -40,8 +40,8 @@ struct LinearSystem {
                         ///<        + Damping::loss_factor x K
   std::vector<SpeedDependentBearing> speed_bearings;
 
-  /// Modal damping (DESIGN 4.1) as a low-rank term C_modal = B diag(c) B^T with B = M Phi from
-  /// mass-normalised undamped modes at zero speed and c_r = 2 zeta_r omega_r. Empty if none.
+  /// Modal damping (docs/theory.md §4) as a low-rank term C_modal = B diag(c) B^T with B = M Phi
+  /// from mass-normalised undamped modes at zero speed and c_r = 2 zeta_r omega_r. Empty if none.
   Eigen::MatrixXd modal_basis;
   Eigen::VectorXd modal_coefficients;
 

@@ -1,6 +1,6 @@
 #pragma once
 // A body described by matrices (a superelement), joined to a rotor model: typically a solid
-// component reduced by Craig-Bampton onto the reference points of its spiders (DESIGN 4.2).
+// component reduced by Craig-Bampton onto the reference points of its spiders (docs/theory.md §9).
 //
 // The body's coordinates q are, in order:
 //   for each point p, its listed components c (ascending, 0..5 = ux, uy, uz, rx, ry, rz) in

@@ -11,8 +11,8 @@
 //
 // Sign conventions (node frame): in the e1-e3 plane the slope is ry = d ux / dz, in the e2-e3 plane
 // rx = -d uy / dz (right-handed rotations). The gyroscopic matrix G is per unit spin speed about
-// +e3 and enters as M q'' + Omega G q' + K q = f (DESIGN 4.1); for a thin slice of polar inertia
-// dIp it gives the disk terms G(rx, ry) = +dIp, G(ry, rx) = -dIp, so that forward whirl
+// +e3 and enters as M q'' + Omega G q' + K q = f (docs/theory.md §1); for a thin slice of polar
+// inertia dIp it gives the disk terms G(rx, ry) = +dIp, G(ry, rx) = -dIp, so that forward whirl
 // frequencies rise with speed (Friswell ch. 5, with their rotations theta = rx, psi = ry).
 #include "geardyn/fe/element_types.hpp"
 #include "geardyn/model/model.hpp"

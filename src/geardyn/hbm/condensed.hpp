@@ -1,5 +1,5 @@
 #pragma once
-// Harmonic balance condensed to the nonlinear coordinates (DESIGN 4.7): the linear structure
+// Harmonic balance condensed to the nonlinear coordinates (docs/theory.md §8): the linear structure
 // enters only through its receptance at the coordinates where nonlinear forces act (e.g. the
 // normal and tangential relative displacements of the contact pairs of a damper ring), so the
 // Newton system has n_coordinates (2H + 1) unknowns however large the FE model is.

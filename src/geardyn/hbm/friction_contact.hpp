@@ -1,6 +1,6 @@
 #pragma once
-// Node-to-node friction contact with a variable normal load (DESIGN 4.6) for the alternating
-// frequency-time method of harmonic balance (DESIGN 4.7): the periodic contact forces of one
+// Node-to-node friction contact with a variable normal load (docs/theory.md §8) for the alternating
+// frequency-time method of harmonic balance (docs/theory.md §8): the periodic contact forces of one
 // period of prescribed relative motion, with their exact derivative with respect to the Fourier
 // coefficients of that motion (an analytic AFT Jacobian). Also a unilateral (gap) spring.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Harmonic balance of  M q'' + C q' + K q + f_nl(q) = f_ext(t)  for periodic steady states
-// (DESIGN 4.7), with pseudo-arc-length continuation in the excitation frequency.
+// (docs/theory.md §8), with pseudo-arc-length continuation in the excitation frequency.
 //
 // Unknowns: the Fourier coefficients of every DOF, DOF-major: X[d (2H+1) + c] is coefficient c
 // (HarmonicBasis layout [a_0, a_1, b_1, ...]) of DOF d. Residual

@@ -1,6 +1,7 @@
 #pragma once
 // Truncated real Fourier series of one period and its time samples: the frequency <-> time
-// transforms of the alternating frequency-time (AFT) method of harmonic balance (DESIGN 4.7).
+// transforms of the alternating frequency-time (AFT) method of harmonic balance (docs/theory.md
+// §8).
 //
 //   x(theta) = a_0 + sum_{n=1..H} (a_n cos n theta + b_n sin n theta),   theta = omega t,
 //

@@ -1,7 +1,7 @@
 #pragma once
 // Jenkins element (a spring k in series with a Coulomb slider of limit F = mu N, constant N)
 // driven by a periodic relative displacement u(theta): the hysteretic tangential force of a
-// friction contact in stick and slip (DESIGN 4.6), evaluated over one period for the
+// friction contact in stick and slip (docs/theory.md §8), evaluated over one period for the
 // alternating frequency-time method, with its exact derivative with respect to the Fourier
 // coefficients of u (an analytic AFT Jacobian).
 //

@@ -1,6 +1,6 @@
 #pragma once
 // Craig-Bampton (and Guyan) reduction of a sparse component model onto master DOFs plus
-// fixed-interface modes (DESIGN.md §4.2).
+// fixed-interface modes (docs/theory.md §9).
 //
 // With the DOFs partitioned into masters b and interior i,
 //   constraint modes     Psi = -K_ii^{-1} K_ib                      (static shapes, x_b = I)

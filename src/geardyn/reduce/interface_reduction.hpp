@@ -19,7 +19,7 @@
 // Rings", MSc thesis, Politecnico di Torino, 2018, chapter 2.2.3).
 //
 // Scalar = double, or std::complex<double> for the Hermitian pairs of a cyclic harmonic
-// (DESIGN.md §4.3). Dense throughout: meant for reduced models (sizes up to a few thousand).
+// (docs/theory.md §10). Dense throughout: meant for reduced models (sizes up to a few thousand).
 #include <Eigen/Dense>
 #include <complex>
 #include <vector>

@@ -5,7 +5,7 @@
 //
 // Reduced coordinates q = [x_b; eta]: first the physical master DOFs x_b in the order of
 // `masters`, then `n_modal` fixed-interface modal coordinates eta. The original DOFs follow
-// (DESIGN.md §4.2)
+// (docs/theory.md §9)
 //   x_b = q_b,   x_i = Psi q_b + Phi eta,      i.e.  x = T q,  T = [I 0; Psi Phi]
 // in the partitioned ordering [masters | interior]; `master_index` and `interior_index` map the
 // partitions back to the original DOF numbering.

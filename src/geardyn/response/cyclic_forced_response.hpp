@@ -1,11 +1,11 @@
 #pragma once
 // Forced response of a cyclic gear (N identical sectors, one tooth per sector) to the engine-order
 // harmonics of the tooth force, in the frame rotating with the gear, over a list of speeds
-// (DESIGN.md 4.3, 4.4; A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
-// Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 1.3.3 and 5.2).
+// (docs/theory.md §10, §12; A. Durastante, "Simulation of the Dynamic Response of Aeronautical
+// Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 1.3.3 and 5.2).
 //
-// Excitation (DESIGN 4.4). The gear turns at W [rad/s] in the positive sense about the cyclic
-// axis; the mesh is fixed in space. Tooth j (j = 0..N-1, sector j, at angle j alpha, alpha =
+// Excitation (docs/theory.md §12.3). The gear turns at W [rad/s] in the positive sense about the
+// cyclic axis; the mesh is fixed in space. Tooth j (j = 0..N-1, sector j, at angle j alpha, alpha =
 // 2 pi / N) reaches the mesh j alpha / W earlier than tooth 0, so its load is tooth 0's load
 // advanced by j alpha of rotation. Harmonic k of that load acts on tooth j as the physical force
 //   f_j(t) = Re( R(j alpha) F_k e^{i k (W t + j alpha)} )                                   (1)
@@ -37,7 +37,7 @@
 // excitation node on an interface is handled by T_h^H (a right-interface node's load is the load
 // of the tooth whose node it is). Equations (2)-(3) are exact when all modes of ND h are summed
 // and the damping is proportional (e.g. Rayleigh: zeta_r = a / (2 w_r) + b w_r / 2); with fewer
-// modes they are the truncated modal superposition of DESIGN 4.1.
+// modes they are the truncated modal superposition (docs/theory.md §12.4).
 //
 // Resonances: mode r of ND h is met by order k at W_r = w_r / k. Orders exciting ND h:
 // k = h, N - h, N + h, 2N - h, ... (gear::nodal_diameter_orders).
@@ -90,7 +90,7 @@ struct CyclicSensor {
 /// Modal damping of the modes of every nodal diameter: exactly one of the three forms.
 struct ModalDamping {
   double damping_ratio = kNaN;     ///< zeta for every mode
-  double q_factor = kNaN;          ///< Q for every mode: zeta = 1 / (2 Q) (DESIGN 4.1)
+  double q_factor = kNaN;          ///< Q for every mode: zeta = 1 / (2 Q) (docs/theory.md §14)
   Eigen::VectorXd damping_ratios;  ///< zeta per mode of the nodal diameter (index = mode - 1)
   std::vector<std::string> validate() const;
   /// zeta of mode `mode` (0-based). Precondition: validate() is empty; throws InputError when a

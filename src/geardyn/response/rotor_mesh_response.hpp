@@ -1,6 +1,7 @@
 #pragma once
-// Forced response of a geared rotor (fe::LinearSystem, DESIGN 4.1) to harmonic gear-mesh forces
-// at the gear-mesh orders, over a list of reference speeds (issue [mesh-excitation] section 6).
+// Forced response of a geared rotor (fe::LinearSystem, docs/theory.md §1) to harmonic gear-mesh
+// forces at the gear-mesh orders, over a list of reference speeds (issue [mesh-excitation] section
+// 6).
 //
 // Excitation. Order p of the mesh of gear 1 (teeth z1, spin ratio r1 = speed_ratio of its node)
 // is the force pair of complex amplitude F_p [N] along the line of action
@@ -11,7 +12,7 @@
 // force: its translation parts at the two gear nodes are +-n and its rotation parts the moments
 // of the force about the nodes ((P - x) x n at the pitch point P).
 //
-// Response at reference speed W and frequency w (DESIGN 4.1, analysis/harmonic.hpp):
+// Response at reference speed W and frequency w (docs/theory.md §5, analyses/harmonic.hpp):
 //   D(w, W) q = f,  D = K(W) - w^2 M + i w (C(W) + W G + B diag(c) B^T) + i K_loss.
 // Two solvers:
 //   ModalReduced: q = Phi eta with Phi the lowest n undamped modes at zero speed, K(0) Phi =

@@ -1,7 +1,7 @@
 #pragma once
 // Peaks of a sampled amplitude curve |H(f)|: local maxima with a prominence, the peak refined by
 // parabolic interpolation, and the half-power (-3 dB) bandwidth with the quality factor
-//   Q = f_r / (f2 - f1),   zeta ~ 1 / (2 Q)                               (DESIGN 4.1, 4.9)
+//   Q = f_r / (f2 - f1),   zeta ~ 1 / (2 Q)                               (docs/theory.md §5, §14)
 // where f1 < f_r < f2 are the frequencies at which the amplitude has fallen to A_peak / sqrt(2),
 // found by linear interpolation of the amplitude between the two samples that bracket them.
 // The abscissa may be in any unit (Hz, rad/s, rpm); Q is dimensionless.

@@ -1,5 +1,5 @@
 #pragma once
-// One-sided amplitude spectrum of a real, uniformly sampled signal (DESIGN 4.4, 4.9).
+// One-sided amplitude spectrum of a real, uniformly sampled signal (docs/theory.md §12.2, §14).
 //
 // With n samples x_j at sample rate fs, window w_j and coherent gain CG = sum(w)/n:
 //   X_k = sum_j w_j x_j exp(-2 pi i j k / n),        f_k = k fs / n,  k = 0 .. n/2

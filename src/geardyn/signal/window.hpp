@@ -1,5 +1,5 @@
 #pragma once
-// Spectral windows for amplitude spectra (DESIGN 4.9).
+// Spectral windows for amplitude spectra (docs/theory.md §14).
 //
 // All windows are the periodic ("DFT-even") form: w_j for j = 0..n-1 is the first n samples of a
 // symmetric window of length n + 1. That is the form whose DFT has its zeros exactly on the
