@@ -251,5 +251,36 @@ TEST(GearMeshRatio, GearTwoOffTheLineOfCentresIsRefused) {
   EXPECT_NE(small.expected().find("internal"), std::string::npos) << small.expected();
 }
 
+// The speed ratios of spinning gear nodes and the tooth counts must follow r_b1 / r_b2 too:
+// here gear 1 spins at 1 and gear 2 at -0.7 instead of -r_b1 / r_b2 = -0.625, and then 20 / 30
+// teeth instead of 20 / 32.
+TEST(GearMeshRatio, SpeedRatiosAndToothCountsFollowTheBaseRadii) {
+  const Branched b;
+  model::Model m = analyses::parse_model(b.toml(), "branched.toml");
+  m.nodes[0].speed_ratio = 1.0;
+  m.nodes[1].speed_ratio = -0.7;
+  try {
+    (void)fe::assemble(m);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key_path(), "gear_meshes[0].base_radius2");
+    EXPECT_NE(e.expected().find("0.625"), std::string::npos) << e.expected();
+    EXPECT_NE(e.found().find("= 0.7"), std::string::npos) << e.found();
+  }
+  m.nodes[1].speed_ratio = -b.rb1 / b.rb2;
+  m.nodes[2].speed_ratio = b.rb1 / b.rb3;
+  EXPECT_NO_THROW((void)fe::assemble(m));
+  m.gear_meshes[0].teeth1 = 20;
+  m.gear_meshes[0].teeth2 = 32;  // 20 / 32 = 0.625 = r_b1 / r_b2
+  EXPECT_NO_THROW((void)fe::assemble(m));
+  m.gear_meshes[0].teeth2 = 30;
+  try {
+    (void)fe::assemble(m);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.expected().find("teeth1 / teeth2 = 20 / 30"), std::string::npos) << e.expected();
+  }
+}
+
 }  // namespace
 }  // namespace geardyn

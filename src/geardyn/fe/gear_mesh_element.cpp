@@ -31,12 +31,17 @@ void check_inputs(const model::GearMesh& mesh, double beta, const std::string& k
   }
 }
 
+constexpr const char* kGeometryHint =
+    "move the gear nodes, or correct base_radius1, base_radius2 or pressure_angle_deg (and "
+    "helix_angle_deg: the transverse pressure angle depends on it)";
+constexpr const char* kRatioHint =
+    "correct base_radius1 or base_radius2, teeth1 or teeth2, or the shafts' speed_ratio / "
+    "gear_ratio";
+
 [[noreturn]] void inconsistent(const model::GearMesh& mesh, const std::string& key,
-                               const std::string& expected, const std::string& found) {
-  throw InputError(mesh.where, key + ".base_radius2", expected, found,
-                   "move the gear nodes, or correct base_radius1, base_radius2 or "
-                   "pressure_angle_deg (and helix_angle_deg: the transverse pressure angle "
-                   "depends on it)");
+                               const std::string& expected, const std::string& found,
+                               const char* hint = kGeometryHint) {
+  throw InputError(mesh.where, key + ".base_radius2", expected, found, hint);
 }
 
 // Spur and helical gears (parallel axes): the line of action is the common tangent of the base
@@ -146,6 +151,38 @@ void crossed_axes(const model::GearMesh& mesh, const NodeInfo& gear1, const Node
   g.lever2 = arm.dot(a2) * a2 + (r_p2 / found) * normal;
 }
 
+// Kinematics the base radii imply: the gear ratio |omega2 / omega1| = r_b1 / r_b2 must be the
+// ratio of the nodes' speed ratios (when both spin) and, except for hypoid gears (pinion
+// enlargement), z1 / z2 (conjugate gears share one base pitch 2 pi r_b / z; ISO 21771).
+void check_ratios(const model::GearMesh& mesh, const NodeInfo& gear1, const NodeInfo& gear2,
+                  const std::string& key) {
+  const double ratio = mesh.base_radius1 / mesh.base_radius2;
+  const auto off = [&](double value) {
+    return !(std::abs(value - ratio) <= kConsistencyTolerance * ratio);
+  };
+  if (gear1.speed_ratio != 0.0 && gear2.speed_ratio != 0.0 &&
+      off(std::abs(gear2.speed_ratio / gear1.speed_ratio)))
+    inconsistent(mesh, key,
+                 fmt::format("a gear ratio base_radius1 / base_radius2 = {:.6g} within {:g} % of "
+                             "the speed ratios of the gear nodes",
+                             ratio, 100 * kConsistencyTolerance),
+                 fmt::format("|speed ratio| {:.6g} of node '{}' / {:.6g} of node '{}' = {:.6g}",
+                             std::abs(gear2.speed_ratio), gear2.name, std::abs(gear1.speed_ratio),
+                             gear1.name, std::abs(gear2.speed_ratio / gear1.speed_ratio)),
+                 kRatioHint);
+  if (mesh.type != model::GearType::Hypoid && mesh.teeth1 > 0 && mesh.teeth2 > 0 &&
+      off(static_cast<double>(mesh.teeth1) / mesh.teeth2))
+    inconsistent(
+        mesh, key,
+        fmt::format("base radii in the ratio of the tooth counts (one base pitch): "
+                    "teeth1 / teeth2 = {} / {} = {:.6g} within {:g} %",
+                    mesh.teeth1, mesh.teeth2, static_cast<double>(mesh.teeth1) / mesh.teeth2,
+                    100 * kConsistencyTolerance),
+        fmt::format("base_radius1 / base_radius2 = {} / {} = {:.6g}", mesh.base_radius1,
+                    mesh.base_radius2, ratio),
+        kRatioHint);
+}
+
 }  // namespace
 
 GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo& gear1,
@@ -154,6 +191,7 @@ GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo&
   const bool straight = spur || mesh.type == model::GearType::StraightBevel;
   const double beta = straight ? 0.0 : mesh.helix_angle;
   check_inputs(mesh, beta, key);
+  check_ratios(mesh, gear1, gear2, key);
 
   GearMeshGeometry g;
   const Eigen::Vector3d x1 = gear1.position, x2 = gear2.position;

@@ -57,6 +57,9 @@
 //        2's lever arm is P - x2 with its part normal to gear 2's axis scaled to exactly r_p2.
 //   hypoid: the equivalent spiral bevel places P off the true (offset) pitch point, so only gear
 //        2's lever arm is scaled to r_p2; no distance is checked.
+//   all:  r_b1 / r_b2 must be |speed ratio of gear 2 / speed ratio of gear 1| when both nodes
+//        spin, and teeth1 / teeth2 when both are given (one base pitch; not for hypoid gears,
+//        whose pinion is enlarged).
 #include <string>
 
 #include "geardyn/fe/dof_map.hpp"
