@@ -294,6 +294,10 @@ TEST(GearMeshElement, HelicalThrustFollowsHandAndFlank) {
   SpurPair pair;
   pair.mesh.type = model::GearType::Helical;
   pair.mesh.helix_angle = 0.3;
+  // Base radii of the helical pair at the same pitch radii (transverse pressure angle).
+  const double alpha_t = std::atan(std::tan(0.35) / std::cos(0.3));
+  pair.mesh.base_radius1 = 0.05 * std::cos(alpha_t);
+  pair.mesh.base_radius2 = 0.10 * std::cos(alpha_t);
   const GearMeshGeometry right = gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m");
   // Right-hand driver turning positively: thrust on gear 1 along +e_a (screw analogy), so the
   // force on gear 2 has a negative z component; ratio to the tangential part is tan(beta).
@@ -314,7 +318,11 @@ TEST(GearMeshElement, InvalidGeometryIsInputError) {
   SpurPair pair;
   pair.gear2.position = Eigen::Vector3d(0, 0, 0.3);  // coaxial
   EXPECT_THROW((void)gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m"), InputError);
+  // A mesh direction does not make coaxial gears mesh: the centre distance (0) disagrees with
+  // the base radii.
   pair.mesh.mesh_direction = model::Vec3{1.0, 0.0, 0.0};
+  EXPECT_THROW((void)gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m"), InputError);
+  pair.gear2.position = Eigen::Vector3d(0.15, 0, 0.3);  // axially offset: fine
   EXPECT_NO_THROW((void)gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m"));
   pair.mesh.mesh_direction = model::Vec3{0.0, 0.0, 2.0};
   EXPECT_THROW((void)gear_mesh_geometry(pair.mesh, pair.gear1, pair.gear2, "m"), InputError);

@@ -111,6 +111,7 @@ struct BevelPair {
   }
   void set_base_radius(double transverse_pressure_angle) {
     mesh.base_radius1 = r_m1 * std::cos(transverse_pressure_angle);
+    mesh.base_radius2 = r_m2 * std::cos(transverse_pressure_angle);
   }
 };
 
@@ -136,6 +137,8 @@ TEST(GearMeshValidation, StraightBevelLineOfActionMatchesToothForces) {
   model::GearMesh reversed = pair.mesh;
   reversed.pitch_cone_angle1 = pair.mesh.pitch_cone_angle2;
   reversed.base_radius1 = BevelPair::r_m2 * std::cos(pair.mesh.pressure_angle);
+  reversed.base_radius2 = BevelPair::r_m1 * std::cos(pair.mesh.pressure_angle);
+  std::swap(reversed.teeth1, reversed.teeth2);
   const GearMeshGeometry h = gear_mesh_geometry(reversed, pair.gear, pair.pinion, "m");
   EXPECT_NEAR(h.axial_force * Ft, Fr, 1e-5);
   EXPECT_NEAR(h.radial_force * Ft, Fa, 1e-5);

@@ -204,6 +204,13 @@ AnalysisOutput gear_pair_output(const model::Model& /*model*/, const GearPairSet
     loads.push_back(pm.coast);
   }
   out.tables.push_back(gear::geometry_table(geometries));
+  // Each member's own face width (b1, b2); the contact uses the smaller (contact_face_width_m).
+  std::vector<double> face_widths;
+  for (const PairModel& pm : pairs) {
+    face_widths.push_back(pm.pair->face_width1);
+    face_widths.push_back(pm.pair->face_width2);
+  }
+  out.tables.back().add("face_width_m", "m", std::move(face_widths));
   out.tables.push_back(gear::tooth_force_table(force_pairs, loads));
   out.tables.push_back(iso_table(pairs));
   for (const PairModel& pm : pairs) add_pair_output(out, pm, pairs.size() != 1);

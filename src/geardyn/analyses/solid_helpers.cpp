@@ -73,6 +73,22 @@ eig::SymmetricEigenResult solve_modes(const Eigen::SparseMatrix<double>& K,
   eig::SymmetricEigenResult r = eig::solve_symmetric(K, M, o);
   if (r.status != Status::Ok)
     throw NumericalError(name, fmt::format("eigen-solve: {} ({})", r.message, r.brief_report()));
+  // A negative eigenvalue beyond round-off means K is indefinite (a negative stiffness from an
+  // imported matrix, a spring or a material): say so instead of reporting it as 0 Hz. Round-off
+  // of the eigenvalues is about eps max_i(K_ii / M_ii) (rigid-body modes land there, of either
+  // sign); 1e-8 of that scale leaves eight orders of margin.
+  const Eigen::VectorXd k_diag = K.diagonal(), m_diag = M.diagonal();
+  double scale = 0.0;
+  for (Eigen::Index i = 0; i < k_diag.size(); ++i)
+    if (m_diag(i) > 0.0) scale = std::max(scale, k_diag(i) / m_diag(i));
+  for (Eigen::Index j = 0; j < r.eigenvalues.size(); ++j)
+    if (r.eigenvalues[j] < -1e-8 * scale)
+      throw NumericalError(
+          name, fmt::format("the stiffness matrix is not positive semi-definite: mode {} has "
+                            "omega^2 = {:.6g} (rad/s)^2 < 0 (below the round-off level {:.3g}); "
+                            "check for a negative stiffness in imported matrices, springs or "
+                            "materials",
+                            j + 1, r.eigenvalues[j], -1e-8 * scale));
   return r;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <set>
 
+#include "geardyn/assembly/imported_matrices.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/io/sha256.hpp"
@@ -183,6 +184,8 @@ SolidComponent build_solid(const model::Model& model, const model::Solid& s, Pro
         throw InputError(s.where, key_of(model, s, key), "an existing file",
                          fmt::format("'{}' (no such file)", path.string()));
     meshio::ExternalMatrices m = meshio::read_matrix_market_component(path_k, path_m, path_map);
+    check_imported_matrices(m.K, m.M, s.where, key_of(model, s, "stiffness_file"), path_k.string(),
+                            key_of(model, s, "mass_file"), path_m.string());
     c.external_matrices = true;
     c.system.dofs = std::move(m.dofs);
     c.system.K = std::move(m.K);

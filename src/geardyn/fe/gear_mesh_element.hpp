@@ -38,6 +38,28 @@
 //             left-hand one driving clockwise: both push gear 1 away from the apex.
 // Torsion of a spur pair: (P - x1) x n . e_a = sigma r_b1, so only-rz motion gives the reduced
 // system omega^2 = k (r_b1^2 / J1 + r_b2^2 / J2).
+//
+// Both base radii are used, and the node positions must agree with them (kConsistencyTolerance):
+//   spur, helical (parallel axes): the centre distance a (distance of gear 2's node from gear 1's
+//        axis) must be (r_b1 + r_b2) / cos(alpha_t) (external: gear 2's centre beyond P along e_r)
+//        or (r_b2 - r_b1) / cos(alpha_t) (internal gear 2: its centre behind gear 1's, reached by
+//        a mesh_direction pointing away from gear 2), and gear 2's centre must lie on the line
+//        through gear 1's centre along e_r. The line of action is then the common tangent of the
+//        two base circles (ISO 21771:2007, Gears - Cylindrical involute gears and gear pairs -
+//        Concepts and geometry, a_w = (d_b1 + d_b2) / (2 cos(alpha_wt))): working
+//        transverse pressure angle cos(alpha_wt) = (r_b2 +- r_b1) / a, P dividing the centre
+//        distance in the ratio r_b1 : r_b2, base helix angle tan(beta_b) = tan(beta) cos(alpha_t)
+//        kept (tan(beta_w) = tan(beta_b) / cos(alpha_wt)). The torsional lever arms are then
+//        exactly r_b1 cos(beta_b) and r_b2 cos(beta_b): the gear ratio is r_b1 / r_b2, whatever
+//        rounding the node coordinates carry, and rigid rotations of the gear train strain nothing.
+//   straight / spiral bevel: P must lie at r_p2 = base_radius2 / cos(alpha_t) from gear 2's axis
+//        (mean pitch radius of gear 2; both mean pitch points coincide on the pitch cones). Gear
+//        2's lever arm is P - x2 with its part normal to gear 2's axis scaled to exactly r_p2.
+//   hypoid: the equivalent spiral bevel places P off the true (offset) pitch point, so only gear
+//        2's lever arm is scaled to r_p2; no distance is checked.
+//   all:  r_b1 / r_b2 must be |speed ratio of gear 2 / speed ratio of gear 1| when both nodes
+//        spin, and teeth1 / teeth2 when both are given (one base pitch; not for hypoid gears,
+//        whose pinion is enlarged).
 #include <string>
 
 #include "geardyn/fe/dof_map.hpp"
@@ -52,19 +74,27 @@ struct GearMeshGeometry {
   Eigen::Vector3d tangential;            ///< e_t
   Eigen::Vector3d axial;                 ///< e_a (spur, helical) or u_a (bevel, hypoid)
   Eigen::Vector3d line_of_action;        ///< n: unit direction of the force on gear 2
+  Eigen::Vector3d lever2;                ///< lever arm of the mesh force about gear 2's node [m]
   double pitch_radius1 = 0;              ///< r_p1 [m]
-  double transverse_pressure_angle = 0;  ///< alpha_t [rad]
+  double transverse_pressure_angle = 0;  ///< alpha_t [rad] (spur, helical: working alpha_wt)
   double sigma = 1;                      ///< rotation sense x flank, see above
   /// Tooth force on gear 1 per unit tangential force, along -sigma e_t, `axial` and -e_r:
   /// (1, F_a, F_r). The unnormalised force is -sigma e_t + F_a axial - F_r e_r.
   double tangential_force = 1, axial_force = 0, radial_force = 0;
 };
 
+/// Relative tolerance of the check of node positions against the base radii: coordinates and
+/// radii written to 4 significant digits carry up to 5e-4 relative rounding, twice that is 1e-3,
+/// and 0.1 % of a centre distance is well above a manufacturing tolerance (DIN 3964, 1980,
+/// centre distance allowances: tens of micrometres on hundreds of millimetres): a larger mismatch
+/// is a modelling error that would otherwise change the gear ratio.
+inline constexpr double kConsistencyTolerance = 1e-3;
+
 /// Geometry of `mesh` between the gear nodes (global positions and frames from the DofMap).
 /// `key` is the key path used in InputError messages (e.g. "gear_meshes[0]").
 /// Throws InputError for coaxial nodes, a mesh_direction along the axis, non-positive base
 /// radius, a pressure angle outside (0, pi/2), |helix angle| >= pi/2, bevel axes that are parallel
-/// or a gear node at the cone apex.
+/// or a gear node at the cone apex, and node positions inconsistent with the base radii (above).
 GearMeshGeometry gear_mesh_geometry(const model::GearMesh& mesh, const NodeInfo& gear1,
                                     const NodeInfo& gear2, const std::string& key);
 

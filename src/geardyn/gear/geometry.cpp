@@ -441,8 +441,8 @@ Table geometry_table(const std::vector<GearPairGeometry>& pairs) {
   t.name = "gear_geometry";
   t.title = "Gear pair geometry (bevel and hypoid: virtual cylindrical gears at mid face)";
   std::vector<std::string> pair, member;
-  std::vector<double> teeth, zv, r, rm, rb, ra, rf, rw, delta, beta, x, a, mn, mt, alpha_w, ea, eb,
-      eg;
+  std::vector<double> teeth, zv, r, rm, rb, ra, rf, rw, delta, beta, beta_b, b, x, a, mn, mt,
+      alpha_w, ea, eb, eg;
   for (const auto& g : pairs) {
     for (int k = 0; k < 2; ++k) {
       const GearGeometry& m = k == 0 ? g.pinion : g.wheel;
@@ -458,6 +458,8 @@ Table geometry_table(const std::vector<GearPairGeometry>& pairs) {
       rw.push_back(m.working_pitch_radius_m);
       delta.push_back(m.pitch_cone_angle_rad / units::kRadPerDegree);
       beta.push_back(m.spiral_angle_rad / units::kRadPerDegree);
+      beta_b.push_back(g.base_helix_angle_rad / units::kRadPerDegree);
+      b.push_back(g.face_width_m);
       x.push_back(m.profile_shift);
       a.push_back(g.centre_distance_m);
       mn.push_back(g.normal_module_m);
@@ -480,6 +482,8 @@ Table geometry_table(const std::vector<GearPairGeometry>& pairs) {
   t.add("working_pitch_radius_m", "m", std::move(rw));
   t.add("pitch_cone_angle_deg", "deg", std::move(delta));
   t.add("spiral_angle_deg", "deg", std::move(beta));
+  t.add("base_helix_angle_deg", "deg", std::move(beta_b));
+  t.add("contact_face_width_m", "m", std::move(b));
   t.add("profile_shift", "", std::move(x));
   t.add("centre_distance_m", "m", std::move(a));
   t.add("normal_module_m", "m", std::move(mn));

@@ -175,7 +175,8 @@ SizeLine parse_size_line(const std::vector<std::string_view>& lines, std::size_t
 std::vector<Eigen::Triplet<double>> read_entries(std::string_view text,
                                                  const std::vector<std::string_view>& lines,
                                                  std::size_t l, const Header& h, const SizeLine& sl,
-                                                 const Locator& at) {
+                                                 const Locator& at,
+                                                 std::vector<SourceLocation>& diagonal) {
   const bool coordinate = h.coordinate, symmetric = h.symmetric;
   const long long n = sl.n, expected = sl.expected;
   std::vector<Eigen::Triplet<double>> triplets;
@@ -219,6 +220,7 @@ std::vector<Eigen::Triplet<double>> read_entries(std::string_view text,
         throw InputError(at(l, t[0].column), "entry", "each (row, column) once",
                          fmt::format("a second entry ({}, {})", ij[0], ij[1]));
       const int i = static_cast<int>(ij[0] - 1), j = static_cast<int>(ij[1] - 1);
+      if (i == j) diagonal[static_cast<std::size_t>(i)] = at(l, t[0].column);
       triplets.emplace_back(i, j, v);
       if (symmetric && i != j) triplets.emplace_back(j, i, v);
       ++count;
@@ -230,6 +232,7 @@ std::vector<Eigen::Triplet<double>> read_entries(std::string_view text,
                            "more entries");
         const double v = value_of(token, l);
         const int i = static_cast<int>(array_row), j = static_cast<int>(array_column);
+        if (i == j) diagonal[static_cast<std::size_t>(i)] = at(l, token.column);
         if (v != 0.0) {
           triplets.emplace_back(i, j, v);
           if (symmetric && i != j) triplets.emplace_back(j, i, v);
@@ -275,7 +278,9 @@ MatrixMarketMatrix parse_matrix_market(std::string_view text, const std::string&
   result.size_line = at(l, 1);
   ++l;
 
-  const std::vector<Eigen::Triplet<double>> triplets = read_entries(text, lines, l, h, sl, at);
+  result.diagonal.assign(static_cast<std::size_t>(sl.n), SourceLocation{file, 0, 0});
+  const std::vector<Eigen::Triplet<double>> triplets =
+      read_entries(text, lines, l, h, sl, at, result.diagonal);
   result.matrix.resize(static_cast<Eigen::Index>(sl.n), static_cast<Eigen::Index>(sl.n));
   result.matrix.setFromTriplets(triplets.begin(), triplets.end());
   result.matrix.makeCompressed();
@@ -400,7 +405,10 @@ std::vector<solid::DofInfo> read_dof_map_csv(const fs::path& path) {
 
 namespace {
 
-// Largest |A_ij - A_ji| relative to max |A|, with the worst entry.
+// Symmetry: |A_ij - A_ji| <= 1e-10 max|A| for every entry. A matrix written by an FE code from
+// a symmetric matrix is symmetric to round-off of its arithmetic (1e-16 .. 1e-13 relative for a
+// reduced matrix); 1e-10 leaves three orders of margin for that and still refuses every
+// transposed, mis-indexed or unsymmetric (e.g. follower-load) matrix, whose asymmetry is O(1).
 void check_symmetric(const MatrixMarketMatrix& m, const std::string& name) {
   const Eigen::SparseMatrix<double>& A = m.matrix;
   const Eigen::SparseMatrix<double> At = A.transpose();
@@ -416,6 +424,36 @@ void check_symmetric(const MatrixMarketMatrix& m, const std::string& name) {
                          fmt::format("A({}, {}) = {} but A({}, {}) = {}", it.row() + 1,
                                      it.col() + 1, A.coeff(it.row(), it.col()), it.col() + 1,
                                      it.row() + 1, A.coeff(it.col(), it.row())));
+}
+
+// The DOF a matrix row acts on, for messages.
+std::string dof_name(const std::vector<solid::DofInfo>& dofs, Eigen::Index row) {
+  static constexpr const char* kNames[6] = {"ux", "uy", "uz", "rx", "ry", "rz"};
+  const solid::DofInfo& d = dofs[static_cast<std::size_t>(row)];
+  if (d.component < 0 || d.component > 5)
+    return fmt::format("generalised coordinate {}", d.node_id);
+  return fmt::format("node {} {}", d.node_id, kNames[d.component]);
+}
+
+// Diagonal entries: a mass matrix is positive definite, so every M_ii > 0 (the kinetic energy of
+// a unit motion of DOF i); a stiffness matrix is positive semi-definite, so every K_ii >= 0 (the
+// strain energy of a unit displacement of DOF i). A wrong sign is located at its line.
+void check_diagonal(const MatrixMarketMatrix& m, const std::string& name, bool positive,
+                    const std::vector<solid::DofInfo>& dofs) {
+  const Eigen::VectorXd d = m.matrix.diagonal();
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (positive ? d(i) > 0 : d(i) >= 0) continue;
+    const SourceLocation& where = m.diagonal[static_cast<std::size_t>(i)];
+    throw InputError(
+        where.line > 0 ? where : m.size_line, name,
+        positive ? "a positive diagonal (a mass matrix is positive definite: every DOF has mass)"
+                 : "a non-negative diagonal (a stiffness matrix is positive semi-definite)",
+        fmt::format("{}({}, {}) = {}{} on {}", name, i + 1, i + 1, d(i),
+                    where.line > 0 ? "" : " (no entry)", dof_name(dofs, i)),
+        positive ? "give every DOF of the DOF map its mass (a massless DOF must be condensed out "
+                   "before export)"
+                 : "export the stiffness matrix with its sign and units unchanged");
+  }
 }
 
 }  // namespace
@@ -435,6 +473,8 @@ ExternalMatrices read_matrix_market_component(const fs::path& path_K, const fs::
                      fmt::format("{} DOF rows", dofs.size()));
   check_symmetric(K, "K");
   check_symmetric(M, "M");
+  check_diagonal(M, "M", true, dofs);
+  check_diagonal(K, "K", false, dofs);
   ExternalMatrices out;
   out.K = K.matrix;
   out.M = M.matrix;

@@ -31,6 +31,8 @@ struct MatrixMarketMatrix {
   Eigen::SparseMatrix<double> matrix;
   bool symmetric = false;    ///< header said symmetric
   SourceLocation size_line;  ///< where the size line is (for size-mismatch messages)
+  /// Where each diagonal entry A_ii was given (line 0: not in the file, i.e. zero).
+  std::vector<SourceLocation> diagonal;
 };
 
 MatrixMarketMatrix read_matrix_market(const std::filesystem::path& path);
@@ -49,7 +51,9 @@ struct ExternalMatrices {
 
 /// Reads K, M and the DOF map and checks that they fit: K and M square with as many rows as
 /// the DOF map has rows, and symmetric (|A_ij - A_ji| <= 1e-10 max|A|; a "general" file must
-/// still describe a symmetric matrix). Throws InputError otherwise.
+/// still describe a symmetric matrix), every M_ii > 0 and every K_ii >= 0 (located at the
+/// entry's line, naming the DOF). Throws InputError otherwise. Definiteness beyond the diagonal
+/// (a Cholesky factorisation) is checked by the caller (assembly::check_imported_matrices).
 ExternalMatrices read_matrix_market_component(const std::filesystem::path& path_K,
                                               const std::filesystem::path& path_M,
                                               const std::filesystem::path& path_dofmap);

@@ -7,10 +7,12 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "geardyn/core/text.hpp"
 #include "geardyn/core/units.hpp"
@@ -25,7 +27,7 @@ using solid::ElementType;
 constexpr int kMaxIncludeDepth = 64;
 constexpr std::string_view kSupported =
     "GRID, CORD2R, CORD2C, CORD2S, CTETRA, CHEXA, CPENTA, PSOLID, MAT1, CONM2, CELAS1, PELAS, "
-    "CELAS2, RBE2, RBE3, SPC1";
+    "CELAS2, RBE2, RBE3, SPC1, ASET, ASET1, QSET, QSET1, BSET, BSET1, CSET, CSET1";
 
 std::string upper(std::string_view s) {
   std::string out(s);
@@ -56,6 +58,16 @@ struct Card {
   int line = 0;
   int column = 1;
   std::vector<Field> data;  // data[i] is Nastran field i + 2 of the entry
+};
+
+// A case control "SET n = ..." of grid ids: ranges [from, to] (from == to for one id), and the
+// ids excluded by EXCEPT.
+struct CaseSet {
+  long id = 0;
+  int file = 0;
+  int line = 0;
+  std::vector<std::pair<long, long>> ranges;
+  std::set<long> except;
 };
 
 // One physical line split into its first field (name or continuation marker) and data fields.
@@ -140,6 +152,14 @@ SplitLine split_free(std::string_view raw, int line, const std::string& file) {
   return out;
 }
 
+bool parse_integer(std::string_view text, long& value) {
+  if (text.empty()) return false;
+  if (text.front() == '+') text.remove_prefix(1);
+  if (text.empty() || text.front() == '+') return false;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && ptr == text.data() + text.size();
+}
+
 bool starts_with_ci(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
   for (std::size_t i = 0; i < prefix.size(); ++i)
@@ -158,6 +178,7 @@ class DeckParser {
 
   std::vector<std::string> files_;
   std::vector<Card> cards_;
+  std::vector<CaseSet> case_sets_;
 
  private:
   static std::string stack_key(const std::string& file) {
@@ -203,6 +224,7 @@ class DeckParser {
           break;
         }
       }
+      if (first > 0) read_case_sets(lines, first - 1, file_name, file_index);
     }
     for (std::size_t i = first; i < lines.size() && !stopped_; ++i) {
       const std::string_view raw = lines[i];
@@ -265,6 +287,76 @@ class DeckParser {
       card.data.push_back(blank);
     }
     for (const Field& f : split.data) card.data.push_back(f);
+  }
+
+  // Case control (after CEND, or the whole text before BEGIN BULK when there is no CEND):
+  // "SET n = i1, i2, i3 THRU i4 EXCEPT i5, ..." with continuation lines after a trailing comma.
+  // Sets of anything but integers (ALL, real values, labels) are listed as unsupported.
+  void read_case_sets(const std::vector<std::string_view>& lines, std::size_t end,
+                      const std::string& file_name, int file_index) {
+    const auto content = [&](std::size_t k) {
+      return upper(trim(lines[k].substr(0, lines[k].find('$'))));
+    };
+    std::size_t begin = 0;
+    for (std::size_t i = 0; i < end; ++i)
+      if (content(i) == "CEND") begin = i + 1;
+    for (std::size_t i = begin; i < end; ++i) {
+      std::string text = content(i);
+      if (text.rfind("SET", 0) != 0 || text.size() < 4 || !is_space(text[3])) continue;
+      const int line = static_cast<int>(i) + 1;
+      while (!text.empty() && text.back() == ',' && i + 1 < end) {
+        ++i;
+        text.push_back(' ');
+        text.append(content(i));
+      }
+      const std::size_t equals = text.find('=');
+      long id = 0;
+      if (equals == std::string::npos ||
+          !parse_integer(std::string(trim(std::string_view(text).substr(3, equals - 3))), id) ||
+          id <= 0) {
+        unsupported("SET", file_name, line, 1, "a case control SET without 'n ='");
+        continue;
+      }
+      std::string items = text.substr(equals + 1);
+      std::replace(items.begin(), items.end(), ',', ' ');
+      std::istringstream words(items);
+      std::vector<std::string> w{std::istream_iterator<std::string>(words), {}};
+      CaseSet set{id, file_index, line, {}, {}};
+      if (!parse_case_items(w, set)) {
+        unsupported("SET", file_name, line, 1,
+                    fmt::format("SET {} is not a list of ids (only grid-id sets are read)", id));
+        continue;
+      }
+      case_sets_.push_back(std::move(set));
+    }
+  }
+
+  static bool parse_case_items(const std::vector<std::string>& w, CaseSet& set) {
+    bool excepting = false;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      long a = 0, b = 0;
+      if (w[k] == "EXCEPT") {
+        if (set.ranges.empty() || set.ranges.back().first == set.ranges.back().second) return false;
+        excepting = true;
+        continue;
+      }
+      if (!parse_integer(w[k], a) || a <= 0) return false;
+      if (k + 2 < w.size() && w[k + 1] == "THRU") {
+        if (!parse_integer(w[k + 2], b) || b < a) return false;
+        set.ranges.emplace_back(a, b);
+        excepting = false;
+        k += 2;
+        continue;
+      }
+      // EXCEPT lists ids inside the preceding range; the first id outside ends the list.
+      if (excepting && a >= set.ranges.back().first && a <= set.ranges.back().second) {
+        set.except.insert(a);
+        continue;
+      }
+      excepting = false;
+      set.ranges.emplace_back(a, a);
+    }
+    return !set.ranges.empty();
   }
 
   static bool is_begin_bulk(std::string_view line) {
@@ -337,14 +429,6 @@ class DeckParser {
 
 // ---------------------------------------------------------------------------------------------
 // Field access with Nastran types and precise errors
-
-bool parse_integer(std::string_view text, long& value) {
-  if (text.empty()) return false;
-  if (text.front() == '+') text.remove_prefix(1);
-  if (text.empty() || text.front() == '+') return false;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && ptr == text.data() + text.size();
-}
 
 class Entry {
  public:
@@ -554,7 +638,8 @@ class DeckBuilder {
     for (const Card& c : parser_.cards_) {
       static const std::set<std::string> kKnown = {
           "GRID", "CORD2R", "CORD2C", "CORD2S", "CTETRA", "CHEXA", "CPENTA", "PSOLID",
-          "MAT1", "CONM2",  "CELAS1", "PELAS",  "CELAS2", "RBE2",  "RBE3",   "SPC1"};
+          "MAT1", "CONM2",  "CELAS1", "PELAS",  "CELAS2", "RBE2",  "RBE3",   "SPC1",
+          "ASET", "ASET1",  "QSET",   "QSET1",  "BSET",   "BSET1", "CSET",   "CSET1"};
       if (kKnown.count(c.name) != 0) {
         by_name[c.name].push_back(&c);
       } else {
@@ -584,6 +669,11 @@ class DeckBuilder {
     for (const Card* c : cards("RBE2")) read_rbe2(*c);
     for (const Card* c : cards("RBE3")) read_rbe3(*c);
     for (const Card* c : cards("SPC1")) read_spc1(*c);
+    for (const char* name : {"ASET", "QSET", "BSET", "CSET"}) {
+      for (const Card* c : cards(name)) read_dof_set_pairs(*c);
+      for (const Card* c : cards((std::string(name) + "1").c_str())) read_dof_set1(*c);
+    }
+    for (const CaseSet& set : parser_.case_sets_) read_case_set(set);
     finish_constraints();
   }
 
@@ -1159,6 +1249,64 @@ class DeckBuilder {
       set.push_back(n);
       if (options_.spc_set == 0 || options_.spc_set == sid) add_constraint(n, c, e.where());
     }
+  }
+
+  // ASET1 / QSET1 / BSET1 / CSET1  C G1 G2 ... (THRU ranges; grids missing inside a range
+  // skipped): the grids form the node set "ASET" (etc.; ASET and ASET1 entries add to one set).
+  // The components are checked but the set constrains nothing: it only names nodes (interfaces,
+  // masters) for the model file.
+  void read_dof_set1(const Card& card) {
+    const Entry e = entry(card);
+    (void)e.components(2, "C");
+    int stop = 0;
+    const std::vector<int> nodes = grid_list(e, 3, stop, /*skip_missing_in_ranges=*/true);
+    if (stop <= e.last()) e.fail(stop, "G", "a grid id or THRU");
+    if (nodes.empty() && e.blank(3)) e.fail(3, "G1", "at least one grid");
+    if (nodes.empty()) warn(e, 3, "selects no GRID of the deck");
+    std::vector<int>& set = mesh_.node_sets[card.name.substr(0, 4)];
+    set.insert(set.end(), nodes.begin(), nodes.end());
+  }
+
+  // ASET / QSET / BSET / CSET  ID1 C1 ID2 C2 ... (up to four pairs per line).
+  void read_dof_set_pairs(const Card& card) {
+    const Entry e = entry(card);
+    std::vector<int>& set = mesh_.node_sets[card.name];
+    if (e.blank(2)) e.fail(2, "ID1", "at least one grid");
+    for (int n = 2; n <= e.last(); n += 2) {
+      if (e.blank(n) && e.blank(n + 1)) continue;
+      const int node_index = node(e, n, "ID");
+      (void)e.components(n + 1, "C");
+      set.push_back(node_index);
+    }
+  }
+
+  // Case control SET n: the grids among its ids form the node set "SET_<n>"; ids that are not
+  // grids (the set may list elements for output requests) are skipped, and a set without any
+  // grid is not made (a warning says so).
+  void read_case_set(const CaseSet& set) {
+    std::vector<int> nodes;
+    long skipped = 0;
+    for (const auto& [from, to] : set.ranges) {
+      for (auto it = grid_index_.lower_bound(from); it != grid_index_.end() && it->first <= to;
+           ++it)
+        if (set.except.count(it->first) == 0) nodes.push_back(it->second);
+      if (from == to && grid_index_.count(from) == 0) ++skipped;
+    }
+    const std::string& file = parser_.files_[static_cast<std::size_t>(set.file)];
+    if (nodes.empty()) {
+      deck_.warnings.push_back(fmt::format(
+          "{}:{}: case control SET {} names no GRID of the deck (an element or output set): "
+          "no node set made",
+          file, set.line, set.id));
+      return;
+    }
+    if (skipped > 0)
+      deck_.warnings.push_back(
+          fmt::format("{}:{}: case control SET {}: {} ids are not GRIDs and "
+                      "are left out of node set SET_{}",
+                      file, set.line, set.id, skipped, set.id));
+    std::vector<int>& out = mesh_.node_sets[fmt::format("SET_{}", set.id)];
+    out.insert(out.end(), nodes.begin(), nodes.end());
   }
 
   void add_constraint(int node_index, const std::array<bool, 6>& c, const SourceLocation& where) {

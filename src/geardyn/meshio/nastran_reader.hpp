@@ -39,6 +39,15 @@
 //   SPC1           SID C G1 G2 ... with "G1 THRU G2" ranges (grids missing inside a range are
 //                  skipped, as Nastran does). Nodes of each set form the node set "SPC1_<sid>";
 //                  the sets selected by NastranOptions::spc_set become Mesh::constraints.
+//   ASET1/QSET1/BSET1/CSET1  C G1 G2 ... with "G1 THRU G2" ranges (grids missing inside a
+//                  range are skipped), and ASET/QSET/BSET/CSET ID1 C1 ID2 C2 ...: the grids form
+//                  the node sets "ASET", "QSET", "BSET", "CSET" (both forms of one letter add to
+//                  one set). They name nodes (spiders, sensors, fixed_sets) and constrain nothing;
+//                  the components are checked, not used.
+//   SET (case control, between CEND and BEGIN BULK) "SET n = i1, i2 THRU i3 EXCEPT i4 ..."
+//                  with continuation lines after a trailing comma: the GRID ids among the set's
+//                  ids form the node set "SET_<n>" (a set naming no GRID, e.g. an element set,
+//                  makes none, with a warning; ALL or real values are listed as unsupported).
 //   INCLUDE        'file name' (quotes optional, the name may continue over several lines),
 //                  resolved relative to the including file.
 //   BEGIN BULK / ENDDATA: when the top file has a BEGIN BULK line, everything before it

@@ -299,7 +299,10 @@ struct GearPair {
   double pinion_spiral_angle = kNaN;  ///< hypoid: the pinion's mean spiral angle [rad]
   Hand hand = Hand::Right;            ///< hand of gear 1's helix / spiral
   GearRotation rotation = GearRotation::Clockwise;
-  double face_width = kNaN;  ///< [m]
+  /// Face width of the contact [m]: the smaller of face_width1 and face_width2 (ISO 6336-1: b
+  /// in the mesh stiffness and the overlap ratio is the common width of the pair).
+  double face_width = kNaN;
+  double face_width1 = kNaN, face_width2 = kNaN;  ///< of gear 1 and gear 2 [m]
   double profile_shift1 = 0.0, profile_shift2 = 0.0;
   double addendum_coefficient = 1.0, dedendum_coefficient = 1.25;
   double centre_distance = kNaN;            ///< working centre distance [m] (NaN: zero backlash)

@@ -18,6 +18,18 @@ const std::vector<std::string> kCylindrical = {"spur", "helical"};
 const std::vector<std::string> kSpiral = {"spiral_bevel", "hypoid"};
 
 void finish_gear_pair(GearPair& g, const TableContext& t) {
+  // One width for both gears, or one per gear; the contact (and ISO 6336-1 stiffness, overlap
+  // ratio) uses the common width, the smaller of the two (ISO 6336-1:2019, b: "the smaller of
+  // the face widths of pinion and wheel").
+  if (t.has("face_width")) {
+    g.face_width1 = g.face_width2 = g.face_width;
+  } else {
+    if (t.has("face_width1") != t.has("face_width2"))
+      t.fail(t.has("face_width1") ? "face_width1" : "face_width2",
+             "face_width1 and face_width2 together (or one face_width for both gears)",
+             fmt::format("only {}", t.has("face_width1") ? "face_width1" : "face_width2"));
+    g.face_width = std::min(g.face_width1, g.face_width2);
+  }
   const bool bevel = g.type == GearType::StraightBevel || g.type == GearType::SpiralBevel ||
                      g.type == GearType::Hypoid;
   if (g.internal && bevel)
@@ -98,7 +110,18 @@ std::vector<Field> gear_pair_fields_1() {
           .def("\"cw\"")
           .only_in(kSpiral)
           .to_enum(&GearPair::rotation, {GearRotation::Clockwise, GearRotation::CounterClockwise}),
-      number("face_width", kMetre, "Face width b.").required().gt(0).to(&GearPair::face_width),
+      number("face_width", kMetre,
+             "Face width b of both gears (or give face_width1 and face_width2).")
+          .gt(0)
+          .to(&GearPair::face_width),
+      number("face_width1", kMetre,
+             "Face width b1 of gear 1 when the widths differ (with face_width2); the contact "
+             "width is the smaller one (ISO 6336-1).")
+          .gt(0)
+          .to(&GearPair::face_width1),
+      number("face_width2", kMetre, "Face width b2 of gear 2 (with face_width1).")
+          .gt(0)
+          .to(&GearPair::face_width2),
       number("profile_shift1", kNoUnit, "Profile shift coefficient x1 of gear 1.")
           .def("0.0")
           .ge(-2.0)
@@ -260,6 +283,7 @@ Section gear_pairs_section() {
       .in_array(&Model::gear_pairs)
       .located(&GearPair::where)
       .fields(join_fields({gear_pair_fields_1(), gear_pair_fields_2()}))
+      .choices({{{{"face_width"}, {"face_width1", "face_width2"}}, true, {}}})
       .variants("type",
                 {
                     variant<GearPair>("spur", "Spur gears (external or internal)."),
