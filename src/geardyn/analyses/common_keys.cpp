@@ -259,7 +259,7 @@ F q_factor_key() {
 
 F measured_file_key() {
   return text("measured_file",
-              "Measured response over speed (CSV, gear/correlation.hpp, displacement "
+              "Measured response over speed (CSV, docs/input-files.md, displacement "
               "amplitude) overlaid on the computed one and compared peak by peak.")
       .note("no comparison");
 }

@@ -57,7 +57,7 @@ std::vector<model::Field> keys() {
   return {
       text("measured_file",
            "Measured response CSV relative to the model file (format in "
-           "gear/correlation.hpp: speed_rpm or frequency_hz, amplitude_<unit>, optional "
+           "docs/input-files.md: speed_rpm or frequency_hz, amplitude_<unit>, optional "
            "phase_deg).")
           .required()
           .to_settings(&CorrelationSettings::measured_file),

@@ -3,7 +3,7 @@
 // of the [[gear_pairs]] of a model, before any dynamics.
 //
 // Geometry, tooth forces (drive and coast, both members), ISO 6336-1 stiffness, and the STE /
-// mesh stiffness over one mesh cycle of each pair (DESIGN 4.4-4.5; issue [mesh-excitation]):
+// mesh stiffness over one mesh cycle of each pair (docs/theory.md §11-13; issue [mesh-excitation]):
 // run_gear_pair builds the pairs (GearPairResult), gear_pair_output writes their tables, plots
 // and notes. Bad input throws InputError (call check_gear_pairs and the type's own input check,
 // through analyses::check_inputs, before running, so it shows before any result).

@@ -1,5 +1,5 @@
 #pragma once
-// Linear frequency response (DESIGN 4.1) by direct solution of the dynamic stiffness
+// Linear frequency response (docs/theory.md §5) by direct solution of the dynamic stiffness
 //   D(w) = K(W) - w^2 M + i w (C(W) + W G) + i K_loss + i w B diag(c) B^T
 // at reference speed W, for a unit force (FRF: receptance H, mobility i w H, accelerance
 // -w^2 H) or for the model's named harmonic forces (forced response). The last term is the
@@ -175,7 +175,7 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
                              const std::vector<int>& outputs, const HarmonicSettings& settings,
                              const Context& context, const AdaptiveGridOptions& options = {});
 
-/// The harmonic analysis of DESIGN 4.1 on the context's linear system: resolves input node /
+/// The harmonic analysis of docs/theory.md §5 on the context's linear system: resolves input node /
 /// forces and sensors by name (InputError when unknown or constrained), runs
 /// frequency_response and checks the stability at the speed (analyses/stability_check.hpp,
 /// modes up to twice frequency_stop): Status::Unstable when a mode grows.

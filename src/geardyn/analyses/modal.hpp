@@ -1,5 +1,5 @@
 #pragma once
-// Modal analysis of a rotor-bearing system at one reference speed (DESIGN 4.1):
+// Modal analysis of a rotor-bearing system at one reference speed (docs/theory.md §1, §3):
 //   undamped real modes   K_at(Omega) phi = omega^2 M phi   (no damping, no gyroscopic terms)
 //   complex modes         (lambda^2 M + lambda (C_at(Omega) + Omega G + C_modal) + K_at(Omega)) x =
 //   0

@@ -1,5 +1,5 @@
 #pragma once
-// The one list of analysis types (DESIGN §3). Everything that needs to know the analysis types
+// The one list of analysis types (docs/architecture.md, "The analysis registry"). Everything that needs to know the analysis types
 // reads it: dispatch (run_analysis), the model-file schema (keys, cross-key rules, checks;
 // model_file.hpp), `geardyn schema` and docs/model-reference.md, the fuzz dictionary, and
 // sweeps (the scalar outputs each type offers).

@@ -1,5 +1,5 @@
 #pragma once
-// The transient analysis of DESIGN 3/4.1: the linear rotor model integrated in time at constant
+// The transient analysis of docs/theory.md §6: the linear rotor model integrated in time at constant
 // speed or through a linear run-up, driven by its unbalances, observed by its sensors.
 //
 //   model + fe::LinearSystem + TransientSettings

@@ -1,5 +1,5 @@
 #pragma once
-// Steady-state unbalance response (DESIGN 4.1). An unbalance m e at a node spinning at r W
+// Steady-state unbalance response (docs/theory.md §5). An unbalance m e at a node spinning at r W
 // (r: the node's speed ratio, W the reference speed) is a force of magnitude m e (r W)^2 turning
 // with the shaft, at frequency |r| W. For every speed W and every order r (distinct |speed
 // ratio| of the nodes carrying unbalance), solve

@@ -1,5 +1,5 @@
 #pragma once
-// Modal damping (DESIGN 4.1): a damping ratio zeta_r per undamped mode, applied as the low-rank
+// Modal damping (docs/theory.md §4): a damping ratio zeta_r per undamped mode, applied as the low-rank
 // viscous term
 //   C_modal = B diag(c) B^T,  B = M Phi,  c_r = 2 zeta_r omega_r,
 // with Phi the mass-normalised undamped modes of the non-rotating system (K_at(0), M). In modal

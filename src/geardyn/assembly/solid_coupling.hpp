@@ -1,6 +1,6 @@
 #pragma once
 // Solids joined to the rotor: a [[solids]] entry with [[solids.spiders]] becomes a body of the
-// rotor system (fe/superelement.hpp), reduced by Craig-Bampton (DESIGN 4.2) onto physical
+// rotor system (fe/superelement.hpp), reduced by Craig-Bampton (docs/theory.md §9) onto physical
 // points that the rotor system keeps:
 //
 //   spider k, rigid (RBE2):      a reference node r_k at the rotor node's position, with a Rigid

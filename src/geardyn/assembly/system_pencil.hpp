@@ -1,5 +1,5 @@
 #pragma once
-// The quadratic pencil of an assembled rotor system at one reference speed (DESIGN 4.1):
+// The quadratic pencil of an assembled rotor system at one reference speed (docs/theory.md §1):
 //   M q'' + (C_at(Omega) + Omega G + C_modal) q' + K_at(Omega) q = 0.
 #include "geardyn/eig/quadratic_eigen.hpp"
 #include "geardyn/fe/linear_system.hpp"

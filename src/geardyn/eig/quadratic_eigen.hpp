@@ -1,5 +1,5 @@
 #pragma once
-// Quadratic eigenproblem of a damped gyroscopic system (DESIGN 4.1):
+// Quadratic eigenproblem of a damped gyroscopic system (docs/theory.md §3):
 //     (lambda^2 M + lambda D + K) x = 0,   D = C + Omega G + B diag(c) B^T,
 // solved through its first-order (state) form  A z = lambda B z  with z = [x; lambda x],
 //     A = [0 I; -K -D],   B = [I 0; 0 M].

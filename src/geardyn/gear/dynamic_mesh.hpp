@@ -1,6 +1,6 @@
 #pragma once
 // Dynamic mesh force of a gear pair reduced to one degree of freedom along the line of action
-// (DESIGN 4.5; Parker-type model as in A. Durastante, "Simulation of the Dynamic Response of
+// (docs/theory.md §13; Parker-type model as in A. Durastante, "Simulation of the Dynamic Response of
 // Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
 // sec. 3.2):
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Tooth-load window and engine-order harmonics (DESIGN 4.4; the damper-ring thesis:
+// Tooth-load window and engine-order harmonics (docs/theory.md §12; the damper-ring thesis:
 // A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears Equipped with Damper
 // Rings", MSc thesis, Politecnico di Torino, 2018, sec. 1.3.3 and 3.3-3.4).
 //

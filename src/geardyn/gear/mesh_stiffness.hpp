@@ -2,7 +2,7 @@
 // Gear mesh stiffness from geometry: ISO 6336-1:2019 Method B (clause 9, "Tooth stiffness
 // parameters c' and c_gamma"; 9.3) and a time-varying mesh stiffness over one mesh cycle built on
 // it, with the synthetic static transmission error e = F_s / k that the dynamic mesh model
-// (DESIGN 4.5) takes as input.
+// (docs/theory.md §13) takes as input.
 //
 // ISO 6336-1:2019 9.3 (Method B), steel gear pairs, values per unit face width:
 //   q' = C1 + C2/z_n1 + C3/z_n2 + C4 x1 + C5 x1/z_n1 + C6 x2 + C7 x2/z_n2 + C8 x1^2 + C9 x2^2
@@ -39,7 +39,7 @@
 // evaluated in closed form from the piecewise-quadratic primitive of k_pair.
 // The mesh cycle coordinate u in [0, 1) is the pinion rotation over one base pitch; u = 0 is the
 // instant a new tooth pair enters contact (at the start of the path, leading face end), the
-// convention the tooth-load window and the STE input share (DESIGN 4.4).
+// convention the tooth-load window and the STE input share (docs/theory.md §12.1).
 #include <limits>
 #include <vector>
 
@@ -112,7 +112,7 @@ struct MeshStiffnessCurve {
 MeshStiffnessCurve time_varying_mesh_stiffness(const GearPairGeometry& geometry,
                                                const MeshStiffnessOptions& options = {});
 
-/// Synthetic static transmission error from a stiffness curve (DESIGN 4.5, inverted):
+/// Synthetic static transmission error from a stiffness curve (docs/theory.md (11.5), inverted):
 ///   F_s = T1 / r_b1,  e(u) = F_s / k(u) [m along the line of action],  angular e / r_b1 [rad].
 /// r_b1 is the pinion base radius (bevel: r_m1 cos(alpha_t), the real mean radius projected on
 /// the line of action of the virtual gear). Sample 0 is the tooth entering contact.

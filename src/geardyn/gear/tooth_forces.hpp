@@ -1,6 +1,6 @@
 #pragma once
 // Tooth forces of a gear mesh: tangential, radial and axial components on one member
-// (DESIGN 4.4). F_t = T / r with r the reference radius (cylindrical gears) or the mean pitch
+// (docs/theory.md §11.2). F_t = T / r with r the reference radius (cylindrical gears) or the mean pitch
 // radius at mid face (bevel and hypoid gears).
 //
 //   spur:        F_r = F_t tan(alpha)

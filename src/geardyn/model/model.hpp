@@ -280,7 +280,7 @@ struct Solid {
 };
 
 // ---------------------------------------------------------------------------------------------
-// Gear pairs of the mesh-excitation chain (DESIGN 4.4-4.5): geometry, tooth forces, mesh
+// Gear pairs of the mesh-excitation chain (docs/theory.md §11-13): geometry, tooth forces, mesh
 // stiffness / STE, dynamic mesh force and engine-order harmonics (gearan/ analyses). Gear 1 is
 // the pinion (the driving member under `torque`), gear 2 the wheel (or the internal gear).
 

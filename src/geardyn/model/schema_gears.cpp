@@ -219,7 +219,7 @@ std::vector<Field> gear_pair_fields_2() {
           .to(&GearPair::web_thickness),
       text("ste_file",
            "Static transmission error over one mesh cycle, CSV relative to the model "
-           "file (format in gear/ste.hpp: an angle_deg or angle_rad column of gear 1's "
+           "file (format in docs/input-files.md: an angle_deg or angle_rad column of gear 1's "
            "rotation, or a time_s or time_ms column (with ste_speed_rpm), over one mesh "
            "cycle, ste_<unit> or ste_<unit>@<torque>Nm columns; "
            "angular STE is scaled by gear 1's base radius); the first row is the tooth "
@@ -273,7 +273,7 @@ std::vector<Field> gear_pair_fields_2() {
 
 Section gear_pairs_section() {
   return S("gear_pairs", SectionKind::ArrayOfTables, "[[gear_pairs]]",
-           "Gear pairs of the mesh-excitation chain (DESIGN 4.4-4.5): geometry and contact ratio "
+           "Gear pairs of the mesh-excitation chain (docs/theory.md §11-13): geometry and contact ratio "
            "(ISO 21771; bevel and hypoid gears as virtual cylindrical gears at mid face), tooth "
            "forces, ISO 6336-1 mesh stiffness, the static transmission error (STE) from a file or "
            "synthetic from the stiffness, the dynamic mesh force and the engine-order harmonics "

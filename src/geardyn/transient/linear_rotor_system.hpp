@@ -1,5 +1,5 @@
 #pragma once
-// The linear rotor-bearing model of fe::LinearSystem as a SecondOrderSystem (DESIGN 4.1):
+// The linear rotor-bearing model of fe::LinearSystem as a SecondOrderSystem (docs/theory.md §1):
 //   M q'' + (C(W) + W(t) G + C_modal) q' + K(W) q = f_unbalance(t)
 // with the reference speed W(t) constant or a linear run-up (SpeedProfile), C(W) and K(W)
 // including the speed-dependent bearings at W(t) (linear interpolation in the bearing's speed
