@@ -273,7 +273,8 @@ std::vector<Field> gear_pair_fields_2() {
 
 Section gear_pairs_section() {
   return S("gear_pairs", SectionKind::ArrayOfTables, "[[gear_pairs]]",
-           "Gear pairs of the mesh-excitation chain (docs/theory.md §11-13): geometry and contact ratio "
+           "Gear pairs of the mesh-excitation chain (docs/theory.md §11-13): geometry and contact "
+           "ratio "
            "(ISO 21771; bevel and hypoid gears as virtual cylindrical gears at mid face), tooth "
            "forces, ISO 6336-1 mesh stiffness, the static transmission error (STE) from a file or "
            "synthetic from the stiffness, the dynamic mesh force and the engine-order harmonics "
