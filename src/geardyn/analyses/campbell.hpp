@@ -1,6 +1,6 @@
 #pragma once
-// Campbell diagram (docs/theory.md §3): complex modes of the damped gyroscopic system over a list of
-// reference speeds, tracked from speed to speed by the shapes (MAC with an optimal one-to-one
+// Campbell diagram (docs/theory.md §3): complex modes of the damped gyroscopic system over a list
+// of reference speeds, tracked from speed to speed by the shapes (MAC with an optimal one-to-one
 // assignment, so crossing modes keep their identity), engine-order lines and critical speeds
 // where a tracked mode meets a line, f_mode(Omega) = order Omega / 2pi.
 #include <complex>

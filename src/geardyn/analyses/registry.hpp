@@ -1,8 +1,8 @@
 #pragma once
-// The one list of analysis types (docs/architecture.md, "The analysis registry"). Everything that needs to know the analysis types
-// reads it: dispatch (run_analysis), the model-file schema (keys, cross-key rules, checks;
-// model_file.hpp), `geardyn schema` and docs/model-reference.md, the fuzz dictionary, and
-// sweeps (the scalar outputs each type offers).
+// The one list of analysis types (docs/architecture.md, "The analysis registry"). Everything that
+// needs to know the analysis types reads it: dispatch (run_analysis), the model-file schema (keys,
+// cross-key rules, checks; model_file.hpp), `geardyn schema` and docs/model-reference.md, the fuzz
+// dictionary, and sweeps (the scalar outputs each type offers).
 //
 // An analysis type is written in its own files: <type>.hpp / <type>.cpp (settings, result,
 // driver) and <type>_entry.cpp (its AnalysisType: keys, checks, runner, scalars), and listed by

@@ -1,6 +1,6 @@
 #pragma once
-// The transient analysis of docs/theory.md §6: the linear rotor model integrated in time at constant
-// speed or through a linear run-up, driven by its unbalances, observed by its sensors.
+// The transient analysis of docs/theory.md §6: the linear rotor model integrated in time at
+// constant speed or through a linear run-up, driven by its unbalances, observed by its sensors.
 //
 //   model + fe::LinearSystem + TransientSettings
 //     -> LinearRotorSystem (linear_rotor_system.hpp) -> integrate (integrator.hpp)

@@ -1,6 +1,6 @@
 #pragma once
-// Modal damping (docs/theory.md §4): a damping ratio zeta_r per undamped mode, applied as the low-rank
-// viscous term
+// Modal damping (docs/theory.md §4): a damping ratio zeta_r per undamped mode, applied as the
+// low-rank viscous term
 //   C_modal = B diag(c) B^T,  B = M Phi,  c_r = 2 zeta_r omega_r,
 // with Phi the mass-normalised undamped modes of the non-rotating system (K_at(0), M). In modal
 // coordinates q = Phi eta it adds 2 zeta_r omega_r eta_r' to mode r and nothing else, so each

@@ -1,9 +1,9 @@
 #pragma once
-// Model -> assembled linear system, the first step of every analysis (docs/architecture.md, "Data flow"):
-// the solids joined to the rotor by spiders reduced to bodies (component/solid_coupling.hpp),
-// fe::assemble (DOF map, sparse M, C, K, G, the bodies joined) and assembly::apply_modal_damping
-// (the low-rank modal damping term from the undamped modes at zero speed, when the model asks for
-// it).
+// Model -> assembled linear system, the first step of every analysis (docs/architecture.md, "Data
+// flow"): the solids joined to the rotor by spiders reduced to bodies
+// (component/solid_coupling.hpp), fe::assemble (DOF map, sparse M, C, K, G, the bodies joined) and
+// assembly::apply_modal_damping (the low-rank modal damping term from the undamped modes at zero
+// speed, when the model asks for it).
 #include "geardyn/assembly/solid_component.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/fe/linear_system.hpp"

@@ -93,8 +93,9 @@ void parallel_axes(const model::GearMesh& mesh, const NodeInfo& gear1, const Nod
                             std::cos(alpha_w);
 }
 
-// Straight / spiral bevel and hypoid: force components of docs/theory.md §11.2 at the mid-face pitch point
-// of gear 1, gear 2's lever arm scaled to its mean pitch radius (checked for bevel gears).
+// Straight / spiral bevel and hypoid: force components of docs/theory.md §11.2 at the mid-face
+// pitch point of gear 1, gear 2's lever arm scaled to its mean pitch radius (checked for bevel
+// gears).
 void crossed_axes(const model::GearMesh& mesh, const NodeInfo& gear1, const NodeInfo& gear2,
                   const std::string& key, double beta, double scale, GearMeshGeometry& g) {
   const double tan_alpha = std::tan(mesh.pressure_angle);

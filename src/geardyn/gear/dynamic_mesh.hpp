@@ -1,7 +1,7 @@
 #pragma once
 // Dynamic mesh force of a gear pair reduced to one degree of freedom along the line of action
-// (docs/theory.md §13; Parker-type model as in A. Durastante, "Simulation of the Dynamic Response of
-// Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
+// (docs/theory.md §13; Parker-type model as in A. Durastante, "Simulation of the Dynamic Response
+// of Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
 // sec. 3.2):
 //
 //   m_e x'' + c x' + f_k(x, t) = F_s,

@@ -1,7 +1,7 @@
 #pragma once
-// Geometry of a gear pair as the mesh-excitation chain needs it (docs/theory.md §11.1): radii, working
-// pressure angle and centre distance, contact ratios. Cylindrical gears (spur, helical; external
-// and internal) follow ISO 21771; bevel and hypoid gears are replaced by their virtual
+// Geometry of a gear pair as the mesh-excitation chain needs it (docs/theory.md §11.1): radii,
+// working pressure angle and centre distance, contact ratios. Cylindrical gears (spur, helical;
+// external and internal) follow ISO 21771; bevel and hypoid gears are replaced by their virtual
 // cylindrical ("equivalent spur") gears at mid face width, as in ISO 10300-1 and in the
 // damper-ring thesis (A. Durastante, "Simulation of the Dynamic Response of Aeronautical Gears
 // Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018, sec. 3.2: mid-face
@@ -18,7 +18,8 @@
 // centre (its tip radius is |r2| - m_n (h_a* + x2), its root radius |r2| + m_n (h_f* - x2)). All
 // radii reported here are positive magnitudes. No tip shortening is applied.
 //
-// Transverse contact ratio (docs/theory.md (11.2), ISO 21771 5.4.2), with p_bt = pi m_t cos(alpha_t):
+// Transverse contact ratio (docs/theory.md (11.2), ISO 21771 5.4.2), with p_bt = pi m_t
+// cos(alpha_t):
 //   external: eps_alpha = (sqrt(ra1^2 - rb1^2) + sqrt(ra2^2 - rb2^2) - a sin(alpha_wt)) / p_bt
 //   internal: eps_alpha = (sqrt(ra1^2 - rb1^2) - sqrt(ra2^2 - rb2^2) + a sin(alpha_wt)) / p_bt
 //   overlap ratio eps_beta = b sin(beta) / (pi m_n),  total eps_gamma = eps_alpha + eps_beta.

@@ -1,7 +1,8 @@
 #pragma once
 // Static transmission error (STE) over one mesh cycle: the input of the dynamic mesh model
-// (docs/theory.md §11.4, §13). The STE e(t) is the deflection along the line of action, as a length, when the
-// gears turn slowly under a constant torque; it sets the time-varying mesh stiffness
+// (docs/theory.md §11.4, §13). The STE e(t) is the deflection along the line of action, as a
+// length, when the gears turn slowly under a constant torque; it sets the time-varying mesh
+// stiffness
 //   k(t) = F_s / (e(t) - e_g(t)),   F_s = T / r_b,
 // where e_g is the optional unloaded (geometric) transmission error of the flanks (profile
 // modifications, pitch errors): the part of e that is not elastic. Without it e_g = 0.
@@ -14,7 +15,8 @@
 //
 // Conventions kept by every SteCurve:
 //   * n uniform samples over one mesh period, sample j at the cycle fraction j / n;
-//   * sample 0 is the tooth entering contact (the tooth-load window starts there, docs/theory.md §12.1);
+//   * sample 0 is the tooth entering contact (the tooth-load window starts there, docs/theory.md
+//   §12.1);
 //   * the curve is periodic: between sample n-1 and the next cycle's sample 0 it wraps around.
 //
 // CSV format read by parse_ste_csv / read_ste_csv (comma separated, UTF-8, '#' comment lines and

@@ -1,7 +1,7 @@
 #pragma once
 // Tooth forces of a gear mesh: tangential, radial and axial components on one member
-// (docs/theory.md §11.2). F_t = T / r with r the reference radius (cylindrical gears) or the mean pitch
-// radius at mid face (bevel and hypoid gears).
+// (docs/theory.md §11.2). F_t = T / r with r the reference radius (cylindrical gears) or the mean
+// pitch radius at mid face (bevel and hypoid gears).
 //
 //   spur:        F_r = F_t tan(alpha)
 //   helical:     F_r = F_t tan(alpha_n) / cos(beta),  F_a = F_t tan(beta)
