@@ -147,6 +147,48 @@ outputs = [{ quantity = "peak_location", sensor = "swing" },
   }
 }
 
+// A point whose system is unstable keeps its numbers (here the FRF peak) and is marked, and
+// the sweep says so: a
+// mass on a damped isotropic support with cross-coupled stiffness q (kxy = -kyx = q) has
+// damping ratio ~ (c w_n - q) / (2 k) on its forward mode, so it is unstable exactly when
+// q > c w_n (Friswell et al., "Dynamics of Rotating Machines", 2010, sec. 3.8); here
+// c w_n = 100 x sqrt(1e6 / 10) = 31 623 N/m and q = 1e5 N/m. The sweep sets kyx = +1e5 (a
+// symmetric, conservative coupling: stable) and -1e5 (the skew coupling: unstable).
+TEST(Sweep, AnUnstablePointKeepsItsValueAndIsMarked) {
+  std::string text = kModel;
+  text.replace(text.find("kzz = 1e6\n"), 10,
+               "kzz = 1e6\ncxx = 100\ncyy = 100\nkxy = 1e5\nkyx = 0\n");
+  text += R"(
+[[analyses]]
+name = "frf"
+type = "harmonic"
+enabled = false
+frequency_start_hz = 10
+frequency_stop_hz = 100
+frequency_count = 50
+input_node = "m"
+input_dof = "ux"
+[[analyses]]
+name = "q_sweep"
+type = "sweep"
+parameter = "bearings[0].kyx"
+values = [1e5, -1e5]
+analysis = "frf"
+outputs = [{ quantity = "peak_amplitude", sensor = "x" }]
+)";
+  const auto doc = analyses::parse_document(text, "unstable_sweep.toml");
+  const model::Model m = model::build_model(doc);
+  auto settings = m.analyses.back().settings_of<analyses::SweepSettings>();
+  settings.linked_parameters = {};
+  const SweepResult r = run_sweep(doc, settings, null_progress());
+  EXPECT_EQ(r.point_status[0], Status::Ok) << r.point_message[0];
+  EXPECT_EQ(r.point_status[1], Status::Unstable) << r.point_message[1];
+  EXPECT_TRUE(std::isfinite(r.outputs[0][0]));
+  EXPECT_TRUE(std::isfinite(r.outputs[0][1]));
+  EXPECT_EQ(r.status, Status::Unstable);
+  EXPECT_NE(r.message.find("1 of 2 points unstable"), std::string::npos) << r.message;
+}
+
 TEST(Sweep, APointThatFailsIsReportedNotDropped) {
   // k = 0 leaves the mass free: its "natural frequency" is a rigid-body 0 Hz, which is a valid
   // result; an out-of-range value (negative stiffness) is bad input and aborts the sweep.

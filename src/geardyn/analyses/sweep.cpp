@@ -85,10 +85,11 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
         if (needs_rotor) context.with_system(&system);
         const Outcome outcome = run_analysis(m, *a, context);
         const AnalysisOutput& out = outcome.output;
-        if (out.status != Status::Ok) {
-          result.point_status[i] = out.status;
-          result.point_message[i] = out.message;
-        } else {
+        // An unstable system still has its numbers (a steady state that is never reached, or
+        // modes of which one grows): kept, and the point marked unstable.
+        result.point_status[i] = out.status;
+        result.point_message[i] = out.message;
+        if (out.status == Status::Ok || out.status == Status::Unstable) {
           for (std::size_t j = 0; j < n_out; ++j) {
             std::string unit;
             result.outputs[j][i] = extract_scalar(*a, outcome, settings.outputs[j], unit);
@@ -127,9 +128,24 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
   progress.finish();
   if (input_error) std::rethrow_exception(input_error);
 
-  std::size_t failed = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (result.point_status[i] != Status::Ok) ++failed;
+  std::size_t failed = 0, unstable = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (result.point_status[i] == Status::Unstable)
+      ++unstable;
+    else if (result.point_status[i] != Status::Ok)
+      ++failed;
+  }
+  if (failed == 0 && unstable > 0) {
+    result.status = Status::Unstable;
+    for (std::size_t i = 0; i < n; ++i)
+      if (result.point_status[i] == Status::Unstable) {
+        result.message = fmt::format(
+            "{} of {} points unstable (values kept, status column); "
+            "first at {} = {}: {}",
+            unstable, n, settings.parameter, settings.values[i], result.point_message[i]);
+        break;
+      }
+  }
   if (failed > 0) {
     result.status = Status::Failed;
     for (std::size_t i = 0; i < n; ++i)
