@@ -1274,17 +1274,18 @@ void Resolver::check_analysis_overrides(const std::string& base, const Analysis&
   --depth;
 }
 
-// Every analysis: its `set` variant builds, then its type's own checks (Variant::check: the
-// references of its keys into the rest of the model).
+// Every analysis's type's own checks (Variant::check: the references of its keys into the rest
+// of the model) first, then the `set` variants build. In that order a problem of the model
+// itself is reported at its own key; a variant then fails only for what its `set` changed.
 void Resolver::check_analyses() {
   const Section* section = r_.doc().schema().find_section("analyses", "");
   for (std::size_t i = 0; i < m_.analyses.size(); ++i) {
     const Analysis& a = m_.analyses[i];
-    const std::string base = fmt::format("analyses[{}]", i);
-    check_analysis_overrides(base, a);
     const Variant* v = section != nullptr ? section->find_variant(a.type) : nullptr;
-    if (v != nullptr && v->check) v->check(&a, base, *this);
+    if (v != nullptr && v->check) v->check(&a, fmt::format("analyses[{}]", i), *this);
   }
+  for (std::size_t i = 0; i < m_.analyses.size(); ++i)
+    check_analysis_overrides(fmt::format("analyses[{}]", i), m_.analyses[i]);
 }
 
 void Resolver::run() {
