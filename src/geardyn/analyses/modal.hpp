@@ -156,13 +156,6 @@ ModeKind mode_kind(const fe::ModeFamilies& families);
 /// Conference, 1982).
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
 
-/// Candidate rigid-body motions in equation space (n x c): for the whole model, each shaft and
-/// the set of nodes on no shaft, the three global translations, the three rotations about
-/// global axes through the set's centroid and the spin of the set (rz = 1 in the node frames);
-/// and the spin of the whole drive train, rz = speed_ratio at every node (gears turning
-/// together). Generalised coordinates (modal coordinates of coupled solids) are 0.
-Eigen::MatrixXd rigid_body_candidates(const fe::DofMap& dofs);
-
 /// Decides whether a computed root is a rigid-body root, from its shape, not from the size of
 /// lambda (whose rounding grows with mesh refinement, see eig/rigid_body.hpp):
 ///   1. at least kRigidEnergyFraction of the mode's kinetic energy lies in the space of

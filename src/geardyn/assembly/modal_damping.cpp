@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/eig/rigid_body.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
+#include "geardyn/fe/dof_map.hpp"
 
 namespace geardyn::assembly {
 
@@ -64,21 +67,21 @@ ModalDampingSummary apply_modal_damping(const model::Model& model, fe::LinearSys
         "modal damping",
         fmt::format("undamped modes at zero speed are inaccurate: {}", modes.message));
 
-  // Rigid-body threshold relative to the stiffest DOF: genuine elastic modes lie far above
-  // rounding of K (eps ||K||), and 1e-10 of the largest K_ii / M_ii still admits elastic modes
-  // of a 1e5-element chain.
-  const Eigen::VectorXd kd = K0.diagonal(), md = system.M.diagonal();
-  double largest_ratio = 0.0;
-  for (Eigen::Index i = 0; i < kd.size(); ++i)
-    if (md[i] > 0.0) largest_ratio = std::max(largest_ratio, std::abs(kd[i]) / md[i]);
-  const double rigid_limit = 1e-10 * largest_ratio;
+  // Rigid-body modes carry no damping. Decided by the mode's shape (its kinetic energy in the
+  // space of rigid motions K leaves unstrained, eig/rigid_body.hpp), not by a limit on omega^2:
+  // the rounding of a zero eigenvalue grows with mesh refinement and would pass real modes of a
+  // fine mesh, which then got no damping at all.
+  const eig::RigidBodySpace rigid =
+      eig::rigid_body_space(K0, system.M, fe::rigid_body_candidates(system.dofs));
+  constexpr double kRigidEnergyFraction = 0.99;  // as the modal analysis labels modes rigid
 
   const Eigen::Index m = modes.eigenvalues.size();
   system.modal_coefficients.resize(m);
   int elastic = 0;
   for (Eigen::Index r = 0; r < m; ++r) {
     const double lambda = modes.eigenvalues[r];
-    if (lambda <= rigid_limit) {
+    const Eigen::VectorXcd shape = modes.eigenvectors.col(r).cast<std::complex<double>>();
+    if (lambda <= 0.0 || eig::rigid_body_fraction(rigid, system.M, shape) >= kRigidEnergyFraction) {
       system.modal_coefficients[r] = 0.0;
       ++summary.rigid_body_modes;
       continue;

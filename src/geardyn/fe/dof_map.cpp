@@ -196,4 +196,59 @@ std::array<int, 6> DofMap::node_dofs(int node) const {
   return dofs;
 }
 
+Eigen::MatrixXd rigid_body_candidates(const DofMap& dofs) {
+  const int n = dofs.num_dofs();
+  int n_shafts = 0;
+  for (const auto& node : dofs.nodes()) n_shafts = std::max(n_shafts, node.shaft + 1);
+  // Sets: the whole model (-2), each shaft (0 .. n_shafts - 1), nodes on no shaft (-1).
+  std::vector<int> sets = {-2, -1};
+  for (int s = 0; s < n_shafts; ++s) sets.push_back(s);
+  std::vector<Eigen::VectorXd> columns;
+  auto in_set = [](const NodeInfo& node, int set) { return set == -2 || node.shaft == set; };
+  auto put = [&](Eigen::VectorXd& v, int k, const Eigen::Vector3d& u, const Eigen::Vector3d& r) {
+    const auto eq = dofs.node_dofs(k);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (eq[c] >= 0) v[eq[c]] = u[static_cast<Eigen::Index>(c)];
+      if (eq[c + 3] >= 0) v[eq[c + 3]] = r[static_cast<Eigen::Index>(c)];
+    }
+  };
+  for (int set : sets) {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (const auto& node : dofs.nodes())
+      if (in_set(node, set)) {
+        centroid += node.position;
+        ++count;
+      }
+    if (count == 0) continue;
+    centroid /= count;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Eigen::Vector3d a = Eigen::Vector3d::Unit(axis);
+      Eigen::VectorXd translation = Eigen::VectorXd::Zero(n), rotation = Eigen::VectorXd::Zero(n);
+      for (int k = 0; k < dofs.num_nodes(); ++k) {
+        const NodeInfo& node = dofs.node(k);
+        if (!in_set(node, set)) continue;
+        const Eigen::Matrix3d Ft = node.frame.transpose();
+        put(translation, k, Ft * a, Eigen::Vector3d::Zero());
+        put(rotation, k, Ft * a.cross(node.position - centroid), Ft * a);
+      }
+      columns.push_back(std::move(translation));
+      columns.push_back(std::move(rotation));
+    }
+    Eigen::VectorXd spin = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < dofs.num_nodes(); ++k)
+      if (in_set(dofs.node(k), set))
+        put(spin, k, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+    columns.push_back(std::move(spin));
+  }
+  Eigen::VectorXd train = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < dofs.num_nodes(); ++k)
+    put(train, k, Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, dofs.node(k).speed_ratio));
+  columns.push_back(std::move(train));
+  Eigen::MatrixXd candidates(n, static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    candidates.col(static_cast<Eigen::Index>(c)) = columns[c];
+  return candidates;
+}
+
 }  // namespace geardyn::fe

@@ -87,4 +87,11 @@ class DofMap {
 /// the global frame.
 Eigen::Matrix3d frame_from_axis(const Eigen::Vector3d& axis);
 
+/// Candidate rigid-body motions in equation space (n x c): for the whole model, each shaft and
+/// the set of nodes on no shaft, the three global translations, the three rotations about
+/// global axes through the set's centroid and the spin of the set (rz = 1 in the node frames);
+/// and the spin of the whole drive train, rz = speed_ratio at every node (gears turning
+/// together). Generalised coordinates (modal coordinates of coupled solids) are 0.
+Eigen::MatrixXd rigid_body_candidates(const DofMap& dofs);
+
 }  // namespace geardyn::fe
