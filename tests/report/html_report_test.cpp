@@ -217,6 +217,29 @@ TEST(RenderHtml, OneDivPerPlotAndMatchingFigures) {
             std::string::npos);
 }
 
+// A plot with many traces (a Campbell diagram) gets its legend under the axes, the card taller
+// by a row per three entries; with few traces the legend stays beside the plot.
+TEST(RenderHtml, ManyTracesPutTheLegendUnderThePlot) {
+  AnalysisOutput out;
+  out.name = "campbell";
+  out.type = "campbell";
+  Plot many = line_plot("campbell", 20);
+  for (int k = 1; k < 12; ++k) {
+    Trace t = many.traces.front();
+    t.name = "mode " + std::to_string(k + 1) + ", lateral forward";
+    many.traces.push_back(t);
+  }
+  out.plots.push_back(many);
+  out.plots.push_back(line_plot("frf", 20));
+  const nlohmann::json figs = figures_of(render_html(sample_info(), {out}));
+  ASSERT_EQ(figs.size(), 2u);
+  EXPECT_EQ(figs[0]["layout"]["legend"]["orientation"], "h");
+  EXPECT_EQ(figs[0]["layout"]["legend"]["yanchor"], "top");
+  EXPECT_EQ(figs[0]["layout"]["height"], 430 + 22 * 4);  // 12 traces, three per row
+  EXPECT_FALSE(figs[1]["layout"]["legend"].contains("orientation"));
+  EXPECT_EQ(figs[1]["layout"]["height"], 430);
+}
+
 TEST(RenderHtml, FailedAnalysisShowsItsMessage) {
   const std::string html = render_html(sample_info(), sample_outputs());
   const std::size_t section = html.find("id=\"analysis-2\"");

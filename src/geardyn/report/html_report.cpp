@@ -225,6 +225,19 @@ json plot_figure(const Plot& plot, const std::string& div_id, const ReportOption
     yaxis["constrain"] = "domain";
   }
   const std::size_t n_traces = plot.traces.size();
+  // Many traces (a Campbell diagram: modes, order lines, crossings) put the legend under the
+  // plot, where it takes height instead of width: beside the plot it squeezed the axes into a
+  // third of the card. Three legend entries per row, 22 px a row.
+  const bool legend_below = n_traces > 6 && !plot.equal_aspect;
+  const int legend_rows = legend_below ? static_cast<int>((n_traces + 2) / 3) : 0;
+  json legend = {{"font", {{"size", 11}}}, {"bgcolor", "rgba(255,255,255,0.85)"}};
+  if (legend_below) {
+    legend["orientation"] = "h";
+    legend["x"] = 0;
+    legend["xanchor"] = "left";
+    legend["y"] = -0.14;
+    legend["yanchor"] = "top";
+  }
   json layout = {
       {"title",
        {{"text", plotly_text(plot.title)},
@@ -234,9 +247,9 @@ json plot_figure(const Plot& plot, const std::string& div_id, const ReportOption
       {"xaxis", std::move(xaxis)},
       {"yaxis", std::move(yaxis)},
       {"showlegend", n_traces > 1},
-      {"legend", {{"font", {{"size", 11}}}, {"bgcolor", "rgba(255,255,255,0.85)"}}},
+      {"legend", std::move(legend)},
       {"hovermode", "closest"},
-      {"height", plot.equal_aspect ? 520 : 430},
+      {"height", (plot.equal_aspect ? 520 : 430) + 22 * legend_rows},
       {"margin", {{"l", 64}, {"r", 16}, {"t", 46}, {"b", 52}}},
       {"paper_bgcolor", "#ffffff"},
       {"plot_bgcolor", "#ffffff"},
