@@ -7,6 +7,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ struct CorpusEntry {
   std::string description;
   int run_exit = -1;
   std::vector<std::string> expects;
+  std::vector<std::string> values;  // "<file> <column> <row> <value> <relative tolerance>"
   std::string args;
 };
 
@@ -40,6 +42,7 @@ CorpusEntry read_entry(const fs::path& file) {
     if (line.find("# run-exit: ") == 0) e.run_exit = std::stoi(value("# run-exit: "));
     if (line.find("# expect: ") == 0) e.expects.push_back(value("# expect: "));
     if (line.find("# args: ") == 0) e.args = value("# args: ");
+    if (line.find("# expect-value: ") == 0) e.values.push_back(value("# expect-value: "));
   }
   return e;
 }
@@ -83,6 +86,19 @@ TEST_P(Corpus, HandledAsItsHeaderSays) {
     const auto m = read_json(out / "manifest.json");
     EXPECT_EQ(m["complete"], true);
     EXPECT_EQ(m["status"] == "ok", r.exit_code == 0) << m["status"];
+    // Numbers the header states, read back from the CSV the run wrote.
+    for (const auto& spec : e.values) {
+      std::istringstream in(spec);
+      std::string file, column;
+      std::size_t row = 0;
+      double expected = 0.0, tolerance = 0.0;
+      ASSERT_TRUE(in >> file >> column >> row >> expected >> tolerance) << spec;
+      const auto table = read_csv(out / file);
+      ASSERT_TRUE(table.count(column)) << spec;
+      ASSERT_LT(row, table.at(column).size()) << spec;
+      EXPECT_NEAR(std::stod(table.at(column)[row]), expected, tolerance * std::abs(expected))
+          << spec;
+    }
   }
 }
 
