@@ -198,12 +198,7 @@ namespace {
 // rounding of kappa in the book (the same figure the fe element validation uses).
 TEST(Modal, FriswellExample591FrequenciesAndWhirlAt4000Rpm) {
   model::Model model;
-  model::Material steel;
-  steel.name = "steel";
-  steel.youngs_modulus = 211e9;
-  steel.shear_modulus = 81.2e9;
-  steel.density = 7810;
-  model.materials.push_back(steel);
+  model.materials.push_back(test::friswell_steel());
   model::Shaft s;
   s.name = "shaft";
   s.material = "steel";

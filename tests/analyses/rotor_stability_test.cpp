@@ -139,12 +139,7 @@ TEST(RigidBody, FreeFreeShaftHasSixRigidBodyModes) {
   for (int elements : {20, 600}) {
     SCOPED_TRACE(elements);
     model::Model model;
-    model::Material steel;
-    steel.name = "steel";
-    steel.youngs_modulus = 211e9;
-    steel.shear_modulus = 81.2e9;
-    steel.density = 7810;
-    model.materials.push_back(steel);
+    model.materials.push_back(test::friswell_steel());
     model::Shaft s;
     s.name = "shaft";
     s.material = "steel";

@@ -55,6 +55,16 @@ inline model::Model jeffcott(double m, double k, double c) {
   return model;
 }
 
+/// The steel of Friswell et al. 2010, Example 5.9.1: E = 211 GPa, G = 81.2 GPa, rho = 7810 kg/m^3.
+inline model::Material friswell_steel() {
+  model::Material steel;
+  steel.name = "steel";
+  steel.youngs_modulus = 211e9;
+  steel.shear_modulus = 81.2e9;
+  steel.density = 7810;
+  return steel;
+}
+
 // Friswell, Penny, Garvey, Lees, "Dynamics of Rotating Machines", Cambridge University Press
 // 2010, Example 5.9.1: a 1.5 m steel shaft (diameter 50 mm) with two disks on 1 MN/m isotropic
 // bearings, nothing holding it axially or in torsion. `elements` equal Timoshenko elements; the
@@ -62,12 +72,7 @@ inline model::Model jeffcott(double m, double k, double c) {
 // each piece within the schema's 1000 divisions.
 inline model::Model friswell_591(int elements) {
   model::Model model;
-  model::Material steel;
-  steel.name = "steel";
-  steel.youngs_modulus = 211e9;
-  steel.shear_modulus = 81.2e9;
-  steel.density = 7810;
-  model.materials.push_back(steel);
+  model.materials.push_back(friswell_steel());
   model::Shaft s;
   s.name = "shaft";
   s.material = "steel";
