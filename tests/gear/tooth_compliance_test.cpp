@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <numbers>
 #include <vector>
@@ -235,7 +236,7 @@ MeshResult mesh_stiffness(const ToothCompliance& tc, double load) {
 // stiffness c'_th = 1/q' is a fit to Weber-Banaschek-type calculations of solid disc gears
 // (rigid or semi-infinite gear body); ISO then takes c' = 0.8 C_B c'_th (C_M = 0.8: "measured vs
 // theoretical") for real gears. The potential-energy model here has a bored body (Sainsot's
-// fillet foundation with r_int = r_f / 2, which alone gives about 30 % of the tooth pair's
+// fillet foundation with r_int = r_f / 2, which alone gives about 45 % of the tooth pair's
 // compliance) and so must come out softer than c'_th and close to ISO's c'. C.G. Cooley,
 // C. Liu, X. Dai, R.G. Parker, "Gear tooth mesh stiffness: a comparison of calculation
 // approaches", Mech. Mach. Theory 105 (2016) 540-553, compare these families of models (ISO,

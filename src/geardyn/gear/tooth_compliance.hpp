@@ -67,8 +67,11 @@ struct PointCompliance {
 /// thread-safe after construction (precomputes what it needs).
 class ToothCompliance {
  public:
-  /// Throws InputError (key path geometry.spec.key_path + ".<field>") for a bevel / hypoid pair,
-  /// non-positive moduli or a Poisson ratio outside (-1, 0.5).
+  /// Throws InputError (key path geometry.spec.key_path + ".<field>") for a bevel / hypoid pair
+  /// (".type"), non-positive moduli (".youngs_modulus_pinion" / "_wheel"), a Poisson ratio
+  /// outside (-1, 0.5) (".poisson_ratio_*"), a rack fillet that leaves no rack-tip flat
+  /// (".root_fillet_coefficient"), a pointed tooth (".profile_shift_*") and a bore outside
+  /// (0, r_f) or outside Sainsot's body range (".bore_radius_*").
   ToothCompliance(const GearPairGeometry& geometry, const ToothComplianceOptions& options = {});
 
   /// Body compliance terms at path position s in [0, g_alpha] (clamped to it).
