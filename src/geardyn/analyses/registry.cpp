@@ -17,6 +17,7 @@ namespace geardyn::analyses {
   X(cyclic_modal)                 \
   X(reduction)                    \
   X(gear_pair)                    \
+  X(tooth_contact)                \
   X(mesh_force)                   \
   X(mesh_harmonics)               \
   X(correlation)                  \

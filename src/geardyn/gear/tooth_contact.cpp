@@ -264,8 +264,10 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
          std::string(to_string(g.spec.type)),
          "bevel and hypoid pairs go through their virtual cylindrical gears");
   if (options_.positions < 4)
-    fail(g, "positions", "at least 4 mesh positions per cycle", std::to_string(options_.positions));
-  if (options_.slices < 1) fail(g, "slices", "at least 1 slice", std::to_string(options_.slices));
+    fail(g, "contact.positions", "at least 4 mesh positions per cycle",
+         std::to_string(options_.positions));
+  if (options_.slices < 1)
+    fail(g, "contact.slices", "at least 1 slice", std::to_string(options_.slices));
   internal_ = g.spec.mesh == MeshType::Internal;
   const double rb1 = g.pinion.base_radius_m, rb2 = g.wheel.base_radius_m;
   const double g1 = std::sqrt(g.pinion.tip_radius_m * g.pinion.tip_radius_m - rb1 * rb1);
@@ -281,7 +283,7 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
 
   auto check_mod = [&](const FlankModification& m, const char* member, const GearGeometry& gg,
                        double rho_root, double rho_tip) {
-    const std::string p = std::string("modifications") + member + ".";
+    const std::string p = std::string("flank") + member + ".";
     auto rho_of = [&](double r) {
       return std::sqrt(std::max(0.0, r * r - gg.base_radius_m * gg.base_radius_m));
     };

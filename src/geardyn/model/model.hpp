@@ -288,6 +288,42 @@ struct Solid {
 enum class GearRotation { Clockwise, CounterClockwise };
 enum class SteInterpolationKind { Linear, Hold };
 
+enum class ReliefShapeKind { Linear, Parabolic };
+
+/// Flank modifications of one gear of a pair ([gear_pairs.flank1] / [gear_pairs.flank2]),
+/// material removed normal to the flank [m]; the loaded tooth contact analysis (docs/theory.md
+/// §15) uses them.
+struct FlankModificationSpec {
+  double tip_relief = 0.0;                    ///< C_a at the tip
+  double tip_relief_start_diameter = kNaN;    ///< [m]
+  double tip_relief_start_roll_angle = kNaN;  ///< [rad] (alternative to the diameter)
+  ReliefShapeKind tip_relief_shape = ReliefShapeKind::Linear;
+  double root_relief = 0.0;  ///< C_f at the start of the active profile
+  double root_relief_start_diameter = kNaN;
+  double root_relief_start_roll_angle = kNaN;
+  ReliefShapeKind root_relief_shape = ReliefShapeKind::Linear;
+  double profile_crowning = 0.0;  ///< C_alpha
+  double lead_crowning = 0.0;     ///< C_beta
+  double lead_slope = 0.0;        ///< f_Hbeta
+  double end_relief = 0.0, end_relief_length = 0.0;
+  ReliefShapeKind end_relief_shape = ReliefShapeKind::Linear;
+  std::vector<double> pitch_deviations;  ///< per tooth [m] (empty: none)
+  SourceLocation where;
+};
+
+/// The slice model of the loaded tooth contact analysis ([gear_pairs.contact]).
+struct ContactModelSpec {
+  int positions = 64;  ///< mesh positions per mesh cycle
+  int slices = 40;     ///< slices over the face width
+  /// Decay length of the coupling between neighbouring slices of a tooth [m] (0: uncoupled).
+  double coupling_length = 0.0;
+  double misalignment = 0.0;                ///< f_ma in the plane of action over b [m]
+  double axis_inclination_deviation = 0.0;  ///< f_Sigma_delta over b [m]
+  double axis_deviation = 0.0;              ///< f_Sigma_beta over b [m]
+  bool hunting_period = true;               ///< with pitch deviations: lcm(z1, z2) cycles
+  SourceLocation where;
+};
+
 struct GearPair {
   std::string name;
   GearType type = GearType::Spur;
@@ -325,6 +361,8 @@ struct GearPair {
   double ste_speed = kNaN;
   double mesh_damping_ratio = 0.08;  ///< zeta of the dynamic mesh model
   double backlash = kNaN;            ///< [m] (NaN: no back-side contact)
+  FlankModificationSpec flank1, flank2;
+  ContactModelSpec contact;
   SourceLocation where;
 };
 

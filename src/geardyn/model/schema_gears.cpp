@@ -269,6 +269,150 @@ std::vector<Field> gear_pair_fields_2() {
   };
 }
 
+const std::vector<std::string> kShapes = {"linear", "parabolic"};
+
+F relief_shape(const char* name, const char* what, ReliefShapeKind FlankModificationSpec::*member) {
+  return choice(name, kShapes,
+                fmt::format("Shape of the {}: linear or parabolic growth from its start.", what))
+      .def("\"linear\"")
+      .to_enum(member, {ReliefShapeKind::Linear, ReliefShapeKind::Parabolic});
+}
+
+Section flank_section(const char* name, const char* gear, FlankModificationSpec GearPair::*member) {
+  const std::string title = fmt::format("[gear_pairs.{}]", name);
+  return S(name, SectionKind::Table, title,
+           fmt::format(
+               "Flank modifications of gear {} (its loaded flanks), used by the loaded tooth "
+               "contact analysis (type = \"tooth_contact\"; docs/theory.md §15): material "
+               "removed normal to the flank, in metres (micrometres are 1e-6). Profile "
+               "modifications run over the active profile (the part of the flank that meshes), "
+               "lead modifications over the face width b, from the face end where the contact "
+               "lines enter (y = 0) to y = b.",
+               gear))
+      .in_table(member)
+      .located(&FlankModificationSpec::where)
+      .fields({
+          number("tip_relief", kMetre, "Tip relief C_a at the tip circle.")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::tip_relief),
+          number("tip_relief_start_diameter", kMetre,
+                 "Diameter where the tip relief starts (on the active profile).")
+              .gt(0)
+              .note("give it or tip_relief_start_roll_angle_deg with tip_relief")
+              .to(&FlankModificationSpec::tip_relief_start_diameter),
+          number("tip_relief_start_roll_angle_deg", kDegree,
+                 "Roll angle (rho / r_b) where the tip relief starts.")
+              .gt(0)
+              .note("see tip_relief_start_diameter")
+              .to(&FlankModificationSpec::tip_relief_start_roll_angle),
+          relief_shape("tip_relief_shape", "tip relief", &FlankModificationSpec::tip_relief_shape),
+          number("root_relief", kMetre,
+                 "Root relief C_f at the start of the active profile (the lowest point that "
+                 "meshes).")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::root_relief),
+          number("root_relief_start_diameter", kMetre,
+                 "Diameter where the root relief starts (on the active profile).")
+              .gt(0)
+              .note("give it or root_relief_start_roll_angle_deg with root_relief")
+              .to(&FlankModificationSpec::root_relief_start_diameter),
+          number("root_relief_start_roll_angle_deg", kDegree,
+                 "Roll angle (rho / r_b) where the root relief starts.")
+              .gt(0)
+              .note("see root_relief_start_diameter")
+              .to(&FlankModificationSpec::root_relief_start_roll_angle),
+          relief_shape("root_relief_shape", "root relief",
+                       &FlankModificationSpec::root_relief_shape),
+          number("profile_crowning", kMetre,
+                 "Profile crowning C_alpha: parabolic over the active profile, 0 in its middle.")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::profile_crowning),
+          number("lead_crowning", kMetre,
+                 "Lead crowning C_beta: parabolic over the face width, 0 at mid face.")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::lead_crowning),
+          number("lead_slope", kMetre,
+                 "Helix slope modification f_Hbeta: removal growing linearly across the face "
+                 "(-f/2 at y = 0, +f/2 at y = b; positive unloads the y = b end).")
+              .def("0.0")
+              .to(&FlankModificationSpec::lead_slope),
+          number("end_relief", kMetre, "End relief C_I at both face ends.")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::end_relief),
+          number("end_relief_length", kMetre,
+                 "Length of the end relief from each face end (<= b / 2).")
+              .def("0.0")
+              .ge(0)
+              .to(&FlankModificationSpec::end_relief_length),
+          relief_shape("end_relief_shape", "end relief", &FlankModificationSpec::end_relief_shape),
+          numbers("pitch_deviations", kMetre,
+                  "Position deviation of each tooth along the line of action, one value per "
+                  "tooth from the tooth in contact at the start (positive: the flank stands "
+                  "ahead and contacts early); the contact analysis then runs over the hunting "
+                  "period.")
+              .def("[]")
+              .to(&FlankModificationSpec::pitch_deviations),
+      })
+      .choices(
+          {{{{"tip_relief_start_diameter"}, {"tip_relief_start_roll_angle_deg"}}, false, {}},
+           {{{"root_relief_start_diameter"}, {"root_relief_start_roll_angle_deg"}}, false, {}}});
+}
+
+Section contact_section() {
+  return S("contact", SectionKind::Table, "[gear_pairs.contact]",
+           "The slice model of the loaded tooth contact analysis (type = \"tooth_contact\"; "
+           "docs/theory.md §15): mesh positions, slices, coupling of the slices and the mesh "
+           "misalignment.")
+      .in_table(&GearPair::contact)
+      .located(&ContactModelSpec::where)
+      .fields({
+          integer("positions", "Mesh positions per mesh cycle.")
+              .def("64")
+              .ge(4)
+              .le(4096)
+              .to(&ContactModelSpec::positions),
+          integer("slices", "Slices over the face width.")
+              .def("40")
+              .ge(1)
+              .le(1000)
+              .to(&ContactModelSpec::slices),
+          number("coupling_length", kMetre,
+                 "Decay length of the elastic coupling between neighbouring slices of a tooth "
+                 "(a Pasternak layer: a point load's deflection decays as exp(-|dy| / length)); "
+                 "0: uncoupled slices (Winkler).")
+              .def("0.0")
+              .ge(0)
+              .to(&ContactModelSpec::coupling_length),
+          number("misalignment", kMetre,
+                 "Mesh misalignment f_ma in the plane of action: the gap difference along the "
+                 "line of action between the face ends (y = b minus y = 0).")
+              .def("0.0")
+              .to(&ContactModelSpec::misalignment),
+          number("axis_inclination_deviation", kMetre,
+                 "ISO 1328 / ISO 6336-1 f_Sigma_delta over the face width (in the plane of the "
+                 "axes); adds f_Sigma_delta sin(alpha_wt) to the misalignment in the plane of "
+                 "action.")
+              .def("0.0")
+              .to(&ContactModelSpec::axis_inclination_deviation),
+          number("axis_deviation", kMetre,
+                 "ISO 1328 / ISO 6336-1 f_Sigma_beta over the face width (normal to the plane "
+                 "of the axes); adds f_Sigma_beta cos(alpha_wt) to the misalignment in the "
+                 "plane of action.")
+              .def("0.0")
+              .to(&ContactModelSpec::axis_deviation),
+          boolean("hunting_period",
+                  "With pitch deviations, compute the hunting period lcm(z1, z2) mesh cycles "
+                  "(false: the first mesh cycle only).")
+              .def("true")
+              .to(&ContactModelSpec::hunting_period),
+      });
+}
+
 }  // namespace
 
 Section gear_pairs_section() {
@@ -284,6 +428,8 @@ Section gear_pairs_section() {
       .in_array(&Model::gear_pairs)
       .located(&GearPair::where)
       .fields(join_fields({gear_pair_fields_1(), gear_pair_fields_2()}))
+      .sections({flank_section("flank1", "1", &GearPair::flank1),
+                 flank_section("flank2", "2", &GearPair::flank2), contact_section()})
       .choices({{{{"face_width"}, {"face_width1", "face_width2"}}, true, {}}})
       .variants("type",
                 {

@@ -1,0 +1,424 @@
+#include "geardyn/analyses/tooth_contact.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "geardyn/analyses/gear_helpers.hpp"
+#include "geardyn/core/error.hpp"
+#include "geardyn/core/units.hpp"
+
+namespace geardyn::analyses {
+
+namespace {
+
+constexpr double kDeg = 180.0 / units::kPi;
+
+gear::ReliefShape shape(model::ReliefShapeKind k) {
+  return k == model::ReliefShapeKind::Parabolic ? gear::ReliefShape::Parabolic
+                                                : gear::ReliefShape::Linear;
+}
+
+// A relief start given by diameter or roll angle xi (r = r_b sqrt(1 + xi^2)) as a radius.
+double start_radius(double diameter, double roll_angle, double base_radius) {
+  if (!std::isnan(diameter)) return 0.5 * diameter;
+  if (!std::isnan(roll_angle)) return base_radius * std::sqrt(1.0 + roll_angle * roll_angle);
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+gear::FlankModification flank(const model::FlankModificationSpec& f, double base_radius,
+                              const model::GearPair& p, const char* key) {
+  gear::FlankModification m;
+  m.tip_relief_m = f.tip_relief;
+  m.tip_relief_start_radius_m =
+      start_radius(f.tip_relief_start_diameter, f.tip_relief_start_roll_angle, base_radius);
+  m.tip_relief_shape = shape(f.tip_relief_shape);
+  m.root_relief_m = f.root_relief;
+  m.root_relief_start_radius_m =
+      start_radius(f.root_relief_start_diameter, f.root_relief_start_roll_angle, base_radius);
+  m.root_relief_shape = shape(f.root_relief_shape);
+  if (f.tip_relief > 0.0 && std::isnan(m.tip_relief_start_radius_m))
+    throw InputError(f.where.line > 0 ? f.where : p.where, fmt::format("{}.tip_relief", key),
+                     "tip_relief_start_diameter or tip_relief_start_roll_angle_deg with a tip "
+                     "relief",
+                     "neither");
+  if (f.root_relief > 0.0 && std::isnan(m.root_relief_start_radius_m))
+    throw InputError(f.where.line > 0 ? f.where : p.where, fmt::format("{}.root_relief", key),
+                     "root_relief_start_diameter or root_relief_start_roll_angle_deg with a "
+                     "root relief",
+                     "neither");
+  m.profile_crowning_m = f.profile_crowning;
+  m.lead_crowning_m = f.lead_crowning;
+  m.lead_slope_m = f.lead_slope;
+  m.end_relief_m = f.end_relief;
+  m.end_relief_length_m = f.end_relief_length;
+  m.end_relief_shape = shape(f.end_relief_shape);
+  m.pitch_deviation_m = f.pitch_deviations;
+  return m;
+}
+
+gear::ElasticConstants elastic(const model::Model& m, const std::string& material) {
+  gear::ElasticConstants e;
+  if (material.empty()) return e;  // steel, E = 206 GPa, nu = 0.3
+  const model::Material* mat = m.find_material(material);
+  if (mat == nullptr) throw std::logic_error("gear-pair material not resolved: " + material);
+  e.youngs_modulus_pa = mat->youngs_modulus;
+  e.poisson_ratio = mat->youngs_modulus / (2.0 * mat->shear_modulus) - 1.0;
+  return e;
+}
+
+}  // namespace
+
+std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
+                                                             std::size_t index) {
+  auto tc = std::make_shared<ToothContactModel>();
+  tc->pair = build_pair_model(model, index);
+  const model::GearPair& p = *tc->pair.pair;
+  const gear::GearPairGeometry& g = tc->pair.geometry;
+  const std::string path = tc->pair.key_path;
+  if (gear::is_bevel(g.spec.type))
+    throw InputError(p.where, path + ".type",
+                     "a spur or helical pair (the slice model of tooth_contact is for "
+                     "cylindrical gears)",
+                     fmt::format("\"{}\"", gear::to_string(g.spec.type)),
+                     "bevel and hypoid pairs are not yet supported by tooth_contact; give their "
+                     "STE with ste_file");
+  tc->pinion = flank(p.flank1, g.pinion.base_radius_m, p, (path + ".flank1").c_str());
+  tc->wheel = flank(p.flank2, g.wheel.base_radius_m, p, (path + ".flank2").c_str());
+  const model::ContactModelSpec& c = p.contact;
+  tc->misalignment_m = c.misalignment +
+                       c.axis_inclination_deviation * std::sin(g.working_pressure_angle_rad) +
+                       c.axis_deviation * std::cos(g.working_pressure_angle_rad);
+  tc->options.positions = c.positions;
+  tc->options.slices = c.slices;
+  tc->options.misalignment_in_plane_m = tc->misalignment_m;
+  tc->options.hunting_period = c.hunting_period;
+  gear::ToothComplianceOptions co;
+  co.pinion = elastic(model, p.material1);
+  co.wheel = elastic(model, p.material2);
+  tc->teeth = std::make_unique<gear::ToothCompliance>(g, co);
+  tc->compliance = std::make_unique<gear::SliceCompliance>(*tc->teeth, c.coupling_length);
+  // The gear library reports keys as modifications1.<key>; the model calls them flank1.<key>.
+  gear::GearPairGeometry keyed = g;
+  keyed.spec.key_path = path;
+  tc->contact = std::make_unique<gear::ToothContact>(keyed, tc->pinion, tc->wheel, *tc->compliance,
+                                                     tc->options);
+  return tc;
+}
+
+ToothContactRunResult run_tooth_contact(const model::Model& model,
+                                        const ToothContactSettings& settings,
+                                        const Context& context) {
+  ToothContactRunResult r;
+  r.model = build_tooth_contact_model(model, pair_index(model, settings.pair));
+  std::vector<double> torques = settings.torques;
+  if (torques.empty()) torques.push_back(r.model->pair.pair->torque);
+  Progress& progress = context.progress();
+  progress.start("torques", torques.size());
+  for (std::size_t i = 0; i < torques.size(); ++i) {
+    r.torques.push_back(r.model->contact->solve(torques[i]));
+    r.harmonics_m.push_back(gear::mesh_order_amplitudes(
+        r.torques.back().te_m, r.model->contact->cycles(), settings.orders));
+    progress.update(i + 1);
+  }
+  progress.finish();
+  double want = settings.distribution_torque;
+  if (std::isnan(want)) {
+    const double own = r.model->pair.pair->torque;
+    want = std::find(torques.begin(), torques.end(), own) != torques.end()
+               ? own
+               : *std::max_element(torques.begin(), torques.end());
+  }
+  r.distribution_index =
+      static_cast<std::size_t>(std::min_element(torques.begin(), torques.end(),
+                                                [&](double a, double b) {
+                                                  return std::abs(a - want) < std::abs(b - want);
+                                                }) -
+                               torques.begin());
+  return r;
+}
+
+namespace {
+
+double peak_peak(const std::vector<double>& v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *hi - *lo;
+}
+
+double mean(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
+Table te_table(const ToothContactRunResult& r) {
+  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  const double pitch_deg = 360.0 / r.model->pair.pair->teeth1;
+  Table t;
+  t.name = "transmission_error";
+  t.title =
+      "Loaded transmission error, mesh stiffness and load sharing over the mesh cycle, per "
+      "torque (u = 0: a tooth pair enters contact)";
+  std::vector<double> torque, u, angle, te, te_rad, ute, ks, kt, pts, wmax, pmax;
+  const auto pairs = r.torques.front().pair_load_share.cols();
+  std::vector<std::vector<double>> share(static_cast<std::size_t>(pairs));
+  for (const auto& res : r.torques)
+    for (std::size_t p = 0; p < res.te_m.size(); ++p) {
+      torque.push_back(res.torque_nm);
+      u.push_back(res.mesh_fraction[p]);
+      angle.push_back(res.mesh_fraction[p] * pitch_deg);
+      te.push_back(res.te_m[p]);
+      te_rad.push_back(res.te_m[p] / rb1);
+      ute.push_back(res.unloaded_te_m[p]);
+      ks.push_back(res.stiffness_secant_n_per_m[p]);
+      kt.push_back(res.stiffness_tangent_n_per_m[p]);
+      pts.push_back(res.points_in_contact[p]);
+      wmax.push_back(res.max_line_load_n_per_m[p]);
+      pmax.push_back(res.max_pressure_pa[p]);
+      for (Eigen::Index j = 0; j < pairs; ++j)
+        share[static_cast<std::size_t>(j)].push_back(
+            res.pair_load_share(static_cast<Eigen::Index>(p), j));
+    }
+  t.add("torque_nm", "N m", torque);
+  t.add("mesh_fraction", "", u);
+  t.add("pinion_angle_deg", "deg", angle);
+  t.add("te_m", "m", te);
+  t.add("te_rad", "rad", te_rad);
+  t.add("unloaded_te_m", "m", ute);
+  t.add("stiffness_secant_n_per_m", "N/m", ks);
+  t.add("stiffness_tangent_n_per_m", "N/m", kt);
+  t.add("slices_in_contact", "", pts);
+  t.add("max_line_load_n_per_m", "N/m", wmax);
+  t.add("max_pressure_pa", "Pa", pmax);
+  for (std::size_t j = 0; j < share.size(); ++j)
+    t.add(fmt::format("load_share_pair{}", j), "", share[j]);
+  return t;
+}
+
+Table summary_table(const ToothContactRunResult& r) {
+  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  Table t;
+  t.name = "summary";
+  t.title =
+      "Per torque: TE peak-to-peak and mean, mesh stiffness, face-load factor, peak "
+      "contact pressure";
+  std::vector<double> torque, ppm, ppr, mte, ks, kt, khb, pmax, wmax;
+  for (const auto& res : r.torques) {
+    torque.push_back(res.torque_nm);
+    ppm.push_back(peak_peak(res.te_m));
+    ppr.push_back(peak_peak(res.te_m) / rb1);
+    mte.push_back(mean(res.te_m));
+    ks.push_back(mean(res.stiffness_secant_n_per_m));
+    kt.push_back(mean(res.stiffness_tangent_n_per_m));
+    khb.push_back(res.face_load_factor);
+    pmax.push_back(*std::max_element(res.max_pressure_pa.begin(), res.max_pressure_pa.end()));
+    wmax.push_back(
+        *std::max_element(res.max_line_load_n_per_m.begin(), res.max_line_load_n_per_m.end()));
+  }
+  t.add("torque_nm", "N m", torque);
+  t.add("te_peak_peak_m", "m", ppm);
+  t.add("te_peak_peak_rad", "rad", ppr);
+  t.add("te_mean_m", "m", mte);
+  t.add("stiffness_secant_mean_n_per_m", "N/m", ks);
+  t.add("stiffness_tangent_mean_n_per_m", "N/m", kt);
+  t.add("face_load_factor", "", khb);
+  t.add("max_pressure_pa", "Pa", pmax);
+  t.add("max_line_load_n_per_m", "N/m", wmax);
+  return t;
+}
+
+Table harmonics_table(const ToothContactRunResult& r) {
+  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  Table t;
+  t.name = "te_harmonics";
+  t.title =
+      "TE harmonics at the mesh orders: 0-peak amplitude and peak-peak (2 x 0-peak) of each "
+      "harmonic";
+  std::vector<double> torque, order, amp, pp, amp_rad;
+  for (std::size_t i = 0; i < r.torques.size(); ++i)
+    for (std::size_t k = 0; k < r.harmonics_m[i].size(); ++k) {
+      torque.push_back(r.torques[i].torque_nm);
+      order.push_back(static_cast<double>(k + 1));
+      amp.push_back(r.harmonics_m[i][k]);
+      pp.push_back(2.0 * r.harmonics_m[i][k]);
+      amp_rad.push_back(r.harmonics_m[i][k] / rb1);
+    }
+  t.add("torque_nm", "N m", torque);
+  t.add("mesh_order", "", order);
+  t.add("amplitude_0_peak_m", "m", amp);
+  t.add("amplitude_peak_peak_m", "m", pp);
+  t.add("amplitude_0_peak_rad", "rad", amp_rad);
+  return t;
+}
+
+Table distribution_table(const ToothContactRunResult& r) {
+  const auto& res = r.torques[r.distribution_index];
+  Table t;
+  t.name = "load_distribution";
+  t.title = fmt::format(
+      "Load distribution over the flank at T1 = {:.6g} N m: every candidate "
+      "slice of every mesh position (line load 0: open)",
+      res.torque_nm);
+  std::vector<double> pos, u, pair, s, y, roll, r1, r2, gap, w, p;
+  for (const auto& c : res.distribution) {
+    pos.push_back(c.position);
+    u.push_back(res.mesh_fraction[static_cast<std::size_t>(c.position)]);
+    pair.push_back(c.pair);
+    s.push_back(c.path_m);
+    y.push_back(c.face_m);
+    roll.push_back(c.roll_angle1_rad * kDeg);
+    r1.push_back(c.radius1_m);
+    r2.push_back(c.radius2_m);
+    gap.push_back(c.gap_m);
+    w.push_back(c.line_load_n_per_m);
+    p.push_back(c.pressure_pa);
+  }
+  t.add("position", "", pos);
+  t.add("mesh_fraction", "", u);
+  t.add("pair", "", pair);
+  t.add("path_m", "m", s);
+  t.add("face_m", "m", y);
+  t.add("roll_angle1_deg", "deg", roll);
+  t.add("radius1_m", "m", r1);
+  t.add("radius2_m", "m", r2);
+  t.add("gap_m", "m", gap);
+  t.add("line_load_n_per_m", "N/m", w);
+  t.add("pressure_pa", "Pa", p);
+  return t;
+}
+
+Table face_load_table(const ToothContactRunResult& r) {
+  Table t;
+  t.name = "face_load";
+  t.title =
+      "Face-load distribution: line load summed over the tooth pairs at each face "
+      "position, mean over the mesh cycle(s), per torque";
+  const auto& g = r.model->pair.geometry;
+  std::vector<double> torque, y, w;
+  for (const auto& res : r.torques) {
+    const std::size_t n = res.face_load_n_per_m.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      torque.push_back(res.torque_nm);
+      y.push_back((static_cast<double>(k) + 0.5) * g.face_width_m / static_cast<double>(n));
+      w.push_back(res.face_load_n_per_m[k]);
+    }
+  }
+  t.add("torque_nm", "N m", torque);
+  t.add("face_m", "m", y);
+  t.add("line_load_n_per_m", "N/m", w);
+  return t;
+}
+
+Plot plot(std::string name, std::string title, std::string x, std::string y) {
+  Plot p;
+  p.name = std::move(name);
+  p.title = std::move(title);
+  p.x_label = std::move(x);
+  p.y_label = std::move(y);
+  return p;
+}
+
+void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
+  const double pitch_deg = 360.0 / r.model->pair.pair->teeth1;
+  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  Plot te = plot("transmission_error", "Loaded transmission error over the mesh cycle",
+                 "rotation of gear 1 [deg]", "TE of gear 1 [urad]");
+  Plot k = plot("mesh_stiffness", "Mesh stiffness (tangent) over the mesh cycle",
+                "rotation of gear 1 [deg]", "mesh stiffness [N/m]");
+  Plot face = plot("face_load", "Face-load distribution (mean over the cycle)",
+                   "face position [mm]", "line load [N/mm]");
+  for (const auto& res : r.torques) {
+    const std::string name = fmt::format("{:.6g} N m", res.torque_nm);
+    te.traces.push_back(
+        line(name, scaled(res.mesh_fraction, pitch_deg), scaled(res.te_m, 1e6 / rb1)));
+    k.traces.push_back(
+        line(name, scaled(res.mesh_fraction, pitch_deg), res.stiffness_tangent_n_per_m));
+    std::vector<double> y;
+    const std::size_t n = res.face_load_n_per_m.size();
+    for (std::size_t i = 0; i < n; ++i)
+      y.push_back((static_cast<double>(i) + 0.5) * r.model->pair.geometry.face_width_m * 1e3 /
+                  static_cast<double>(n));
+    face.traces.push_back(line(name, y, scaled(res.face_load_n_per_m, 1e-3)));
+  }
+  te.traces.push_back(
+      line("unloaded (geometric) TE", scaled(r.torques.front().mesh_fraction, pitch_deg),
+           scaled(r.torques.front().unloaded_te_m, 1e6 / rb1), Trace::Mode::Lines, "dash"));
+  out.plots.push_back(std::move(te));
+  out.plots.push_back(std::move(k));
+  out.plots.push_back(std::move(face));
+  if (r.torques.size() > 1) {
+    Plot harris =
+        plot("te_vs_torque", "TE peak-to-peak and mesh-order harmonics versus torque (Harris map)",
+             "torque of gear 1 [N m]", "TE of gear 1 [urad]");
+    std::vector<double> torque, pp;
+    for (const auto& res : r.torques) {
+      torque.push_back(res.torque_nm);
+      pp.push_back(peak_peak(res.te_m) / rb1 * 1e6);
+    }
+    harris.traces.push_back(line("peak-to-peak", torque, pp, Trace::Mode::LinesMarkers));
+    for (std::size_t k2 = 0; k2 < r.harmonics_m.front().size(); ++k2) {
+      std::vector<double> a;
+      for (const auto& h : r.harmonics_m) a.push_back(h[k2] / rb1 * 1e6);
+      harris.traces.push_back(line(fmt::format("order {} (0-peak)", k2 + 1), torque, a,
+                                   Trace::Mode::LinesMarkers, "dash"));
+    }
+    out.plots.push_back(std::move(harris));
+  }
+}
+
+}  // namespace
+
+AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
+                                    const ToothContactSettings& /*settings*/,
+                                    const ToothContactRunResult& r, const Context& /*context*/) {
+  AnalysisOutput out;
+  for (const auto& res : r.torques)
+    if (res.status != Status::Ok) {
+      out.status = res.status;
+      out.message = fmt::format("T1 = {:.6g} N m: {}", res.torque_nm, res.message);
+      return out;
+    }
+  out.tables.push_back(summary_table(r));
+  out.tables.push_back(te_table(r));
+  out.tables.push_back(harmonics_table(r));
+  out.tables.push_back(face_load_table(r));
+  out.tables.push_back(distribution_table(r));
+  add_plots(out, r);
+  const auto& m = *r.model;
+  const auto& g = m.pair.geometry;
+  const model::ContactModelSpec& c = m.pair.pair->contact;
+  out.notes.push_back(fmt::format(
+      "'{}': slice model, {} mesh positions per cycle x {} slices over b = {:.6g} m, {} mesh "
+      "cycle{}; tooth compliance by the potential-energy method with fillet foundation and "
+      "Hertzian approach per slice (docs/theory.md §15); {}.",
+      m.pair.pair->name, m.options.positions, m.options.slices, g.face_width_m, m.contact->cycles(),
+      m.contact->cycles() == 1 ? "" : "s (hunting period)",
+      c.coupling_length > 0.0
+          ? fmt::format("slices coupled by a shear layer of decay length {:.6g} m",
+                        c.coupling_length)
+          : std::string("slices uncoupled (coupling_length = 0): a point-like contact spreads "
+                        "no load to its neighbours, which over-estimates the load peaks at "
+                        "modification edges")));
+  out.notes.push_back(fmt::format(
+      "'{}': mesh misalignment in the plane of action f_ma = {:.6g} m (misalignment + "
+      "f_Sigma_delta sin(alpha_wt) + f_Sigma_beta cos(alpha_wt)); the out-of-plane component "
+      "is not modelled (it moves the contact along the profile, a second-order effect on the "
+      "gap).",
+      m.pair.pair->name, m.misalignment_m));
+  for (const auto& res : r.torques) {
+    const double covered = [&] {
+      int n = 0;
+      for (double w : res.face_load_n_per_m) n += w > 0.0;
+      return static_cast<double>(n) / static_cast<double>(res.face_load_n_per_m.size());
+    }();
+    if (covered < 1.0)
+      out.notes.push_back(fmt::format(
+          "T1 = {:.6g} N m: the contact covers {:.0f} % of the face width (the rest never "
+          "touches over the cycle: crowning, misalignment or end relief larger than the "
+          "deflection).",
+          res.torque_nm, 100.0 * covered));
+  }
+  return out;
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,59 @@
+#pragma once
+// tooth_contact: loaded tooth contact analysis (LTCA) of one cylindrical gear pair by the slice
+// model (docs/theory.md §15): transmission error over the mesh cycle per torque and its
+// harmonics at the mesh orders, mesh stiffness (secant and tangent), load sharing between the
+// tooth pairs, load distribution over the flank, peak contact pressure and the face-load factor
+// K_Hbeta, from the pair's geometry, its flank modifications ([gear_pairs.flank1/2]), the slice
+// model and misalignment ([gear_pairs.contact]).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/context.hpp"
+#include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/gear/slice_compliance.hpp"
+#include "geardyn/gear/tooth_compliance.hpp"
+#include "geardyn/gear/tooth_contact.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+struct ToothContactSettings : model::SettingsOf<ToothContactSettings> {
+  std::string pair;             ///< empty: the model's only pair
+  std::vector<double> torques;  ///< pinion torques [N m] (empty: the pair's torque)
+  int orders = 5;               ///< TE harmonics at mesh orders 1..orders
+  /// Torque of the load-distribution table [N m] (NaN: the pair's torque if among `torques`,
+  /// else the largest).
+  double distribution_torque = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The LTCA problem of a model's pair: the gear library's inputs built from the model keys.
+struct ToothContactModel {
+  PairModel pair;
+  gear::FlankModification pinion, wheel;
+  gear::ToothContactOptions options;
+  std::unique_ptr<gear::ToothCompliance> teeth;
+  std::unique_ptr<gear::SliceCompliance> compliance;
+  std::unique_ptr<gear::ToothContact> contact;
+  double misalignment_m = 0.0;  ///< f_ma used (direct + axis deviations)
+};
+
+/// Builds and checks the LTCA of pair `index`. Throws InputError at the pair's keys.
+std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
+                                                             std::size_t index);
+
+struct ToothContactRunResult {
+  std::shared_ptr<ToothContactModel> model;
+  std::vector<gear::ToothContactResult> torques;  ///< in the order of the settings' torques
+  std::size_t distribution_index = 0;             ///< which torque's distribution is written
+  std::vector<std::vector<double>> harmonics_m;   ///< per torque: 0-peak TE at orders 1..n
+};
+
+ToothContactRunResult run_tooth_contact(const model::Model& model,
+                                        const ToothContactSettings& settings,
+                                        const Context& context);
+
+AnalysisOutput tooth_contact_output(const model::Model& model, const ToothContactSettings& settings,
+                                    const ToothContactRunResult& result, const Context& context);
+
+}  // namespace geardyn::analyses
