@@ -38,6 +38,7 @@
 // never reported as a steady state. Growth beyond `divergence_factor` times the largest static
 // deflection stops with Status::Diverged; no steady state within max_cycles gives
 // Status::NotConverged (quasi-periodic or chaotic response, or no damping).
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -57,6 +58,18 @@ double equivalent_mass(double inertia1_kgm2, double inertia2_kgm2, double base_r
 
 /// Mesh frequency f_m = z n / 60 [Hz] of a gear with `teeth` teeth at `speed_rpm`.
 double mesh_frequency_hz(double speed_rpm, int teeth);
+
+/// What the mesh damper c acts on (docs/theory.md §13).
+enum class MeshDamping {
+  /// c x': on the dynamic transmission error, in and out of contact (a damper between the gear
+  /// bodies, e.g. bearings and lubricant; the default).
+  Dte,
+  /// c (x' - e_g') in contact only: on the elastic deflection of the teeth (the tooth damper of
+  /// A. Kahraman, R. Singh, "Non-linear dynamics of a spur gear pair", J. Sound Vib. 1990 and
+  /// H.N. Özgüven, D.R. Houser, "Mathematical models used in gear dynamics - a review",
+  /// J. Sound Vib. 1988), following e_g piecewise linearly and exactly; no damping in free flight.
+  ElasticDeflection
+};
 
 enum class MeshModel {
   Dynamic,         ///< the equation above, integrated to its periodic steady state
@@ -83,6 +96,13 @@ struct DynamicMeshOptions {
   double backlash_m = kInf;            ///< b > 0 [m]; infinity: no back-side contact
   int min_points_per_period = 128;     ///< at least this many intervals per mesh period
   int points_per_natural_period = 16;  ///< intervals per shortest natural period (>= 8)
+  MeshDamping damping_on = MeshDamping::Dte;
+  /// External harmonic force on the mesh coordinate, added to F_s:
+  /// F(t) = F_s + F_a cos(2 pi r f_m t + phi), r = force_order (an integer, so that F(t) has the
+  /// mesh period and the periodic steady state exists), t = 0 at the cycle start.
+  double force_amplitude_n = 0.0;  ///< F_a >= 0 [N]
+  int force_order = 1;             ///< r in [1, 1000]
+  double force_phase_rad = 0.0;    ///< phi [rad]
   SteadyStateOptions steady_state;
   /// Throws InputError (key path `dynamic_mesh.<field>`) for the first invalid field.
   void validate() const;
@@ -150,6 +170,13 @@ class DynamicMesh {
 
   /// Static equilibrium at the cycle start: x = e(0) (within the first interval), x' = 0.
   MeshState static_state() const;
+
+  /// One mesh cycle of the Poincaré map from `start` at `mesh_frequency_hz`: the end state and
+  /// the exact monodromy (Jacobian d end / d start, row-major [dx/dx, dx/dv, dv/dx, dv/dv],
+  /// saltation at contact changes included). For tests and diagnostics; throws InputError for a
+  /// bad frequency and NumericalError when the cycle cannot be integrated.
+  MeshState poincare_map(double mesh_frequency_hz, const MeshState& start,
+                         std::array<double, 4>* monodromy = nullptr) const;
 
  private:
   SteCurve ste_;
