@@ -663,7 +663,8 @@ DynamicMesh::DynamicMesh(SteCurve ste, DynamicMeshOptions options)
     e_max_ = std::max(e_max_, std::abs(ste_.ste_m()[j]));
   }
   k_max_ = options_.static_force_n / d_min;
-  if (options_.damping_on == MeshDamping::ElasticDeflection &&
+  if (options_.model == MeshModel::Dynamic &&
+      options_.damping_on == MeshDamping::ElasticDeflection &&
       ste_.interpolation() == SteInterpolation::Hold) {
     const auto& g = ste_.geometric_te_m();
     if (std::any_of(g.begin(), g.end(), [&](double v) { return v != g.front(); }))

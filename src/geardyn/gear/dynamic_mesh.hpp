@@ -4,13 +4,16 @@
 // of Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
 // sec. 3.2):
 //
-//   m_e x'' + c x' + f_k(x, t) = F_s,
+//   m_e x'' + f_c + f_k(x, t) = F_s + F_a cos(2 pi r f_m t + phi),
 //   f_k = k(t) (x - e_g(t))          when x - e_g > 0          (drive-side contact)
 //       = 0                          when -b < x - e_g <= 0    (contact loss, free flight)
 //       = k(t) (x - e_g(t) + b)      when x - e_g <= -b        (back-side contact, backlash b)
 //
 //   m_e = J1 J2 / (J1 r_b2^2 + J2 r_b1^2),  F_s = T / r_b,  k(t) = F_s / (e(t) - e_g(t)),
-//   c = 2 zeta sqrt(k_mean m_e),  F_d(t) = f_k + c x'.
+//   c = 2 zeta sqrt(k_mean m_e),  F_d(t) = f_k + f_c,
+//   f_c = c x' (damping on the DTE, default) or, damping on the elastic deflection,
+//   f_c = c (x' - e_g') in contact (drive or back side) and 0 in contact loss (MeshDamping);
+//   F_a, r, phi an optional external harmonic force at a whole mesh order r.
 //
 // x is the dynamic transmission error (DTE, a length), e the loaded STE and e_g the unloaded
 // (geometric) TE of the SteCurve (e_g = 0 when none). Without backlash (b = infinity) the
@@ -27,6 +30,10 @@
 // no crossing is missed). The contact force is continuous across the region boundaries, so the
 // transition matrices chain without saltation terms and their product over a cycle is the exact
 // monodromy matrix M of the Poincaré map s_{n+1} = P(s_n), s = (x, x') at the cycle start.
+// With damping on the elastic deflection, e_g is linear in time on each interval (the Linear
+// STE's own e_g' enters exactly through the particular solution x_p = e_g(t) + F_s / k), and the
+// damper force jumps at a contact change: its saltation matrix enters the monodromy. The
+// harmonic force enters through its closed-form particular solution.
 //
 // Steady state: the map is iterated (time marching) until the scaled change
 //   r = sqrt( (dx / x_s)^2 + (dv / (omega x_s))^2 ),  x_s = F_s / k_mean, omega = sqrt(k_mean/m_e)
