@@ -57,7 +57,7 @@ void add_model_notes(AnalysisOutput& out, const MeshForceSettings& settings,
                           "contact (damping_on = \"dte\").")
             : std::string("Mesh damping on the elastic deflection of the teeth: c (x' - e_g'), "
                           "in contact only, none while the teeth are apart (damping_on = "
-                          "\"elastic_deflection\"; Kahraman & Singh 1990)."));
+                          "\"elastic_deflection\"; after Kahraman & Singh 1990)."));
     if (settings.force_amplitude > 0.0)
       out.notes.push_back(fmt::format(
           "External harmonic force on the mesh coordinate: F_a = {:.6g} N at {} x f_m, phase "

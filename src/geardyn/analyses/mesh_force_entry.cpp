@@ -101,8 +101,9 @@ std::vector<model::Field> keys() {
              "What the mesh damper c = 2 zeta sqrt(k_mean m_e) acts on: \"dte\", c x' on the "
              "dynamic transmission error, in and out of contact; \"elastic_deflection\", "
              "c (x' - e_g') on the elastic deflection of the teeth x - e_g (e_g the unloaded TE "
-             "of the STE), in contact only (no damping while the teeth are apart), as in the "
-             "models of Kahraman & Singh (1990) and Ozguven & Houser (1988). The two agree "
+             "of the STE) as in the models of Kahraman & Singh (1990) and Ozguven & Houser "
+             "(1988), here acting in contact only (no damping while the teeth are apart, where "
+             "those models keep it). The two agree "
              "while the teeth stay in contact and e_g is constant (the synthetic STE).")
           .def("\"dte\"")
           .to_settings_enum(&MeshForceSettings::damping_on,

@@ -71,10 +71,11 @@ enum class MeshDamping {
   /// c x': on the dynamic transmission error, in and out of contact (a damper between the gear
   /// bodies, e.g. bearings and lubricant; the default).
   Dte,
-  /// c (x' - e_g') in contact only: on the elastic deflection of the teeth (the tooth damper of
-  /// A. Kahraman, R. Singh, "Non-linear dynamics of a spur gear pair", J. Sound Vib. 1990 and
-  /// H.N. Özgüven, D.R. Houser, "Mathematical models used in gear dynamics - a review",
-  /// J. Sound Vib. 1988), following e_g piecewise linearly and exactly; no damping in free flight.
+  /// c (x' - e_g') on the elastic deflection of the teeth, as in A. Kahraman, R. Singh,
+  /// "Non-linear dynamics of a spur gear pair", J. Sound Vib. 1990 and H.N. Özgüven,
+  /// D.R. Houser, "Mathematical models used in gear dynamics - a review", J. Sound Vib. 1988,
+  /// but acting in contact only (a tooth damper: no damping in free flight, where those models
+  /// keep it); e_g is followed piecewise linearly and exactly.
   ElasticDeflection
 };
 
