@@ -51,6 +51,19 @@ void add_model_notes(AnalysisOutput& out, const MeshForceSettings& settings,
               : std::string("infinite inertias: F_d(t) = F_s k(t) / k_mean (no dynamics)"),
       z1));
   if (dynamic) {
+    out.notes.push_back(
+        settings.damping_on == MeshDampingKind::Dte
+            ? std::string("Mesh damping on the dynamic transmission error: c x', in and out of "
+                          "contact (damping_on = \"dte\").")
+            : std::string("Mesh damping on the elastic deflection of the teeth: c (x' - e_g'), "
+                          "in contact only, none while the teeth are apart (damping_on = "
+                          "\"elastic_deflection\"; after Kahraman & Singh 1990)."));
+    if (settings.force_amplitude > 0.0)
+      out.notes.push_back(fmt::format(
+          "External harmonic force on the mesh coordinate: F_a = {:.6g} N at {} x f_m, phase "
+          "{:.6g} deg at the cycle start, added to F_s.",
+          settings.force_amplitude, settings.force_order,
+          settings.force_phase / units::kRadPerDegree));
     const double fn = r.natural_frequency_hz;
     out.notes.push_back(fmt::format(
         "Mesh resonance: f_n = sqrt(k_mean / m_e) / 2 pi = {:.6g} Hz, met by the mesh frequency at "
@@ -139,7 +152,31 @@ void add_details(AnalysisOutput& out, const MeshForceResult& r, std::vector<std:
   out.plots.push_back(std::move(dte));
 }
 
+/// Damping on the elastic deflection needs a continuous e_g: with a held curve whose e_g steps,
+/// c (x' - e_g') would be an impulse at each step.
+void check_elastic_damping(const PairModel& pm, const MeshForceSettings& settings,
+                           const Context& context) {
+  if (settings.damping_on != MeshDampingKind::ElasticDeflection ||
+      settings.model != MeshForceModel::Dynamic)
+    return;
+  const auto& g = pm.ste->geometric_te_m();
+  if (pm.ste->interpolation() == gear::SteInterpolation::Hold &&
+      std::any_of(g.begin(), g.end(), [&](double v) { return v != g.front(); }))
+    throw context.error(
+        "damping_on", "a continuous unloaded TE e_g for damping on the elastic deflection",
+        fmt::format("gear pair '{}' with a step (hold) STE whose unloaded TE varies: the damper "
+                    "force c (x' - e_g') would be an impulse at each step",
+                    pm.pair->name),
+        "use damping_on = \"dte\", or ste_interpolation = \"linear\" for the gear pair");
+}
+
 }  // namespace
+
+void check_mesh_force_inputs(const model::Model& model, const MeshForceSettings& settings,
+                             const Context& context) {
+  check_elastic_damping(build_pair_model(model, pair_index(model, settings.pair)), settings,
+                        context);
+}
 
 MeshForceResult run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
                                const Context& context) {
@@ -152,7 +189,14 @@ MeshForceResult run_mesh_force(const model::Model& model, const MeshForceSetting
                     {}};
   const PairModel& pm = r.pair;
   const int z1 = pm.pair->teeth1;
-  const gear::DynamicMesh mesh(*pm.ste, pm.mesh_options(settings.model, settings.contact_loss));
+  gear::DynamicMeshOptions options = pm.mesh_options(settings.model, settings.contact_loss);
+  const bool elastic = settings.damping_on == MeshDampingKind::ElasticDeflection;
+  options.damping_on = elastic ? gear::MeshDamping::ElasticDeflection : gear::MeshDamping::Dte;
+  options.force_amplitude_n = settings.force_amplitude;
+  options.force_order = settings.force_order;
+  options.force_phase_rad = settings.force_phase;
+  check_elastic_damping(pm, settings, context);
+  const gear::DynamicMesh mesh(*pm.ste, options);
   r.mean_stiffness_n_m = mesh.mean_stiffness_n_m();
   r.damping_n_s_m = mesh.damping_n_s_m();
   r.equivalent_mass_kg = mesh.options().equivalent_mass_kg;

@@ -25,6 +25,9 @@ namespace geardyn::analyses {
 /// The direction(s) a mesh_force sweep runs through its speeds.
 enum class SweepDirectionKind { Up, Down, Both };
 
+/// What the mesh damper acts on (gear::MeshDamping).
+enum class MeshDampingKind { Dte, ElasticDeflection };
+
 /// The dynamic mesh force over a speed range of gear 1 (docs/theory.md §13).
 struct MeshForceSettings : model::SettingsOf<MeshForceSettings> {
   std::string pair;            ///< empty: the model's only gear pair
@@ -33,6 +36,10 @@ struct MeshForceSettings : model::SettingsOf<MeshForceSettings> {
   MeshForceModel model = MeshForceModel::Dynamic;
   bool contact_loss = true;           ///< false: linear mesh law for every x
   std::vector<double> detail_speeds;  ///< time histories at these speeds of gear 1 [rad/s]
+  MeshDampingKind damping_on = MeshDampingKind::Dte;
+  double force_amplitude = 0.0;  ///< F_a of the external harmonic force [N]
+  int force_order = 1;           ///< its frequency in mesh orders (an integer >= 1)
+  double force_phase = 0.0;      ///< its phase at the cycle start [rad]
 };
 
 /// The steady state at one of the `detail_rpm` speeds.
@@ -51,6 +58,11 @@ struct MeshForceResult {
   double natural_frequency_hz = model::kNaN;  ///< sqrt(k_mean / m_e) / 2 pi (NaN: no dynamics)
   std::vector<MeshForceDetail> details;       ///< in the order of detail_rpm
 };
+
+/// Input checks that need the gear pair's STE (InputError at the analysis's keys): damping on
+/// the elastic deflection needs a continuous unloaded TE.
+void check_mesh_force_inputs(const model::Model& model, const MeshForceSettings& settings,
+                             const Context& context);
 
 MeshForceResult run_mesh_force(const model::Model& model, const MeshForceSettings& settings,
                                const Context& context);

@@ -26,6 +26,10 @@ using model::TableContext;
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<MeshForceSettings>();
   s.speeds = positive_speed_range(t, "the mesh frequency must be positive");
+  if (s.force_amplitude > 0.0 && s.model == MeshForceModel::InfiniteInertia)
+    t.fail("force_amplitude_n",
+           "0 with model = \"infinite_inertia\" (the external force needs the dynamic model)",
+           fmt::format("{} N", s.force_amplitude));
   if (s.detail_speeds.size() > 8)
     t.fail("detail_rpm", "at most 8 speeds for time histories",
            fmt::format("{} speeds", s.detail_speeds.size()));
@@ -93,6 +97,37 @@ std::vector<model::Field> keys() {
           .gt(0)
           .def("[]")
           .to_settings(&MeshForceSettings::detail_speeds),
+      choice("damping_on", {"dte", "elastic_deflection"},
+             "What the mesh damper c = 2 zeta sqrt(k_mean m_e) acts on: \"dte\", c x' on the "
+             "dynamic transmission error, in and out of contact; \"elastic_deflection\", "
+             "c (x' - e_g') on the elastic deflection of the teeth x - e_g (e_g the unloaded TE "
+             "of the STE) as in the models of Kahraman & Singh (1990) and Ozguven & Houser "
+             "(1988), here acting in contact only (no damping while the teeth are apart, where "
+             "those models keep it). The two agree "
+             "while the teeth stay in contact and e_g is constant (the synthetic STE).")
+          .def("\"dte\"")
+          .to_settings_enum(&MeshForceSettings::damping_on,
+                            {MeshDampingKind::Dte, MeshDampingKind::ElasticDeflection}),
+      number("force_amplitude_n", kNewton,
+             "Amplitude F_a of an external harmonic force on the mesh coordinate, added to the "
+             "static force: F(t) = F_s + F_a cos(2 pi force_order f_m t + force_phase_deg), t = 0 "
+             "when a tooth pair enters contact (dynamic model only; 0: none).")
+          .ge(0)
+          .def("0")
+          .to_settings(&MeshForceSettings::force_amplitude),
+      integer("force_order",
+              "Frequency of the external force in orders of the mesh frequency (1: f_m). Whole "
+              "orders only: with a fractional order the force, and the response, would not repeat "
+              "over a mesh period, so the steady state periodic in the mesh period that the "
+              "analysis computes would not exist.")
+          .ge(1)
+          .le(1000)
+          .def("1")
+          .to_settings(&MeshForceSettings::force_order),
+      number("force_phase_deg", kDegree,
+             "Phase of the external force at the start of a mesh cycle (see force_amplitude_n).")
+          .def("0")
+          .to_settings(&MeshForceSettings::force_phase),
   };
 }
 
@@ -112,6 +147,9 @@ AnalysisType mesh_force_analysis() {
     d.finish = finish;
     d.check = check;
     return d;
+  };
+  type.check_inputs = [](const model::Model& m, const Analysis& a, const InputContext& c) {
+    check_mesh_force_inputs(m, a.settings_of<MeshForceSettings>(), c);
   };
   type.run = runner(run_mesh_force, mesh_force_output);
   type.scalars = {

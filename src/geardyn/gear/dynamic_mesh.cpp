@@ -8,6 +8,7 @@
 #include <complex>
 #include <utility>
 
+#include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 
 namespace geardyn::gear {
@@ -109,7 +110,9 @@ double bracketed_root(F&& f, double lo, double f_lo, double hi, double f_hi, dou
 // Per-solve data: the intervals of one mesh period at one mesh frequency.
 struct Interval {
   double k = 0.0;       // mesh stiffness on the interval [N/m]
-  double g = 0.0;       // unloaded TE on the interval [m]
+  double g = 0.0;       // unloaded TE at the middle of the interval [m]
+  double slope = 0.0;   // de_g/dt on the interval [m/s] (damping on the elastic deflection only)
+  double t0 = 0.0;      // start of the interval from the cycle start [s]
   std::size_t phi = 0;  // index of the full-interval transition matrix
 };
 
@@ -123,7 +126,8 @@ constexpr std::array<double, 4> kGaussWeights = {0.3478548451374539, 0.652145154
 struct Piece {
   std::size_t interval = 0;
   Region region = Region::Contact;
-  double t0 = 0.0;  // absolute time from the start of the output
+  double t0 = 0.0;    // absolute time from the start of the output
+  double from = 0.0;  // start of the piece from the start of its interval
   double dt = 0.0;
   State s0;
 };
@@ -144,14 +148,22 @@ class Solver {
     c_ = mesh.damping_n_s_m();
     backlash_ = o.backlash_m;
     contact_loss_ = o.contact_loss;
+    elastic_ = o.damping_on == MeshDamping::ElasticDeflection;
     period_ = 1.0 / mesh_frequency_hz;
+    force_amplitude_ = o.force_amplitude_n;
+    force_omega_ = units::kTwoPi * o.force_order * mesh_frequency_hz;
+    force_phase_ = o.force_phase_rad;
     const SteCurve& ste = mesh.ste();
     const std::size_t ns = ste.size();
     // Interval count: a multiple of the STE samples (Hold steps fall on interval boundaries),
     // at least min_points_per_period, and short against the shortest natural period.
     const double shortest_natural_period = units::kTwoPi / std::sqrt(mesh.max_stiffness_n_m() / m_);
-    const double needed = std::max(static_cast<double>(o.min_points_per_period),
-                                   o.points_per_natural_period * period_ / shortest_natural_period);
+    double needed = std::max(static_cast<double>(o.min_points_per_period),
+                             o.points_per_natural_period * period_ / shortest_natural_period);
+    // The external force as finely as the shortest natural period (region changes are located
+    // on the assumption of at most one extremum per interval).
+    if (o.force_amplitude_n != 0.0)
+      needed = std::max(needed, static_cast<double>(o.points_per_natural_period) * o.force_order);
     const double per_sample = std::ceil(needed / static_cast<double>(ns));
     const double count = per_sample * static_cast<double>(ns);
     if (!(count <= static_cast<double>(kMaxIntervalsPerPeriod))) {
@@ -184,6 +196,19 @@ class Solver {
           iv.k = force_ * mean_inverse;
           const double um = 0.5 * (ua + ub);
           iv.g = g[j] + um * (g[(j + 1) % ns] - g[j]);
+          // With the damper on the elastic deflection x - e_g, e_g is followed exactly (linear in
+          // time) so that e_g' is the curve's own; otherwise its mean over the interval is used.
+          if (elastic_) iv.slope = (g[(j + 1) % ns] - g[j]) / (h_ * static_cast<double>(sub));
+        }
+        iv.t0 = static_cast<double>(j * sub + q) * h_;
+      }
+    }
+    // Undamped resonance of the external force with a stiffness: no periodic solution.
+    if (force_amplitude_ != 0.0) {
+      for (const Interval& iv : intervals_) {
+        if (std::abs(harmonic_denominator(Region::Contact, iv)) <= 1e-12 * iv.k) {
+          resonant_ = true;
+          break;
         }
       }
     }
@@ -202,6 +227,7 @@ class Solver {
   }
 
   bool too_fine() const { return too_fine_; }
+  bool resonant() const { return resonant_; }
   std::size_t count() const { return count_; }
   double period() const { return period_; }
   double h() const { return h_; }
@@ -211,72 +237,151 @@ class Solver {
     return std::sqrt(dx * dx + dv * dv);
   }
 
-  // Region of the state at the start of interval i; on a boundary the direction of motion
-  // decides (with v = 0 the acceleration F_s / m_e > 0, continuous there, points upwards).
+  // Region of the state at the start of interval i; on a boundary the direction of the relative
+  // motion decides (with x' = e_g' the acceleration F_s / m_e > 0 points into contact).
   Region classify(const State& s, const Interval& iv) const {
     if (!contact_loss_) return Region::Contact;
-    const double delta = s.x - iv.g;
-    if (delta > 0.0 || (delta == 0.0 && s.v >= 0.0)) return Region::Contact;
+    const double delta = s.x - g_at(iv, 0.0), w = s.v - iv.slope;
+    if (delta > 0.0 || (delta == 0.0 && w >= 0.0)) return Region::Contact;
     if (std::isfinite(backlash_)) {
-      if (delta < -backlash_ || (delta == -backlash_ && s.v < 0.0)) return Region::Back;
+      if (delta < -backlash_ || (delta == -backlash_ && w < 0.0)) return Region::Back;
     }
     return Region::Free;
   }
 
+  // Unloaded TE at time tau from the start of the interval (linear in time on it).
+  double g_at(const Interval& iv, double tau) const { return iv.g + iv.slope * (tau - 0.5 * h_); }
   // Stiffness acting and the position where its force vanishes.
   double k_eff(Region r, const Interval& iv) const { return r == Region::Free ? 0.0 : iv.k; }
-  double x_c(Region r, const Interval& iv) const {
-    return r == Region::Back ? iv.g - backlash_ : iv.g;
+  double x_c(Region r, const Interval& iv, double tau) const {
+    return r == Region::Back ? g_at(iv, tau) - backlash_ : g_at(iv, tau);
   }
-  double acceleration(Region r, const Interval& iv, const State& s) const {
-    return (force_ - c_ * s.v - k_eff(r, iv) * (s.x - x_c(r, iv))) / m_;
+  // Damping acting in region r: the tooth damper (elastic deflection) acts in contact only.
+  double c_of(Region r) const { return elastic_ && r == Region::Free ? 0.0 : c_; }
+  // The damper force c (x' - e_g') (elastic deflection; slope = 0 otherwise) or c x'.
+  double damper_force(Region r, const Interval& iv, const State& s) const {
+    return c_of(r) * (s.v - iv.slope);
   }
-  double contact_force(Region r, const Interval& iv, const State& s) const {
-    return k_eff(r, iv) * (s.x - x_c(r, iv));
+  double external_force(double t_cycle) const {
+    return force_ + force_amplitude_ * std::cos(force_omega_ * t_cycle + force_phase_);
+  }
+  double acceleration(Region r, const Interval& iv, const State& s, double tau) const {
+    return (external_force(iv.t0 + tau) - damper_force(r, iv, s) - contact_force(r, iv, s, tau)) /
+           m_;
+  }
+  double contact_force(Region r, const Interval& iv, const State& s, double tau) const {
+    return k_eff(r, iv) * (s.x - x_c(r, iv, tau));
+  }
+  // k_eff - m Omega^2 + i c Omega: the harmonic force's particular solution is
+  // Re(F_a / denominator exp(i (Omega t + phi))).
+  std::complex<double> harmonic_denominator(Region r, const Interval& iv) const {
+    return {k_eff(r, iv) - m_ * force_omega_ * force_omega_, c_of(r) * force_omega_};
+  }
+  // The harmonic particular solution (x, x') at cycle time t_cycle.
+  State harmonic_state(Region r, const Interval& iv, double t_cycle) const {
+    const std::complex<double> amplitude = force_amplitude_ / harmonic_denominator(r, iv);
+    const std::complex<double> rotor =
+        amplitude * std::polar(1.0, force_omega_ * t_cycle + force_phase_);
+    return {rotor.real(), -force_omega_ * rotor.imag()};
   }
 
-  // Exact state after time t in region r from s0; the transition matrix in *phi.
-  State evaluate(Region r, const Interval& iv, const State& s0, double t, bool full,
+  // Exact state after time t in region r from s0, which holds at time `from` after the start of
+  // the interval; the transition matrix in *phi. The solution is the homogeneous one (the
+  // transition matrix) around the particular solution of the forcing on the interval: F_s and
+  // k e_g with e_g linear in time (x_p = x_c(t) + F_s / k, x_p' = e_g': with e_g' != 0 only for
+  // damping on the elastic deflection, c (x_p' - e_g') = 0 holds exactly) and the harmonic force.
+  State evaluate(Region r, const Interval& iv, const State& s0, double from, double t, bool full,
                  Mat2* phi = nullptr) const {
+    State h0{}, h1{};
+    if (force_amplitude_ != 0.0) {
+      h0 = harmonic_state(r, iv, iv.t0 + from);
+      h1 = harmonic_state(r, iv, iv.t0 + from + t);
+    }
+    const State q{s0.x - h0.x, s0.v - h0.v};
     if (r == Region::Free) {
-      const double beta = c_ / m_, a = force_ / m_;
+      const double beta = c_of(r) / m_, a = force_ / m_;
       const double z = beta * t;
       const double e1 = t * phi1(z);
       const double e0 = std::exp(-z);
       if (phi) *phi = Mat2{1.0, e1, 0.0, e0};
-      return {s0.x + e1 * s0.v + a * t * t * phi2(z), e0 * s0.v + a * e1};
+      return {q.x + e1 * q.v + a * t * t * phi2(z) + h1.x, e0 * q.v + a * e1 + h1.v};
     }
-    const Mat2 p = full ? phi_[iv.phi] : oscillator_transition(iv.k / m_, 0.5 * c_ / m_, t);
+    const Mat2 p =
+        full && from == 0.0 ? phi_[iv.phi] : oscillator_transition(iv.k / m_, 0.5 * c_ / m_, t);
     if (phi) *phi = p;
-    const double xeq = x_c(r, iv) + force_ / iv.k;
-    const State d = p * State{s0.x - xeq, s0.v};
-    return {xeq + d.x, d.v};
+    const double shift = force_ / iv.k;
+    const State d = p * State{q.x - (x_c(r, iv, from) + shift), q.v - iv.slope};
+    return {(x_c(r, iv, from + t) + shift) + d.x + h1.x, iv.slope + d.v + h1.v};
   }
 
-  // One boundary of a region: d(t) = dir (x - surface) >= 0 inside; crossing leads to `next`.
+  // Saltation matrix at a change of region with damping on the elastic deflection: the damper
+  // force c (x' - e_g') appears (entering contact) or vanishes (leaving it) on the surface
+  // x = x_c(t), so the acceleration jumps by Delta a = -/+ c w / m_e with w = x' - e_g' the
+  // crossing speed. With the event function x - x_c(t), S = I + (0, Delta a)^T (1, 0) / w
+  // = [[1, 0], [-/+ c / m_e, 1]], independent of w. Identity when the damping is unchanged.
+  Mat2 saltation(Region from, Region to) const {
+    const double jump = c_of(to) - c_of(from);
+    return Mat2{1.0, 0.0, -jump / m_, 1.0};
+  }
+
+  // One boundary of a region: d(t) = dir (x - e_g(t) - offset) >= 0 inside; crossing leads to
+  // `next`.
   struct Boundary {
-    double surface;
+    double offset;
     double dir;
     Region next;
   };
 
-  int boundaries(Region r, const Interval& iv, std::array<Boundary, 2>& out) const {
+  int boundaries(Region r, std::array<Boundary, 2>& out) const {
     switch (r) {
       case Region::Contact:
-        out[0] = {iv.g, 1.0, Region::Free};
+        out[0] = {0.0, 1.0, Region::Free};
         return 1;
       case Region::Free:
-        out[0] = {iv.g, -1.0, Region::Contact};
+        out[0] = {0.0, -1.0, Region::Contact};
         if (std::isfinite(backlash_)) {
-          out[1] = {iv.g - backlash_, 1.0, Region::Back};
+          out[1] = {-backlash_, 1.0, Region::Back};
           return 2;
         }
         return 1;
       case Region::Back:
-        out[0] = {iv.g - backlash_, -1.0, Region::Free};
+        out[0] = {-backlash_, -1.0, Region::Free};
         return 1;
     }
     return 0;
+  }
+
+  // Time (from `done`, within len) at which the state first leaves `region` through boundary b
+  // on the interval; infinity when it stays.
+  double crossing(Region region, const Interval& iv, const State& s, double done, double len,
+                  const State& end, const Boundary& b) const {
+    const double tolerance = 1e-14 * h_;
+    const double ws = s.v - iv.slope, we = end.v - iv.slope;
+    auto surface = [&](double t) { return g_at(iv, done + t) + b.offset; };
+    auto distance = [&](double t) {
+      return b.dir * (evaluate(region, iv, s, done, t, false).x - surface(t));
+    };
+    const double d0 = b.dir * (s.x - surface(0.0));
+    const double d1 = b.dir * (end.x - surface(len));
+    double hi = -1.0, d_hi = 0.0;
+    if (d1 < 0.0) {
+      hi = len;
+      d_hi = d1;
+    } else if (b.dir * ws < 0.0 && b.dir * we > 0.0) {
+      // d has one interior minimum (an interval is shorter than half a natural period): find it
+      // from d' = dir (x' - e_g'), then check whether it dips below the surface.
+      auto slope = [&](double t) {
+        return -b.dir * (evaluate(region, iv, s, done, t, false).v - iv.slope);
+      };
+      const double tm = bracketed_root(slope, 0.0, -b.dir * ws, len, -b.dir * we, tolerance);
+      const double dm = distance(tm);
+      if (dm < 0.0) {
+        hi = tm;
+        d_hi = dm;
+      }
+    }
+    if (!(hi > 0.0)) return kInf;
+    return bracketed_root(distance, 0.0, std::max(d0, 0.0), hi, d_hi, tolerance);
   }
 
   // Advances the state over the whole interval i (from its start), handling region changes.
@@ -286,62 +391,39 @@ class Solver {
     const Interval& iv = intervals_[i];
     Region region = classify(s, iv);
     double done = 0.0;
-    const double tolerance = 1e-14 * h_;
     for (int events = 0; events <= kMaxEventsPerInterval; ++events) {
       const double len = h_ - done;
-      const bool full = done == 0.0;
       Mat2 phi;
-      const State end = evaluate(region, iv, s, len, full, &phi);
+      const State end = evaluate(region, iv, s, done, len, true, &phi);
       double tau = kInf;
       Region next = region;
-      double surface = 0.0;
+      double offset = 0.0;
       if (contact_loss_) {
         std::array<Boundary, 2> bs;
-        const int nb = boundaries(region, iv, bs);
+        const int nb = boundaries(region, bs);
         for (int q = 0; q < nb; ++q) {
           const Boundary& b = bs[static_cast<std::size_t>(q)];
-          const double d0 = b.dir * (s.x - b.surface);
-          const double d1 = b.dir * (end.x - b.surface);
-          double hi = -1.0, d_hi = 0.0;
-          if (d1 < 0.0) {
-            hi = len;
-            d_hi = d1;
-          } else if (b.dir * s.v < 0.0 && b.dir * end.v > 0.0) {
-            // d has one interior minimum (an interval is shorter than half a natural period):
-            // find it from d' = dir v, then check whether it dips below the surface.
-            auto slope = [&](double t) { return -b.dir * evaluate(region, iv, s, t, false).v; };
-            const double tm =
-                bracketed_root(slope, 0.0, -b.dir * s.v, len, -b.dir * end.v, tolerance);
-            const double dm = b.dir * (evaluate(region, iv, s, tm, false).x - b.surface);
-            if (dm < 0.0) {
-              hi = tm;
-              d_hi = dm;
-            }
-          }
-          if (hi > 0.0) {
-            auto distance = [&](double t) {
-              return b.dir * (evaluate(region, iv, s, t, false).x - b.surface);
-            };
-            const double t = bracketed_root(distance, 0.0, std::max(d0, 0.0), hi, d_hi, tolerance);
-            if (t < tau) {
-              tau = t;
-              next = b.next;
-              surface = b.surface;
-            }
+          const double t = crossing(region, iv, s, done, len, end, b);
+          if (t < tau) {
+            tau = t;
+            next = b.next;
+            offset = b.offset;
           }
         }
       }
       if (tau == kInf) {
-        if (pieces) pieces->push_back({i, region, t_start + done, len, s});
+        if (pieces) pieces->push_back({i, region, t_start + done, done, len, s});
         s = end;
         monodromy = phi * monodromy;
         return true;
       }
       Mat2 phi_tau;
-      State at = evaluate(region, iv, s, tau, false, &phi_tau);
-      if (pieces && tau > 0.0) pieces->push_back({i, region, t_start + done, tau, s});
+      State at = evaluate(region, iv, s, done, tau, false, &phi_tau);
+      if (pieces && tau > 0.0) pieces->push_back({i, region, t_start + done, done, tau, s});
       monodromy = phi_tau * monodromy;
-      at.x = surface;  // on the boundary exactly (the root is accurate to ~1e-14 of h)
+      if (c_of(next) != c_of(region)) monodromy = saltation(region, next) * monodromy;
+      // On the boundary exactly (the root is accurate to ~1e-14 of h).
+      at.x = g_at(iv, done + tau) + offset;
       s = at;
       region = next;
       done += tau;
@@ -382,47 +464,48 @@ class Solver {
     const double tolerance = 1e-14 * h_;
     for (const Piece& p : pieces) {
       const Interval& iv = intervals_[p.interval];
-      const double ke = k_eff(p.region, iv), xc = x_c(p.region, iv);
-      auto force_of = [&](const State& s) { return ke * (s.x - xc) + c_ * s.v; };
-      // F_d' = k_eff x' + c x''.
-      auto force_rate = [&](const State& s) {
-        return ke * s.v + c_ * acceleration(p.region, iv, s);
+      const double ke = k_eff(p.region, iv), cr = c_of(p.region);
+      // F_d = k_eff (x - x_c) + c (x' - e_g') at time t after the start of the piece.
+      auto force_of = [&](const State& s, double t) {
+        return contact_force(p.region, iv, s, p.from + t) + damper_force(p.region, iv, s);
       };
-      const bool full = p.dt == h_;
-      const State end = evaluate(p.region, iv, p.s0, p.dt, full);
+      // F_d' = k_eff (x' - e_g') + c x'' (e_g'' = 0 on an interval).
+      auto force_rate = [&](const State& s, double t) {
+        return ke * (s.v - iv.slope) + cr * acceleration(p.region, iv, s, p.from + t);
+      };
+      auto at = [&](double t) { return evaluate(p.region, iv, p.s0, p.from, t, false); };
+      const State end = evaluate(p.region, iv, p.s0, p.from, p.dt, p.dt == h_);
       for (std::size_t q = 0; q < kGaussNodes.size(); ++q) {
         const double t = 0.5 * p.dt * (1.0 + kGaussNodes[q]);
-        const State s = evaluate(p.region, iv, p.s0, t, false);
+        const State s = at(t);
         const double w = 0.5 * p.dt * kGaussWeights[q];
         sx += w * s.x;
         sxx += w * s.x * s.x;
-        sf += w * force_of(s);
+        sf += w * force_of(s, t);
       }
       if (p.region == Region::Free) t_loss += p.dt;
       if (p.region == Region::Back) t_back += p.dt;
-      for (const State& s : {p.s0, end}) {
+      for (const auto& [s, t] : {std::pair{p.s0, 0.0}, std::pair{end, p.dt}}) {
         xmax = std::max(xmax, s.x);
         xmin = std::min(xmin, s.x);
-        fmax = std::max(fmax, force_of(s));
-        fmin = std::min(fmin, force_of(s));
+        fmax = std::max(fmax, force_of(s, t));
+        fmin = std::min(fmin, force_of(s, t));
       }
       // Interior extrema: at most one of each function per piece (pieces are short).
       if ((p.s0.v > 0.0) != (end.v > 0.0)) {
         const double sign = p.s0.v > 0.0 ? 1.0 : -1.0;
-        auto f = [&](double t) { return sign * evaluate(p.region, iv, p.s0, t, false).v; };
+        auto f = [&](double t) { return sign * at(t).v; };
         const double t = bracketed_root(f, 0.0, sign * p.s0.v, p.dt, sign * end.v, tolerance);
-        const double x = evaluate(p.region, iv, p.s0, t, false).x;
+        const double x = at(t).x;
         xmax = std::max(xmax, x);
         xmin = std::min(xmin, x);
       }
-      const double r0 = force_rate(p.s0), r1 = force_rate(end);
+      const double r0 = force_rate(p.s0, 0.0), r1 = force_rate(end, p.dt);
       if ((r0 > 0.0) != (r1 > 0.0)) {
         const double sign = r0 > 0.0 ? 1.0 : -1.0;
-        auto f = [&](double t) {
-          return sign * force_rate(evaluate(p.region, iv, p.s0, t, false));
-        };
+        auto f = [&](double t) { return sign * force_rate(at(t), t); };
         const double t = bracketed_root(f, 0.0, sign * r0, p.dt, sign * r1, tolerance);
-        const double fd = force_of(evaluate(p.region, iv, p.s0, t, false));
+        const double fd = force_of(at(t), t);
         fmax = std::max(fmax, fd);
         fmin = std::min(fmin, fd);
       }
@@ -465,8 +548,8 @@ class Solver {
       r.time_s[i] = static_cast<double>(i) * h_;
       r.dte_m[i] = grid[i].x;
       r.velocity_m_s[i] = grid[i].v;
-      r.contact_force_n[i] = contact_force(region, iv, grid[i]);
-      r.force_n[i] = r.contact_force_n[i] + c_ * grid[i].v;
+      r.contact_force_n[i] = contact_force(region, iv, grid[i], 0.0);
+      r.force_n[i] = r.contact_force_n[i] + damper_force(region, iv, grid[i]);
     }
     statistics(pieces, cycles * period_, r);
     return total;
@@ -474,7 +557,8 @@ class Solver {
 
  private:
   double m_ = 0.0, force_ = 0.0, c_ = 0.0, backlash_ = kInf;
-  bool contact_loss_ = true;
+  bool contact_loss_ = true, elastic_ = false, resonant_ = false;
+  double force_amplitude_ = 0.0, force_omega_ = 0.0, force_phase_ = 0.0;
   double period_ = 0.0, h_ = 0.0;
   std::size_t count_ = 0;
   bool too_fine_ = false;
@@ -544,6 +628,16 @@ void DynamicMeshOptions::validate() const {
     throw InputError(SourceLocation{}, "dynamic_mesh.points_per_natural_period",
                      "an integer in [8, 4096] (an interval must stay below half a natural period)",
                      fmt::format("{}", points_per_natural_period));
+  if (!(std::isfinite(force_amplitude_n) && force_amplitude_n >= 0.0))
+    throw InputError(SourceLocation{}, "dynamic_mesh.force_amplitude_n",
+                     "a finite force amplitude >= 0 N", fmt::format("{}", force_amplitude_n));
+  if (force_order < 1 || force_order > 1000)
+    throw InputError(SourceLocation{}, "dynamic_mesh.force_order",
+                     "an integer harmonic of the mesh frequency in [1, 1000]",
+                     fmt::format("{}", force_order));
+  if (!std::isfinite(force_phase_rad))
+    throw InputError(SourceLocation{}, "dynamic_mesh.force_phase_rad", "a finite phase",
+                     fmt::format("{}", force_phase_rad));
   const SteadyStateOptions& s = steady_state;
   if (!(s.tolerance > 0.0 && s.tolerance < 1.0))
     throw InputError(SourceLocation{}, "dynamic_mesh.steady_state.tolerance", "a value in (0, 1)",
@@ -569,6 +663,17 @@ DynamicMesh::DynamicMesh(SteCurve ste, DynamicMeshOptions options)
     e_max_ = std::max(e_max_, std::abs(ste_.ste_m()[j]));
   }
   k_max_ = options_.static_force_n / d_min;
+  if (options_.model == MeshModel::Dynamic &&
+      options_.damping_on == MeshDamping::ElasticDeflection &&
+      ste_.interpolation() == SteInterpolation::Hold) {
+    const auto& g = ste_.geometric_te_m();
+    if (std::any_of(g.begin(), g.end(), [&](double v) { return v != g.front(); }))
+      throw InputError(SourceLocation{}, "dynamic_mesh.damping_on",
+                       "a continuous unloaded TE e_g for damping on the elastic deflection (its "
+                       "damper force c (x' - e_g') would be an impulse at every step of a held "
+                       "curve): a linear interpolation of the STE, or damping on the DTE",
+                       "a step (hold) curve with a varying unloaded TE");
+  }
   if (options_.model == MeshModel::Dynamic)
     damping_ = 2.0 * options_.damping_ratio * std::sqrt(k_mean_ * options_.equivalent_mass_kg);
 }
@@ -761,6 +866,15 @@ MeshResponse DynamicMesh::solve(double mesh_frequency_hz, const MeshState* initi
     return r;
   }
   r.points_per_period = static_cast<int>(solver.count());
+  if (solver.resonant()) {
+    r.status = Status::Failed;
+    r.message = fmt::format(
+        "the external force (order {}, {:.6g} Hz) meets an undamped natural frequency of the "
+        "mesh at f_m = {:.6g} Hz: no periodic steady state; add mesh damping or change the "
+        "force order",
+        options_.force_order, options_.force_order * mesh_frequency_hz, mesh_frequency_hz);
+    return r;
+  }
   const SteadyStateOptions& ss = options_.steady_state;
   State s = initial ? State{initial->x_m, initial->v_m_s} : State{static_state().x_m, 0.0};
   if (!std::isfinite(s.x) || !std::isfinite(s.v)) s = State{static_state().x_m, 0.0};
@@ -798,6 +912,25 @@ MeshResponse DynamicMesh::solve(double mesh_frequency_hz, const MeshState* initi
     r.message = fmt::format("period-{} subharmonic steady state ({} mesh cycles per period)",
                             period_cycles, period_cycles);
   return r;
+}
+
+MeshState DynamicMesh::poincare_map(double mesh_frequency_hz, const MeshState& start,
+                                    std::array<double, 4>* monodromy) const {
+  if (!(std::isfinite(mesh_frequency_hz) && mesh_frequency_hz > 0.0))
+    throw InputError(SourceLocation{}, "mesh_frequency_hz", "a mesh frequency > 0 Hz",
+                     fmt::format("{}", mesh_frequency_hz));
+  if (options_.model != MeshModel::Dynamic)
+    throw InputError(SourceLocation{}, "dynamic_mesh.model", "the dynamic model for a Poincaré map",
+                     "the infinite-inertia model");
+  const Solver solver(*this, mesh_frequency_hz);
+  if (solver.too_fine())
+    throw NumericalError("dynamic mesh", fmt::format("mesh frequency {:.6g} Hz: {} intervals per "
+                                                     "period are too many",
+                                                     mesh_frequency_hz, solver.count()));
+  const CycleRun run = solver.run_cycle(State{start.x_m, start.v_m_s}, nullptr, nullptr, 0.0);
+  if (run.status != Status::Ok) throw NumericalError("dynamic mesh", run.why);
+  if (monodromy) *monodromy = {run.monodromy.a, run.monodromy.b, run.monodromy.c, run.monodromy.d};
+  return {run.end.x, run.end.v};
 }
 
 // --- sweep -----------------------------------------------------------------------------------

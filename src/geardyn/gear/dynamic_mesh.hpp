@@ -4,13 +4,16 @@
 // of Aeronautical Gears Equipped with Damper Rings", MSc thesis, Politecnico di Torino, 2018,
 // sec. 3.2):
 //
-//   m_e x'' + c x' + f_k(x, t) = F_s,
+//   m_e x'' + f_c + f_k(x, t) = F_s + F_a cos(2 pi r f_m t + phi),
 //   f_k = k(t) (x - e_g(t))          when x - e_g > 0          (drive-side contact)
 //       = 0                          when -b < x - e_g <= 0    (contact loss, free flight)
 //       = k(t) (x - e_g(t) + b)      when x - e_g <= -b        (back-side contact, backlash b)
 //
 //   m_e = J1 J2 / (J1 r_b2^2 + J2 r_b1^2),  F_s = T / r_b,  k(t) = F_s / (e(t) - e_g(t)),
-//   c = 2 zeta sqrt(k_mean m_e),  F_d(t) = f_k + c x'.
+//   c = 2 zeta sqrt(k_mean m_e),  F_d(t) = f_k + f_c,
+//   f_c = c x' (damping on the DTE, default) or, damping on the elastic deflection,
+//   f_c = c (x' - e_g') in contact (drive or back side) and 0 in contact loss (MeshDamping);
+//   F_a, r, phi an optional external harmonic force at a whole mesh order r.
 //
 // x is the dynamic transmission error (DTE, a length), e the loaded STE and e_g the unloaded
 // (geometric) TE of the SteCurve (e_g = 0 when none). Without backlash (b = infinity) the
@@ -27,6 +30,10 @@
 // no crossing is missed). The contact force is continuous across the region boundaries, so the
 // transition matrices chain without saltation terms and their product over a cycle is the exact
 // monodromy matrix M of the Poincaré map s_{n+1} = P(s_n), s = (x, x') at the cycle start.
+// With damping on the elastic deflection, e_g is linear in time on each interval (the Linear
+// STE's own e_g' enters exactly through the particular solution x_p = e_g(t) + F_s / k), and the
+// damper force jumps at a contact change: its saltation matrix enters the monodromy. The
+// harmonic force enters through its closed-form particular solution.
 //
 // Steady state: the map is iterated (time marching) until the scaled change
 //   r = sqrt( (dx / x_s)^2 + (dv / (omega x_s))^2 ),  x_s = F_s / k_mean, omega = sqrt(k_mean/m_e)
@@ -38,6 +45,7 @@
 // never reported as a steady state. Growth beyond `divergence_factor` times the largest static
 // deflection stops with Status::Diverged; no steady state within max_cycles gives
 // Status::NotConverged (quasi-periodic or chaotic response, or no damping).
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -57,6 +65,19 @@ double equivalent_mass(double inertia1_kgm2, double inertia2_kgm2, double base_r
 
 /// Mesh frequency f_m = z n / 60 [Hz] of a gear with `teeth` teeth at `speed_rpm`.
 double mesh_frequency_hz(double speed_rpm, int teeth);
+
+/// What the mesh damper c acts on (docs/theory.md §13).
+enum class MeshDamping {
+  /// c x': on the dynamic transmission error, in and out of contact (a damper between the gear
+  /// bodies, e.g. bearings and lubricant; the default).
+  Dte,
+  /// c (x' - e_g') on the elastic deflection of the teeth, as in A. Kahraman, R. Singh,
+  /// "Non-linear dynamics of a spur gear pair", J. Sound Vib. 1990 and H.N. Özgüven,
+  /// D.R. Houser, "Mathematical models used in gear dynamics - a review", J. Sound Vib. 1988,
+  /// but acting in contact only (a tooth damper: no damping in free flight, where those models
+  /// keep it); e_g is followed piecewise linearly and exactly.
+  ElasticDeflection
+};
 
 enum class MeshModel {
   Dynamic,         ///< the equation above, integrated to its periodic steady state
@@ -83,6 +104,13 @@ struct DynamicMeshOptions {
   double backlash_m = kInf;            ///< b > 0 [m]; infinity: no back-side contact
   int min_points_per_period = 128;     ///< at least this many intervals per mesh period
   int points_per_natural_period = 16;  ///< intervals per shortest natural period (>= 8)
+  MeshDamping damping_on = MeshDamping::Dte;
+  /// External harmonic force on the mesh coordinate, added to F_s:
+  /// F(t) = F_s + F_a cos(2 pi r f_m t + phi), r = force_order (an integer, so that F(t) has the
+  /// mesh period and the periodic steady state exists), t = 0 at the cycle start.
+  double force_amplitude_n = 0.0;  ///< F_a >= 0 [N]
+  int force_order = 1;             ///< r in [1, 1000]
+  double force_phase_rad = 0.0;    ///< phi [rad]
   SteadyStateOptions steady_state;
   /// Throws InputError (key path `dynamic_mesh.<field>`) for the first invalid field.
   void validate() const;
@@ -150,6 +178,13 @@ class DynamicMesh {
 
   /// Static equilibrium at the cycle start: x = e(0) (within the first interval), x' = 0.
   MeshState static_state() const;
+
+  /// One mesh cycle of the Poincaré map from `start` at `mesh_frequency_hz`: the end state and
+  /// the exact monodromy (Jacobian d end / d start, row-major [dx/dx, dx/dv, dv/dx, dv/dv],
+  /// saltation at contact changes included). For tests and diagnostics; throws InputError for a
+  /// bad frequency and NumericalError when the cycle cannot be integrated.
+  MeshState poincare_map(double mesh_frequency_hz, const MeshState& start,
+                         std::array<double, 4>* monodromy = nullptr) const;
 
  private:
   SteCurve ste_;
