@@ -122,6 +122,52 @@ TEST(AnnularPlate, MeshSizeSetsTheDivisions) {
   EXPECT_EQ(mesh.num_elements(), 5 * 12 * 2);
 }
 
+// Solid disc (inner_radius = 0), linear hexes, n_theta = 24 (n_q = 6 per quarter), n_r = 4:
+// the mesh is exactly the inscribed 24-gon of radius a (the centre square and the ring's inner
+// edges are straight), area 12 sin(2 pi / 24) a^2; in-plane nodes (n_q + 1)^2 + 4 n_q n_r, each
+// once (the centre is meshed once), elements (n_q^2 + 4 n_q n_r) per layer, none degenerate.
+TEST(AnnularPlate, LinearSolidDiscIsThePolygonWithoutDuplicateNodes) {
+  AnnularPlateParams p = plate(2 * kPi, 1, PlateElementShape::Hex);
+  p.inner_radius = 0.0;
+  p.elements_circumferential = 22;  // rounded up to 24, a multiple of 4
+  const solid::Mesh mesh = annular_plate(p);
+  EXPECT_EQ(mesh.num_nodes(), (7 * 7 + 4 * 6 * 4) * 3);
+  EXPECT_EQ(mesh.num_elements(), (6 * 6 + 4 * 6 * 4) * 2);
+  EXPECT_EQ(mesh.node_sets.count("inner"), 0u);
+  EXPECT_EQ(mesh.node_sets.at("outer").size(), 24u * 3);
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    for (int j = 0; j < i; ++j)
+      ASSERT_GT(
+          (mesh.coords[static_cast<std::size_t>(i)] - mesh.coords[static_cast<std::size_t>(j)])
+              .norm(),
+          1e-6)
+          << "nodes " << i << " and " << j << " coincide";
+  double worst = 0;
+  const double v = total_volume(mesh, &worst);
+  // No element is collapsed: the smallest det J of any element is at least 1/10 of its largest
+  // (the O-grid's worst element is the ring's, at a square corner).
+  EXPECT_GT(worst, 0.1);
+  const double polygon = 12 * std::sin(2 * kPi / 24) * 0.15 * 0.15 * 0.005;
+  EXPECT_NEAR(v / polygon, 1.0, 1e-12);
+}
+
+// Quadratic solid discs, hex20 and wedge15, n_theta = 48 (arcs of 7.5 degrees carried by
+// parabolas: relative area error ~ 1e-6, tolerance 1e-5): volume pi a^2 h.
+TEST(AnnularPlate, QuadraticSolidDiscVolume) {
+  for (const PlateElementShape shape : {PlateElementShape::Hex, PlateElementShape::Wedge}) {
+    AnnularPlateParams p = plate(2 * kPi, 2, shape);
+    p.inner_radius = 0.0;
+    p.elements_circumferential = 48;
+    const solid::Mesh mesh = annular_plate(p);
+    double worst = 0;
+    const double v = total_volume(mesh, &worst);
+    EXPECT_GT(worst, 0.1);
+    EXPECT_NEAR(v / (kPi * 0.15 * 0.15 * 0.005), 1.0, 1e-5);
+    for (int n : mesh.node_sets.at("outer"))
+      EXPECT_NEAR(test::radius(mesh.coords[static_cast<std::size_t>(n)]), 0.15, 1e-12);
+  }
+}
+
 TEST(AnnularPlate, BadParametersNameTheKey) {
   auto expect_key = [](const AnnularPlateParams& p, const std::string& key) {
     try {
@@ -150,6 +196,14 @@ TEST(AnnularPlate, BadParametersNameTheKey) {
   p = plate(kPi, 2, PlateElementShape::Hex);
   p.thickness = -1;
   expect_key(p, "annular_plate.thickness");
+  p = plate(2 * kPi, 2, PlateElementShape::Hex);
+  p.inner_radius = -0.01;
+  expect_key(p, "annular_plate.inner_radius");
+  p = plate(kPi / 4, 2, PlateElementShape::Hex);
+  p.inner_radius = 0.0;  // a sector of a disc: its apex would lie on the axis
+  expect_key(p, "annular_plate.inner_radius");
+  p.sector_angle = 2 * kPi;  // the whole disc is fine
+  EXPECT_NO_THROW(validate(p));
 }
 
 }  // namespace

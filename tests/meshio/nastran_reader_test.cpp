@@ -127,6 +127,25 @@ TEST(NastranReader, RotatedDisplacementSystemNeedsWholeComponentSets) {
   }
 }
 
+// A CELAS end on GRID 13 (CD = 2, radial axis +y, tangential -x there) acts along the CD axis
+// it names: a spring with a direction (solid::Spring), not refused; an end on a grid with
+// global displacement axes (GRID 10) stays a scalar spring on its component.
+TEST(NastranReader, SpringOnARotatedDisplacementSystemActsAlongItsAxis) {
+  const std::string base = slurp(kData + "coords.bdf");
+  const NastranDeck deck = parse_nastran(base + "CELAS2,301,1.+6,13,1\nCELAS2,302,2.+6,13,2,10,3\n",
+                                         kData + "coords.bdf");
+  ASSERT_EQ(deck.mesh.springs.size(), 2u);
+  const solid::Spring& radial = deck.mesh.springs[0];
+  EXPECT_EQ(radial.node1, index_of(deck.mesh, 13));
+  EXPECT_EQ(radial.node2, -1);
+  expect_near(radial.direction1, {0, 1, 0});
+  const solid::Spring& tangential = deck.mesh.springs[1];
+  expect_near(tangential.direction1, {-1, 0, 0});
+  EXPECT_EQ(tangential.node2, index_of(deck.mesh, 10));
+  EXPECT_EQ(tangential.component2, 2);
+  EXPECT_TRUE(tangential.direction2.isZero(0.0));
+}
+
 // cards.bdf (+ INCLUDEs sub/"grids in sub.bdf" and sub/more.bdf): every supported card.
 TEST(NastranReader, CardsDeckWithIncludes) {
   const NastranDeck deck = read_nastran(kData + "cards.bdf");

@@ -294,6 +294,70 @@ TEST(Assembly, SpringsAndUnconnectedDofs) {
   EXPECT_EQ(assemble(mesh, options).num_dofs(), 12);
 }
 
+// Springs with directions: between node 0 along n1 = (3, 4, 0) / 5 and node 1 along
+// n2 = (0, 3, 4) / 5, k = 25e4 N/m, and a grounded torsional spring on node 1 about
+// m = (1, 2, 2) / 3, k = 9e3 N m/rad. By hand, the stretch d = n1 . u0 - n2 . u1 gives
+// K = k [n1 n1^T, -n1 n2^T; -n2 n1^T, n2 n2^T] on (u0, u1) and 9e3 m m^T on theta1; with
+// k / 25 = 1e4 and 9e3 / 9 = 1e3 every entry is an integer multiple.
+TEST(Assembly, DirectionalSpringsMatchTheHandComputedStiffness) {
+  Mesh mesh;
+  add_node(mesh, Eigen::Vector3d(0, 0, 0));
+  add_node(mesh, Eigen::Vector3d(1, 0, 0));
+  Spring s1;
+  s1.node1 = 0;
+  s1.component1 = 0;
+  s1.direction1 = Eigen::Vector3d(3, 4, 0) / 5.0;
+  s1.node2 = 1;
+  s1.component2 = 2;
+  s1.direction2 = Eigen::Vector3d(0, 3, 4) / 5.0;
+  s1.stiffness = 25e4;
+  Spring s2;
+  s2.node1 = 1;
+  s2.component1 = 3;
+  s2.direction1 = Eigen::Vector3d(1, 2, 2) / 3.0;
+  s2.stiffness = 9e3;
+  mesh.springs = {s1, s2};
+  AssemblyOptions options;
+  options.mass = false;
+  options.remove_unconnected_dofs = false;
+  const SolidSystem sys = assemble(mesh, options);
+  ASSERT_EQ(sys.num_dofs(), 12);
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(12, 12);
+  // node 0 translations (rows 0..2), node 1 translations (6..8), node 1 rotations (9..11)
+  expected.block(0, 0, 3, 3) << 9, 12, 0, 12, 16, 0, 0, 0, 0;
+  expected.block(0, 6, 3, 3) << 0, -9, -12, 0, -12, -16, 0, 0, 0;
+  expected.block(6, 0, 3, 3) = expected.block(0, 6, 3, 3).transpose();
+  expected.block(6, 6, 3, 3) << 0, 0, 0, 0, 9, 12, 0, 12, 16;
+  expected *= 1e4;
+  expected.block(9, 9, 3, 3) << 1, 2, 2, 2, 4, 4, 2, 4, 4;
+  expected.block(9, 9, 3, 3) *= 1e3;
+  EXPECT_LT((dense(sys.K) - expected).norm(), 1e-9);
+
+  // Component springs are the special case n = e_x / e_y / e_z.
+  Mesh scalar = mesh;
+  scalar.springs[0].direction1 = Eigen::Vector3d::UnitY();
+  scalar.springs[0].direction2.setZero();
+  scalar.springs[0].component1 = 0;
+  Mesh component = scalar;
+  component.springs[0].direction1.setZero();
+  component.springs[0].component1 = 1;
+  EXPECT_EQ((dense(assemble(scalar, options).K) - dense(assemble(component, options).K)).norm(),
+            0.0);
+
+  // A direction that is not a unit vector is refused, naming the spring and the end.
+  Mesh bad = mesh;
+  bad.springs[0].direction2 = Eigen::Vector3d(0, 3, 4);
+  bad.springs[0].where = SourceLocation{"deck.bdf", 12, 1};
+  try {
+    assemble(bad, options);
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("deck.bdf:12"), std::string::npos) << what;
+    EXPECT_NE(what.find("direction2"), std::string::npos) << what;
+  }
+}
+
 TEST(AssemblyErrors, MissingNodeSetListsAvailableOnes) {
   const Mesh mesh = box_mesh(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 1, 1, 1,
                              ElementType::Hex8, steel());

@@ -31,6 +31,17 @@ bool invariant(const std::array<bool, 6>& flags, const Eigen::Matrix3d& R) {
   return true;
 }
 
+// The direction of a spring end in the copy rotated by Rs: R_s n (n the end's axis, Spring),
+// kept as "along the component" (zero) when the rotation leaves the axis unchanged (copy 0, a
+// component along the axis of symmetry), so those springs stay scalar.
+Eigen::Vector3d rotated_direction(const Eigen::Matrix3d& Rs, int component,
+                                  const Eigen::Vector3d& direction) {
+  const Eigen::Vector3d n = solid::spring_axis(component, direction);
+  const Eigen::Vector3d m = Rs * n;
+  if ((m - n).norm() <= 1e-14) return direction;
+  return m.normalized();
+}
+
 long id_stride(long largest) {
   long stride = 10;
   while (stride <= largest) stride *= 10;
@@ -86,18 +97,6 @@ ReplicatedMesh replicate(const solid::Mesh& sector, int n_sectors, double tolera
   const double alpha = units::kTwoPi / n_sectors;
   const Eigen::Matrix3d R1 = rotation(axis, alpha);
 
-  for (const auto& s : sector.springs) {
-    std::array<bool, 6> f1{}, f2{};
-    f1[static_cast<std::size_t>(s.component1)] = true;
-    if (s.node2 >= 0) f2[static_cast<std::size_t>(s.component2)] = true;
-    if (!invariant(f1, R1) || !invariant(f2, R1))
-      throw InputError(s.where, fmt::format("{}.springs[id {}]", key, s.id),
-                       "springs on components along the axis of symmetry",
-                       fmt::format("a spring on components {} / {}", s.component1, s.component2),
-                       "a scalar spring on a transverse component points in a different "
-                       "direction in every rotated copy; replace it by springs on all three "
-                       "components or by an element");
-  }
   for (const auto& r : sector.rigid_elements)
     if (!invariant(r.components, R1))
       throw InputError(r.where, fmt::format("{}.rigid_elements[id {}]", key, r.id),
@@ -114,13 +113,16 @@ ReplicatedMesh replicate(const solid::Mesh& sector, int n_sectors, double tolera
   for (const auto& x : sector.coords) size = std::max(size, x.norm());
   const double tol = std::isnan(tolerance) ? 1e-6 * std::max(size, 1e-300) : tolerance;
 
-  long largest_node = 0, largest_element = 0, largest_mass = 0, largest_rigid = 0;
+  long largest_node = 0, largest_element = 0, largest_mass = 0, largest_rigid = 0,
+       largest_spring = 0;
   for (long id : sector.node_ids) largest_node = std::max(largest_node, id);
   for (const auto& e : sector.elements) largest_element = std::max(largest_element, e.id);
   for (const auto& m : sector.point_masses) largest_mass = std::max(largest_mass, m.id);
   for (const auto& r : sector.rigid_elements) largest_rigid = std::max(largest_rigid, r.id);
+  for (const auto& sp : sector.springs) largest_spring = std::max(largest_spring, sp.id);
   const long node_stride = id_stride(largest_node), element_stride = id_stride(largest_element),
-             mass_stride = id_stride(largest_mass), rigid_stride = id_stride(largest_rigid);
+             mass_stride = id_stride(largest_mass), rigid_stride = id_stride(largest_rigid),
+             spring_stride = id_stride(largest_spring);
 
   ReplicatedMesh out;
   solid::Mesh& full = out.mesh;
@@ -182,8 +184,13 @@ ReplicatedMesh replicate(const solid::Mesh& sector, int n_sectors, double tolera
     }
     for (const auto& sp : sector.springs) {
       solid::Spring c = sp;
+      c.id = sp.id + s * spring_stride;
       c.node1 = remap(sp.node1);
-      if (sp.node2 >= 0) c.node2 = remap(sp.node2);
+      c.direction1 = rotated_direction(Rs, sp.component1, sp.direction1);
+      if (sp.node2 >= 0) {
+        c.node2 = remap(sp.node2);
+        c.direction2 = rotated_direction(Rs, sp.component2, sp.direction2);
+      }
       full.springs.push_back(c);
     }
     for (const auto& r : sector.rigid_elements) {

@@ -25,12 +25,16 @@ struct ReplicatedMesh {
 ///     nodes keep the earlier id); element and mass ids likewise.
 ///   Elements, rigid elements, constraints: copied with remapped nodes.
 ///   Point masses: offset rotated, inertia R J R^T.
+///   Springs: each end's direction rotated, n -> R(s alpha) n (solid::Spring::direction1/2), so
+///     a sector's spring on ux acts along the copy's rotated x axis, as the cyclic-symmetry
+///     constraints imply for the sector model; ends along the axis of symmetry stay scalar.
+///     Spring ids: id + s * stride, like the element ids.
 ///   Node and element sets: the union of the copies under the same name.
 ///   Materials: shared.
 /// tolerance NaN: 1e-6 times the largest distance of a sector node from the origin.
-/// Throws InputError for N < 2, a zero axis, springs, rigid elements or constraints whose
-/// component sets change under the rotation (e.g. a spring on ux only: it would point
-/// elsewhere in each copy), or a copy whose node would merge with two earlier nodes.
+/// Throws InputError for N < 2, a zero axis, rigid elements or constraints whose component sets
+/// change under the rotation (e.g. a constraint on ux only: it would fix a different direction
+/// in each copy), or a copy whose node would merge with two earlier nodes.
 ReplicatedMesh replicate(const solid::Mesh& sector, int n_sectors, double tolerance = eig::kNaN,
                          const Eigen::Vector3d& axis = Eigen::Vector3d::UnitZ());
 

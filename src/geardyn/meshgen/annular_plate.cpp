@@ -14,6 +14,9 @@ namespace {
 
 constexpr const char* kAnalysis = "annular_plate";
 
+/// A solid disc's centre square has its corners at this fraction of the outer radius.
+constexpr double kDiscCentreFraction = 0.5;
+
 bool is_full(const AnnularPlateParams& p) { return p.sector_angle >= units::kTwoPi * (1 - 1e-12); }
 
 /// Patches of at most 90 degrees: the built-in kernel's circle arcs must stay below 180.
@@ -25,9 +28,11 @@ struct Divisions {
   int radial = 0, circumferential = 0;
 };
 
+bool is_disc(const AnnularPlateParams& p) { return p.inner_radius == 0.0; }
+
 Divisions divisions(const AnnularPlateParams& p) {
   Divisions d;
-  const double a = p.outer_radius, b = p.inner_radius;
+  const double a = p.outer_radius, b = is_disc(p) ? kDiscCentreFraction * a : p.inner_radius;
   d.radial = p.elements_radial > 0 ? p.elements_radial
                                    : static_cast<int>(std::ceil((a - b) / p.mesh_size - 1e-9));
   d.circumferential =
@@ -35,6 +40,8 @@ Divisions divisions(const AnnularPlateParams& p) {
           ? p.elements_circumferential
           : std::max(num_patches(p),
                      static_cast<int>(std::ceil(p.sector_angle * a / p.mesh_size - 1e-9)));
+  // A disc's centre square has n_theta / 4 elements on each side: n_theta a multiple of 4.
+  if (is_disc(p)) d.circumferential = 4 * ((d.circumferential + 3) / 4);
   return d;
 }
 
@@ -47,7 +54,16 @@ void validate(const AnnularPlateParams& p) {
   auto positive = [&](const std::string& key, double value) {
     if (!(value > 0) || !std::isfinite(value)) fail(key, "a positive finite number", value);
   };
-  positive("inner_radius", p.inner_radius);
+  if (!(p.inner_radius >= 0) || !std::isfinite(p.inner_radius))
+    fail("inner_radius", "a finite radius >= 0 (0: a solid disc)", p.inner_radius);
+  if (p.inner_radius == 0.0 && !is_full(p))
+    throw InputError(
+        p.where, p.key_path + ".inner_radius",
+        "inner_radius > 0 for a sector of a plate (sectors > 1)",
+        fmt::format("0 with a sector angle of {:.6g} deg", p.sector_angle / units::kTwoPi * 360.0),
+        "a solid disc's centre lies on the axis, in every sector, which cyclic "
+        "symmetry does not support: set sectors = 1 for a disc, or give the "
+        "sector a small hole (inner_radius > 0)");
   if (!(p.outer_radius > p.inner_radius) || !std::isfinite(p.outer_radius))
     fail("outer_radius", fmt::format("> inner_radius ({:.6g})", p.inner_radius), p.outer_radius);
   positive("thickness", p.thickness);
@@ -88,19 +104,13 @@ std::vector<int> surfaces_at_height(double z, double tol) {
   return out;
 }
 
-solid::Mesh build(const AnnularPlateParams& p, Progress& progress) {
+// In-plane patches of an annulus b..a: one ring patch per <= 90 degrees, each n_r x n_arc.
+gmsh::vectorpair annulus_patches(const AnnularPlateParams& p, const Divisions& n, int centre,
+                                 double z0) {
   const bool full = is_full(p);
   const double angle = full ? units::kTwoPi : p.sector_angle;
   const int patches = full ? 4 : num_patches(p);
-  const Divisions n = divisions(p);
-  const double a = p.outer_radius, b = p.inner_radius, h = p.thickness;
-  const double z0 = -0.5 * h;
-  const double tol = 1e-7 * a;
-
-  GmshSession session("geardyn_annular_plate");
-  progress.start("annular plate mesh", 3);
-
-  const int centre = geo::addPoint(0, 0, z0);
+  const double a = p.outer_radius, b = p.inner_radius;
   std::vector<int> inner, outer;  // points at theta_k, k = 0..patches (last = first if full)
   for (int k = 0; k <= patches; ++k) {
     if (full && k == patches) {
@@ -134,6 +144,56 @@ solid::Mesh build(const AnnularPlateParams& p, Progress& progress) {
   }
   for (int k = 0; k < (full ? patches : patches + 1); ++k)
     geo::mesh::setTransfiniteCurve(radial[k], n.radial + 1);
+  return base;
+}
+
+// In-plane patches of a solid disc (an "O-grid"): a centre square with its corners on the axes
+// at r = c = kDiscCentreFraction a, n_q x n_q elements (n_q = n_theta / 4), and four ring
+// patches between its sides and the quarter arcs of the rim, n_r x n_q each. Every element is a
+// proper quadrilateral (or two triangles); the centre is meshed once, so no node is duplicated
+// and none is collapsed.
+gmsh::vectorpair disc_patches(const AnnularPlateParams& p, const Divisions& n, int centre,
+                              double z0) {
+  const double a = p.outer_radius, c = kDiscCentreFraction * a;
+  const int n_q = n.circumferential / 4;
+  std::vector<int> corner, outer;
+  for (int k = 0; k < 4; ++k) {
+    const double theta = 0.5 * units::kPi * k;
+    corner.push_back(geo::addPoint(c * std::cos(theta), c * std::sin(theta), z0));
+    outer.push_back(geo::addPoint(a * std::cos(theta), a * std::sin(theta), z0));
+  }
+  std::vector<int> side, spoke, arc;
+  for (int k = 0; k < 4; ++k) {
+    side.push_back(geo::addLine(corner[k], corner[(k + 1) % 4]));
+    spoke.push_back(geo::addLine(corner[k], outer[k]));
+    arc.push_back(geo::addCircleArc(outer[k], centre, outer[(k + 1) % 4]));
+  }
+  gmsh::vectorpair base;
+  base.emplace_back(2, geo::addPlaneSurface({geo::addCurveLoop(side)}));
+  for (int k = 0; k < 4; ++k) {
+    const int loop = geo::addCurveLoop({spoke[k], arc[k], -spoke[(k + 1) % 4], -side[k]});
+    base.emplace_back(2, geo::addPlaneSurface({loop}));
+    geo::mesh::setTransfiniteCurve(side[k], n_q + 1);
+    geo::mesh::setTransfiniteCurve(arc[k], n_q + 1);
+    geo::mesh::setTransfiniteCurve(spoke[k], n.radial + 1);
+  }
+  return base;
+}
+
+solid::Mesh build(const AnnularPlateParams& p, Progress& progress) {
+  const bool full = is_full(p);
+  const double angle = full ? units::kTwoPi : p.sector_angle;
+  const Divisions n = divisions(p);
+  const double a = p.outer_radius, b = p.inner_radius, h = p.thickness;
+  const double z0 = -0.5 * h;
+  const double tol = 1e-7 * a;
+
+  GmshSession session("geardyn_annular_plate");
+  progress.start("annular plate mesh", 3);
+
+  const int centre = geo::addPoint(0, 0, z0);
+  const gmsh::vectorpair base =
+      is_disc(p) ? disc_patches(p, n, centre, z0) : annulus_patches(p, n, centre, z0);
   for (const auto& [dim, tag] : base) {
     geo::mesh::setTransfiniteSurface(tag);
     if (p.shape == PlateElementShape::Hex) geo::mesh::setRecombine(2, tag);
@@ -161,7 +221,8 @@ solid::Mesh build(const AnnularPlateParams& p, Progress& progress) {
       b, a, h, angle, n.radial, n.circumferential, p.elements_through_thickness, p.element_order);
   mesh.materials.push_back(p.material);
   const std::vector<int> surfaces = boundary_surfaces(volumes);
-  mesh.node_sets["inner"] = extraction.body_nodes_on(0, 2, surfaces_at_radius(surfaces, b, tol));
+  if (!is_disc(p))
+    mesh.node_sets["inner"] = extraction.body_nodes_on(0, 2, surfaces_at_radius(surfaces, b, tol));
   mesh.node_sets["outer"] = extraction.body_nodes_on(0, 2, surfaces_at_radius(surfaces, a, tol));
   mesh.node_sets["bottom"] = extraction.body_nodes_on(0, 2, surfaces_at_height(-0.5 * h, tol));
   mesh.node_sets["top"] = extraction.body_nodes_on(0, 2, surfaces_at_height(0.5 * h, tol));

@@ -835,12 +835,6 @@ class DeckBuilder {
                        "components in global axes",
                        g.id, g.cd));
   }
-  void check_axes(const Entry& e, int n, std::string_view name, int node_index,
-                  int component) const {
-    std::array<bool, 6> c{};
-    c[static_cast<std::size_t>(component)] = true;
-    check_axes(e, n, name, node_index, c);
-  }
 
   // --- materials and properties
   void read_mat1(const Card& card) {
@@ -1084,13 +1078,19 @@ class DeckBuilder {
       }
       const int n = node(e, gf, gname);
       const int c = e.single_component(cf, cname);
-      check_axes(e, cf, cname, n, c);
+      // On a grid with a rotated displacement system (CD) the spring acts along that system's
+      // axis c (e.g. radially in a cylindrical CD): a spring with a direction (solid::Spring).
+      const Eigen::Matrix3d& axes = grids_[static_cast<std::size_t>(n)].cd_axes;
+      const Eigen::Vector3d direction =
+          is_identity(axes) ? Eigen::Vector3d::Zero() : Eigen::Vector3d(axes.col(c % 3));
       if (ends == 0) {
         s.node1 = n;
         s.component1 = c;
+        s.direction1 = direction;
       } else {
         s.node2 = n;
         s.component2 = c;
+        s.direction2 = direction;
       }
       ++ends;
     }

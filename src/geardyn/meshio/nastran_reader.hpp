@@ -10,7 +10,8 @@
 //   GRID           ID CP X1 X2 X3 CD PS (SEID must be blank or 0). Positions in the CP system
 //                  are converted to global (basic) coordinates. DOF components of the node refer
 //                  to its CD system; geardyn applies components in global axes, so a card that
-//                  names components of a node whose CD axes are rotated must name whole sets
+//                  names components of a node whose CD axes are rotated (CELAS excepted, below)
+//                  must name whole sets
 //                  (translations 123 all or none, rotations 456 all or none), otherwise it is an
 //                  InputError. PS becomes a Constraint.
 //   CORD2R/C/S     CID RID A B C, chained through RID to any depth (cycles are errors).
@@ -31,7 +32,9 @@
 //                  Inertia about the CG = [I11 -I21 -I31; -I21 I22 -I32; -I31 -I32 I33].
 //   CELAS1 + PELAS EID PID G1 C1 G2 C2 / PID K GE S (two properties per PELAS entry).
 //   CELAS2         EID K G1 C1 G2 C2 GE S. A blank grid grounds that end. GE is ignored with a
-//                  warning (damping belongs to the model file).
+//                  warning (damping belongs to the model file). An end on a grid whose CD
+//                  axes are rotated acts along that system's axis Ci at the grid (a spring
+//                  with a direction, solid::Spring), e.g. radially for a cylindrical CD.
 //   RBE2           EID GN CM GM1 ... (THRU allowed), optional trailing ALPHA.
 //   RBE3           EID blank REFGRID REFC WT1 C1 G1,1 ... WT2 C2 G2,1 ...; the independent
 //                  components Ci must be 123 (solid nodes). UM (or Ci other than 123) is reported

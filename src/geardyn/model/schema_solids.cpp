@@ -167,9 +167,11 @@ std::vector<Field> solid_fields_1() {
             s.unsupported_cards_are_errors = v.choice == 1;
           }),
       // annular plate
-      number("inner_radius", kMetre, "Inner radius b.")
+      number("inner_radius", kMetre,
+             "Inner radius b; 0 makes a solid disc (meshed with a centre square, so no element "
+             "is degenerate; whole plates only, sectors = 1).")
           .required()
-          .gt(0)
+          .ge(0)
           .only_in(kPlate)
           .to_fn<Solid>(plate(&AnnularPlateSpec::inner_radius)),
   };
@@ -187,7 +189,9 @@ std::vector<Field> solid_fields_2() {
           .gt(0)
           .only_in(kPlate)
           .to_fn<Solid>(plate(&AnnularPlateSpec::thickness)),
-      integer("radial_elements", "Elements across the radius.")
+      integer("radial_elements",
+              "Elements across the radius (a solid disc: across the ring outside its centre "
+              "square, r = a/2 .. a).")
           .def("8")
           .ge(1)
           .le(1000)
@@ -195,10 +199,10 @@ std::vector<Field> solid_fields_2() {
           .to_fn<Solid>(plate(&AnnularPlateSpec::radial_elements)),
       integer("circumferential_elements",
               "Elements around the circumference of the mesh (the sector, or the whole "
-              "plate).")
+              "plate; a solid disc: rounded up to a multiple of 4).")
           .ge(0)
           .le(100000)
-          .note("about square elements at the outer radius")
+          .note("about square elements at the outer radius (a solid disc: 2 pi radial_elements)")
           .only_in(kPlate)
           .to_fn<Solid>(plate(&AnnularPlateSpec::circumferential_elements)),
       integer("layers", "Elements through the thickness.")

@@ -50,6 +50,16 @@ void check_component(int c, const SourceLocation& where, const std::string& key)
 }
 
 // Everything that can be checked before assembly: indices in range, finite values, materials.
+// A spring end's direction: zero (along its component) or a finite unit vector.
+void check_spring_direction(const Eigen::Vector3d& n, const SourceLocation& where,
+                            const std::string& key) {
+  if (n.isZero(0.0)) return;
+  if (!n.allFinite() || std::abs(n.norm() - 1.0) > 1e-9) {
+    throw InputError(where, key, "zero (along the component) or a unit vector",
+                     fmt::format("[{}, {}, {}] (length {:.9g})", n.x(), n.y(), n.z(), n.norm()));
+  }
+}
+
 void validate(const Mesh& mesh) {
   if (!mesh.node_ids.empty() && mesh.node_ids.size() != mesh.coords.size()) {
     throw InputError({}, "node_ids",
@@ -105,6 +115,8 @@ void validate(const Mesh& mesh) {
       throw InputError(s.where, key + ".stiffness", "a finite stiffness",
                        fmt::format("{}", s.stiffness));
     }
+    check_spring_direction(s.direction1, s.where, key + ".direction1");
+    if (s.node2 != -1) check_spring_direction(s.direction2, s.where, key + ".direction2");
   }
   for (const RigidElement& r : mesh.rigid_elements) {
     const std::string key = fmt::format("rigid_elements[id {}]", r.id);
@@ -753,15 +765,28 @@ void add_point_masses_and_springs(const Builder& b, const Mesh& mesh,
     e.build(b, all_dofs);
     scatter(pattern, e, Mp, mv, 0, n_red);
   }
-  for (const Spring& s : mesh.springs) {
-    all_dofs = {b.dof(s.node1, s.component1)};
-    Eigen::MatrixXd Ks(1, 1);
-    Ks(0, 0) = s.stiffness;
-    if (s.node2 != -1) {
-      all_dofs.push_back(b.dof(s.node2, s.component2));
-      Ks.resize(2, 2);
-      Ks << s.stiffness, -s.stiffness, -s.stiffness, s.stiffness;
+  // Spring: stretch d = c . u_local over the DOFs of its ends (one DOF for an end along its
+  // component, the node's triple for an end with a direction), K_s = k c c^T.
+  std::vector<double> c;
+  const auto add_end = [&](int node, int component, const Eigen::Vector3d& direction, double sign) {
+    if (direction.isZero(0.0)) {
+      all_dofs.push_back(b.dof(node, component));
+      c.push_back(sign);
+      return;
     }
+    const int first = 3 * (component / 3);
+    for (int j = 0; j < 3; ++j) {
+      all_dofs.push_back(b.dof(node, first + j));
+      c.push_back(sign * direction[j]);
+    }
+  };
+  for (const Spring& s : mesh.springs) {
+    all_dofs.clear();
+    c.clear();
+    add_end(s.node1, s.component1, s.direction1, 1.0);
+    if (s.node2 != -1) add_end(s.node2, s.component2, s.direction2, -1.0);
+    const Eigen::Map<const Eigen::VectorXd> cv(c.data(), static_cast<Eigen::Index>(c.size()));
+    const Eigen::MatrixXd Ks = s.stiffness * cv * cv.transpose();
     e.build(b, all_dofs);
     scatter(pattern, e, Ks, kv, 0, n_red);
   }

@@ -38,7 +38,9 @@
 // Point masses (CONM2): with offset e (CG = node + e), mass m and inertia J about the CG, the
 // node's 6x6 mass is  [m I, -m S(e); m S(e), J + m (|e|^2 I - e e^T)]  (S(e) v = e x v), i.e. the
 // parallel-axis theorem; on a 3-DOF node (J = 0, e = 0) it is m I.
-// Springs (CELAS): k (u_1 - u_2)^2 / 2 between two DOFs, or k u_1^2 / 2 grounded.
+// Springs (CELAS): k (u_1 - u_2)^2 / 2 between two DOFs, or k u_1^2 / 2 grounded; an end with a
+// direction n (Spring::direction1/2) contributes n . u over its node's triple instead of one DOF,
+// so a grounded spring along n adds k n n^T to the node's 3x3 block.
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <string>

@@ -91,15 +91,31 @@ struct PointMass {
   SourceLocation where{};
 };
 
-/// Scalar spring between two node DOFs (Nastran CELAS1/CELAS2). node2 = -1: grounded.
+/// Spring between two node DOFs (Nastran CELAS1/CELAS2). node2 = -1: grounded.
 /// Components 0..5 = ux, uy, uz, rx, ry, rz (global axes).
+///
+/// Each end acts along a unit vector n_e of its node's translation triple (component_e 0..2) or
+/// rotation triple (component_e 3..5): the spring's stretch is d = n_1 . u_1 - n_2 . u_2 (u_e the
+/// triple of node e), its energy k d^2 / 2, its stiffness k [n1 n1^T, -n1 n2^T; -n2 n1^T,
+/// n2 n2^T] on the two 3x3 blocks. direction_e zero (the default): n_e is the component's own
+/// global axis, the scalar spring of a Nastran CELAS on that one DOF. A non-zero direction_e
+/// (replicate() sets it on the rotated copies of a sector's springs) must have unit length.
 struct Spring {
   long id = 0;
   int node1 = -1, component1 = 0;
   int node2 = -1, component2 = 0;
-  double stiffness = 0;  ///< [N/m] or [N m/rad]
+  double stiffness = 0;                                  ///< [N/m] or [N m/rad]
+  Eigen::Vector3d direction1 = Eigen::Vector3d::Zero();  ///< n_1 (zero: along component1)
+  Eigen::Vector3d direction2 = Eigen::Vector3d::Zero();  ///< n_2 (zero: along component2)
   SourceLocation where{};
 };
+
+/// The unit vector an end of a spring acts along within its triple: `direction` when non-zero,
+/// else the axis of `component` (0..5: ux..rz -> e_x, e_y, e_z, e_x, e_y, e_z).
+inline Eigen::Vector3d spring_axis(int component, const Eigen::Vector3d& direction) {
+  if (!direction.isZero(0.0)) return direction;
+  return Eigen::Vector3d::Unit(component % 3);
+}
 
 /// Rigid (RBE2-like) or averaging (RBE3-like) connection.
 ///   Rigid:     the dependent nodes' listed components follow the rigid-body motion of the
