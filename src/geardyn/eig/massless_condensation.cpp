@@ -53,7 +53,9 @@ MasslessCondensation::MasslessCondensation(const QuadraticPencil& p) {
   if (condensed_.empty()) return;
   if (kept_.empty()) {
     ok_ = false;
-    message_ = "the model has neither mass nor damping: it has no modes";
+    message_ =
+        "the model has neither mass nor damping, so it has no modes: give a material a density "
+        "> 0 (materials[i].density), or add [[disks]] or [[point_masses]]";
     return;
   }
   // Columns of K_sp that couple to the condensed DOFs: only they change K_pp.

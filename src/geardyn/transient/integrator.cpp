@@ -173,7 +173,12 @@ std::optional<Failure> partitioned_initial_acceleration(
       massed.push_back(i);
   }
   a.setZero(n);
-  if (massed.empty()) return std::nullopt;  // no inertia at all: nothing accelerates
+  if (massed.empty())
+    return Failure{Status::Singular,
+                   fmt::format("initial acceleration at t = {} s: the mass matrix is zero, no DOF "
+                               "has mass (give a material a density > 0, or add disks or point "
+                               "masses)",
+                               t)};
   TangentSolver mass_solver;
   if (!mass_solver.factorize(pick(M, massed, massed)))
     return Failure{Status::Singular,
@@ -280,7 +285,9 @@ std::optional<Failure> newton_iterations(SecondOrderSystem& system,
       if (!factor_tangent(system, solver, ta, w.qa, w.va, c_m, c_c, c_k))
         return Failure{Status::Singular,
                        fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
-                                   "unconstrained rigid-body motion without mass",
+                                   "unconstrained rigid-body motion without mass (a massless "
+                                   "shaft needs stiffness on every DOF it keeps: bearings, "
+                                   "constraints, or `dofs` to leave DOFs out)",
                                    step, t1, solver.failure())};
       ++summary.factorizations;
       summary.solver = solver.description();
