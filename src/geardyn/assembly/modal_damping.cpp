@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/eig/rigid_body.hpp"
@@ -46,7 +47,15 @@ ModalDampingSummary apply_modal_damping(const model::Model& model, fe::LinearSys
   int wanted = options.n_modes;
   if (wanted <= 0) wanted = damping.modal_modes;
   if (wanted <= 0) wanted = std::max(20, 2 * static_cast<int>(damping.modal_ratios.size()));
-  wanted = std::min(wanted, system.size());
+  // A singular M (massless DOFs, e.g. a massless shaft) has only rank(M) finite modes: as many
+  // as the DOFs whose row of M is not zero.
+  std::vector<bool> has_mass(static_cast<std::size_t>(system.size()), false);
+  for (int k = 0; k < system.M.outerSize(); ++k)
+    for (fe::SparseMatrix::InnerIterator it(system.M, k); it; ++it)
+      if (it.value() != 0.0) has_mass[static_cast<std::size_t>(it.row())] = true;
+  const int finite = static_cast<int>(std::count(has_mass.begin(), has_mass.end(), true));
+  const int limit = std::max(1, finite);
+  wanted = std::min(wanted, limit);
 
   eig::SymmetricEigenOptions eo;
   eo.n_modes = wanted;
@@ -54,8 +63,8 @@ ModalDampingSummary apply_modal_damping(const model::Model& model, fe::LinearSys
   const auto K0 = system.K_at(0.0);
   const eig::SymmetricEigenResult modes = solve_symmetric(K0, system.M, eo);
   // The sparse solver returns at most n - 1 pairs; that is enough when all were asked for.
-  const bool all_but_one = modes.status == Status::FewerModes && wanted == system.size() &&
-                           modes.converged == system.size() - 1;
+  const bool all_but_one =
+      modes.status == Status::FewerModes && wanted == limit && modes.converged == limit - 1;
   if (modes.status != Status::Ok && modes.status != Status::NotConverged && !all_but_one)
     throw NumericalError("modal damping",
                          fmt::format("the {} undamped modes at zero speed that carry the modal "

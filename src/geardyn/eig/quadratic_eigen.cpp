@@ -21,6 +21,7 @@
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/eig/conditioning.hpp"
+#include "geardyn/eig/massless_condensation.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
@@ -482,9 +483,9 @@ void solve_sparse_with(const QuadraticPencil& p, const QuadraticEigenOptions& op
 
 }  // namespace
 
-QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
-                                     const QuadraticEigenOptions& options) {
-  if (auto problems = options.validate(); !problems.empty()) throw_options(problems);
+namespace {
+
+void check_sizes(const QuadraticPencil& p) {
   const Eigen::Index n = p.size();
   auto square = [n](const SparseMatrix& A) { return A.rows() == n && A.cols() == n; };
   if (n == 0 || !square(p.M) || !square(p.C) || !square(p.K) ||
@@ -496,6 +497,11 @@ QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
         fmt::format("M {}x{}, C {}x{}, K {}x{}, B {}x{}, c {}", p.M.rows(), p.M.cols(), p.C.rows(),
                     p.C.cols(), p.K.rows(), p.K.cols(), p.low_rank_basis.rows(),
                     p.low_rank_basis.cols(), p.low_rank_coefficients.size()));
+}
+
+// The solve on a pencil whose every DOF has mass or damping.
+QuadraticEigenResult solve_pencil(const QuadraticPencil& p, const QuadraticEigenOptions& options) {
+  const Eigen::Index n = p.size();
   QuadraticEigenResult r;
   Method method = options.method;
   // Auto: dense for small systems, and whenever Arnoldi could not return the modes asked for
@@ -516,6 +522,44 @@ QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
     solve_sparse_with<double>(p, options, target, target.real(), r);
   } else {
     solve_sparse_with<Complex>(p, options, target, upper(target), r);
+  }
+  if (r.status == Status::Ok && r.max_residual() > options.residual_limit) {
+    r.status = Status::NotConverged;
+    r.message =
+        fmt::format("largest backward error {:.3e} exceeds residual_limit {:.1e}: {}",
+                    r.max_residual(), options.residual_limit, conditioning_advice(p.K, p.M));
+  }
+  return r;
+}
+
+}  // namespace
+
+QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
+                                     const QuadraticEigenOptions& options) {
+  if (auto problems = options.validate(); !problems.empty()) throw_options(problems);
+  check_sizes(p);
+  const MasslessCondensation condensation(p);
+  if (!condensation.active()) return solve_pencil(p, options);
+  QuadraticEigenResult r;
+  if (!condensation.ok()) {
+    r.status = Status::Singular;
+    r.message = condensation.message();
+    return r;
+  }
+  // DOFs without mass or damping are condensed out exactly (massless_condensation.hpp); the
+  // start vector, if any, belongs to the full state space and is not used.
+  QuadraticEigenOptions reduced_options = options;
+  reduced_options.start = Eigen::VectorXd();
+  r = solve_pencil(condensation.reduced(), reduced_options);
+  if (r.eigenvectors.cols() == 0) return r;
+  r.eigenvectors = condensation.expand(r.eigenvectors);
+  const Norms norms = pencil_norms(p);
+  for (Eigen::Index k = 0; k < r.eigenvectors.cols(); ++k) {
+    Eigen::Index imax = 0;
+    r.eigenvectors.col(k).cwiseAbs().maxCoeff(&imax);
+    const Complex top = r.eigenvectors(imax, k);
+    if (std::abs(top) > 0.0) r.eigenvectors.col(k) /= top;
+    r.residuals[k] = backward_error(p, norms, r.eigenvalues[k], r.eigenvectors.col(k));
   }
   if (r.status == Status::Ok && r.max_residual() > options.residual_limit) {
     r.status = Status::NotConverged;

@@ -105,6 +105,17 @@ DofMap DofMap::build(const model::Model& model) {
 
   const std::size_t n_nodes = map.nodes_.size();
   std::vector<bool> fixed(n_nodes * 6, false);
+  // DOF sets: the model's `dofs`, a shaft's own `dofs` for its nodes; a component outside the
+  // set is absent, like a constrained one.
+  for (std::size_t k = 0; k < n_nodes; ++k) {
+    const int shaft = map.nodes_[k].shaft;
+    const model::Shaft* owner =
+        shaft >= 0 ? &model.shafts[static_cast<std::size_t>(shaft)] : nullptr;
+    const model::DofSet set = owner != nullptr && owner->dofs ? *owner->dofs : model.dofs;
+    const std::array<bool, 6> kept = model::dof_set_components(set);
+    for (std::size_t c = 0; c < 6; ++c)
+      if (!kept[c]) fixed[k * 6 + c] = true;
+  }
   for (std::size_t c = 0; c < model.constraints.size(); ++c) {
     const model::Constraint& constraint = model.constraints[c];
     const int index = map.find_node(constraint.node);

@@ -479,6 +479,14 @@ std::vector<std::pair<const model::Unbalance*, int>> selected_unbalances(
       continue;
     const int node =
         require_node(system.dofs, u.node, u.where, fmt::format("unbalances[{}].node", i));
+    if (system.dofs.dof(node, model::Component::Ux) < 0 &&
+        system.dofs.dof(node, model::Component::Uy) < 0)
+      throw InputError(
+          u.where, fmt::format("unbalances[{}].node", i),
+          "a node with lateral DOFs (ux, uy): an unbalance force is lateral",
+          fmt::format("'{}', whose ux and uy are constrained or left out by `dofs`", u.node),
+          "set `dofs` (of the model or of the node's shaft) to include \"lateral\", "
+          "or leave this unbalance out of the analysis (its `unbalances` key)");
     out.emplace_back(&u, node);
   }
   return out;

@@ -2,6 +2,16 @@
 
 namespace geardyn::model {
 
+std::array<bool, 6> dof_set_components(DofSet set) {
+  const bool lateral = set == DofSet::All || set == DofSet::Lateral ||
+                       set == DofSet::LateralAxial || set == DofSet::LateralTorsional;
+  const bool axial = set == DofSet::All || set == DofSet::Axial || set == DofSet::LateralAxial ||
+                     set == DofSet::AxialTorsional;
+  const bool torsional = set == DofSet::All || set == DofSet::Torsional ||
+                         set == DofSet::LateralTorsional || set == DofSet::AxialTorsional;
+  return {lateral, lateral, axial, lateral, lateral, torsional};
+}
+
 const Material* Model::find_material(const std::string& name) const {
   for (const auto& m : materials)
     if (m.name == name) return &m;

@@ -45,6 +45,25 @@ struct ShaftElement {
 
 enum class BeamTheory { Timoshenko, EulerBernoulli };
 
+/// The node DOFs a shaft (or the whole model) keeps; the others are absent (no equation) at
+/// every node of that shaft, so the disks, bearings, couplings and gear meshes there act only
+/// on the DOFs kept. Lateral: ux, uy, rx, ry; axial: uz; torsional: rz (node frame, e3 = axis).
+enum class DofSet {
+  All,
+  Lateral,
+  Axial,
+  Torsional,
+  LateralAxial,
+  LateralTorsional,
+  AxialTorsional
+};
+/// The key values of DofSet, in its order ("all", "lateral", ..., "axial+torsional").
+inline constexpr std::array<const char*, 7> kDofSetNames = {
+    "all",           "lateral",           "axial",          "torsional",
+    "lateral+axial", "lateral+torsional", "axial+torsional"};
+/// The components (ux, uy, uz, rx, ry, rz) a DOF set keeps.
+std::array<bool, 6> dof_set_components(DofSet set);
+
 /// A straight shaft along `axis` from `origin`. Nodes are named "<shaft>.<k>", k = 0..n_elements
 /// counted after `divisions` are expanded. Spin speed = speed_ratio x reference speed; a shaft
 /// driven through a gear pair gives `driven_by` and `gear_ratio` (spin = gear_ratio x spin of
@@ -62,6 +81,7 @@ struct Shaft {
   BeamTheory theory = BeamTheory::Timoshenko;
   bool rotary_inertia = true;
   bool gyroscopic = true;
+  std::optional<DofSet> dofs;  ///< empty: the model's `dofs`
   std::vector<ShaftElement> elements;
   SourceLocation where;
 };
@@ -444,6 +464,7 @@ struct Analysis {
 struct Model {
   int version = 1;
   std::string title;
+  DofSet dofs = DofSet::All;  ///< DOFs of every node (a shaft's `dofs` overrides it)
   std::string source_file;
   std::vector<Material> materials;
   std::vector<Shaft> shafts;

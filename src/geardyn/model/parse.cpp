@@ -959,6 +959,9 @@ class Resolver final : public ModelCheck {
   void build_nodes();
   NodeInfo node_info(const std::string& path, const std::string& name) const;
   void check_material(const std::string& path, const std::string& name) const;
+  /// A material whose density must be > 0 (a disk from geometry, a solid): its whole mass
+  /// comes from it.
+  void check_massive(const std::string& path, const std::string& name, const char* what) const;
   void resolve_speeds();
   void resolve_disks();
   void check_connections();
@@ -1062,6 +1065,17 @@ void Resolver::check_material(const std::string& path, const std::string& name) 
        fmt::format("\"{}\"", name), did_you_mean(name, names));
 }
 
+void Resolver::check_massive(const std::string& path, const std::string& name,
+                             const char* what) const {
+  const Material* m = m_.find_material(name);
+  if (m == nullptr || m->density > 0.0) return;
+  fail(path, fmt::format("a material with a density > 0 ({} takes its whole mass from it)", what),
+       fmt::format("\"{}\" with density = {} kg/m^3", name, m->density),
+       fmt::format("give the material \"{}\" its density, or use another material here (a "
+                   "density of 0 is meant for massless shafts)",
+                   name));
+}
+
 void Resolver::check_name(const std::string& path, const std::string& name,
                           const std::set<std::string>& known, const char* what,
                           const char* section) const {
@@ -1146,6 +1160,7 @@ void Resolver::resolve_disks() {
     check_node(fmt::format("disks[{}].node", i), d.node);
     if (std::isnan(d.outer_diameter)) continue;
     check_material(fmt::format("disks[{}].material", i), d.material);
+    check_massive(fmt::format("disks[{}].material", i), d.material, "a disk given by its geometry");
     // Uniform annular disk: m = rho pi (ro^2 - ri^2) h, Ip = m (ro^2 + ri^2) / 2,
     // Id = m (3 (ro^2 + ri^2) + h^2) / 12 (about a diameter through the centre of mass).
     const double rho = m_.find_material(d.material)->density;
@@ -1322,9 +1337,14 @@ void Resolver::run() {
   }
   for (std::size_t i = 0; i < m_.solids.size(); ++i) {
     const Solid& s = m_.solids[i];
-    if (!s.material.empty()) check_material(fmt::format("solids[{}].material", i), s.material);
-    if (!s.ring_material.empty())
+    if (!s.material.empty()) {
+      check_material(fmt::format("solids[{}].material", i), s.material);
+      check_massive(fmt::format("solids[{}].material", i), s.material, "a solid");
+    }
+    if (!s.ring_material.empty()) {
       check_material(fmt::format("solids[{}].ring_material", i), s.ring_material);
+      check_massive(fmt::format("solids[{}].ring_material", i), s.ring_material, "a damper ring");
+    }
     for (std::size_t k = 0; k < s.spiders.size(); ++k)
       check_node(fmt::format("solids[{}].spiders[{}].node", i, k), s.spiders[k].node);
   }

@@ -123,6 +123,13 @@ Section make_model_schema(const std::vector<AnalysisDeclaration>& analyses) {
                   .le(1)
                   .to(&Model::version),
               text("title", "Title shown in reports.").def("\"\"").to(&Model::title),
+              dof_set_key("The DOFs of every node: \"all\" (six per node), or a subset for a "
+                          "torsion-only, lateral-only or axial model; a shaft's own `dofs` "
+                          "overrides it for that shaft's nodes.")
+                  .def("\"all\"")
+                  .to_fn<Model>([](Model& m, const FieldValue& v) {
+                    m.dofs = static_cast<DofSet>(v.choice);
+                  }),
           })
           .sections({materials_section(), shafts_section(), nodes_section(), disks_section(),
                      point_masses_section(), bearings_section(), couplings_section(),

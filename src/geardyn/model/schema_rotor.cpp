@@ -206,6 +206,17 @@ std::vector<Field> bearing_coefficient_fields() {
 }
 }  // namespace
 
+keys::F dof_set_key(const std::string& help) {
+  return choice("dofs", std::vector<std::string>(kDofSetNames.begin(), kDofSetNames.end()),
+                help +
+                    " lateral: ux, uy, rx, ry; axial: uz; torsional: rz (node frame, z = the "
+                    "axis); \"lateral+torsional\" etc. combine them. The other DOFs are absent "
+                    "at every node concerned, as if constrained: disks, point masses, bearings, "
+                    "couplings, gear meshes, forces and unbalances there act on the DOFs kept "
+                    "only (a bearing's lateral stiffness on a torsion-only shaft is dropped), "
+                    "and no [[constraints]] table is needed for them.");
+}
+
 Section materials_section() {
   return S("materials", SectionKind::ArrayOfTables, "[[materials]]",
            "Isotropic linear-elastic materials, referred to by name from shafts, shaft elements "
@@ -227,7 +238,13 @@ Section materials_section() {
               .gt(-1.0)
               .le(0.5)
               .read_by_finish<Material>(),
-          number("density", kDensity, "Mass density rho.").required().gt(0).to(&Material::density),
+          number("density", kDensity,
+                 "Mass density rho; 0 for a massless shaft (the disks and point masses then "
+                 "carry the mass, e.g. a Jeffcott rotor). A disk or solid made of a material "
+                 "needs a density > 0.")
+              .required()
+              .ge(0)
+              .to(&Material::density),
       })
       .choices({{{{"shear_modulus"}, {"poisson_ratio"}}, true, {}}})
       .finish<Material>(finish_material);
@@ -324,6 +341,10 @@ Section shafts_section() {
           boolean("gyroscopic", "Include gyroscopic moments of the spinning shaft.")
               .def("true")
               .to(&Shaft::gyroscopic),
+          dof_set_key("The DOFs of this shaft's nodes (overrides the model's `dofs`).")
+              .note("the model's `dofs`")
+              .to_fn<Shaft>(
+                  [](Shaft& s, const FieldValue& v) { s.dofs = static_cast<DofSet>(v.choice); }),
       })
       .choices({{{{"speed_ratio"}, {"driven_by", "gear_ratio"}}, false, {}}})
       .sections({elements_section()})

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geardyn/model/schema.hpp"
+#include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::model {
 
@@ -18,6 +19,10 @@ inline const std::vector<std::string> kBevel = {"straight_bevel", "spiral_bevel"
 
 /// The fields of several lists, in order.
 std::vector<Field> join_fields(std::vector<std::vector<Field>> parts);
+
+/// A `dofs` key (the model's, a shaft's): one of kDofSetNames, with `help` and what the values
+/// mean; the caller adds the default and the setter.
+keys::F dof_set_key(const std::string& help);
 
 Section materials_section();
 Section shafts_section();

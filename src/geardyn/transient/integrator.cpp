@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "geardyn/transient/tangent_solver.hpp"
 
@@ -116,7 +117,100 @@ struct Failure {
   std::string message;
 };
 
-// The initial acceleration: given, or from M a_0 = -r(t_0, q_0, v_0, 0).
+// Equations whose row of M is zero (massless DOFs: the nodes of a massless shaft away from its
+// disks), in increasing order.
+std::vector<int> massless_equations(const SparseMatrix& M) {
+  std::vector<bool> has_mass(static_cast<std::size_t>(M.rows()), false);
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(M, k); it; ++it)
+      if (it.value() != 0.0) {
+        has_mass[static_cast<std::size_t>(it.row())] = true;
+        has_mass[static_cast<std::size_t>(it.col())] = true;
+      }
+  std::vector<int> out;
+  for (std::size_t i = 0; i < has_mass.size(); ++i)
+    if (!has_mass[i]) out.push_back(static_cast<int>(i));
+  return out;
+}
+
+// The rows `rows` and columns `cols` of A (index lists in increasing order).
+SparseMatrix pick(const SparseMatrix& A, const std::vector<int>& rows,
+                  const std::vector<int>& cols) {
+  std::vector<int> row_of(static_cast<std::size_t>(A.rows()), -1),
+      col_of(static_cast<std::size_t>(A.cols()), -1);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    row_of[static_cast<std::size_t>(rows[i])] = static_cast<int>(i);
+  for (std::size_t j = 0; j < cols.size(); ++j)
+    col_of[static_cast<std::size_t>(cols[j])] = static_cast<int>(j);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int k = 0; k < A.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
+      const int i = row_of[static_cast<std::size_t>(it.row())];
+      const int j = col_of[static_cast<std::size_t>(it.col())];
+      if (i >= 0 && j >= 0) triplets.emplace_back(i, j, it.value());
+    }
+  SparseMatrix out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+  out.setFromTriplets(triplets.begin(), triplets.end());
+  return out;
+}
+
+// The initial acceleration of a system with massless DOFs s (zero rows and columns of M) and
+// massed DOFs p: M_pp a_p = -r_p(t_0, q_0, v_0, 0), and the massless DOFs follow the massed ones
+// statically (Guyan condensation, differentiated twice in time): K_ss a_s = -K_sp a_p. This is
+// exact when the massless DOFs carry no damping and no time-varying load (a massless shaft
+// between disks and rigid supports); otherwise a_s is the quasi-static estimate, and it does not
+// enter the residual (M a has no a_s term), so the first steps correct it.
+std::optional<Failure> partitioned_initial_acceleration(
+    SecondOrderSystem& system, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+    const SparseMatrix& M, const std::vector<int>& massless, const Eigen::VectorXd& r,
+    Eigen::VectorXd& a) {
+  const int n = system.size();
+  std::vector<int> massed;
+  for (int i = 0, j = 0; i < n; ++i) {
+    if (j < static_cast<int>(massless.size()) && massless[static_cast<std::size_t>(j)] == i)
+      ++j;
+    else
+      massed.push_back(i);
+  }
+  a.setZero(n);
+  if (massed.empty())
+    return Failure{Status::Singular,
+                   fmt::format("initial acceleration at t = {} s: the mass matrix is zero, no DOF "
+                               "has mass (give a material a density > 0, or add disks or point "
+                               "masses)",
+                               t)};
+  TangentSolver mass_solver;
+  if (!mass_solver.factorize(pick(M, massed, massed)))
+    return Failure{Status::Singular,
+                   fmt::format("initial acceleration at t = {} s: the mass matrix of the {} DOFs "
+                               "that have mass could not be factorised ({}); check for a mass "
+                               "or inertia that is zero or negative on a DOF that has some",
+                               t, massed.size(), mass_solver.failure())};
+  Eigen::VectorXd r_p(static_cast<Eigen::Index>(massed.size())), a_p;
+  for (std::size_t i = 0; i < massed.size(); ++i) r_p[static_cast<Eigen::Index>(i)] = r[massed[i]];
+  mass_solver.solve(-r_p, a_p);
+  SparseMatrix K;
+  system.tangent(t, q, v, 0.0, 0.0, 1.0, K);
+  TangentSolver stiffness_solver;
+  if (!stiffness_solver.factorize(pick(K, massless, massless)))
+    return Failure{Status::Singular,
+                   fmt::format("initial acceleration at t = {} s: {} DOFs have no mass and their "
+                               "stiffness matrix is singular ({}): a massless part of the model "
+                               "can move freely (a mechanism without mass or stiffness). Give "
+                               "it mass (a density > 0, a disk or point mass), support it "
+                               "(bearings, constraints) or leave those DOFs out (`dofs`)",
+                               t, massless.size(), stiffness_solver.failure())};
+  const Eigen::VectorXd rhs = -(pick(K, massless, massed) * a_p);
+  Eigen::VectorXd a_s;
+  stiffness_solver.solve(rhs, a_s);
+  for (std::size_t i = 0; i < massed.size(); ++i) a[massed[i]] = a_p[static_cast<Eigen::Index>(i)];
+  for (std::size_t i = 0; i < massless.size(); ++i)
+    a[massless[i]] = a_s[static_cast<Eigen::Index>(i)];
+  return std::nullopt;
+}
+
+// The initial acceleration: given, or from M a_0 = -r(t_0, q_0, v_0, 0) (partitioned when some
+// DOFs have no mass).
 std::optional<Failure> initial_acceleration(SecondOrderSystem& system,
                                             const IntegratorOptions& options, double t,
                                             const Eigen::VectorXd& q, const Eigen::VectorXd& v,
@@ -128,7 +222,14 @@ std::optional<Failure> initial_acceleration(SecondOrderSystem& system,
     summary.consistent_initial_acceleration = false;
     return std::nullopt;
   }
+  system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
+  ++summary.residual_evaluations;
   // M a_0 = -r(t_0, q_0, v_0, 0): the tangent with c_m = 1, c_c = c_k = 0 is M.
+  SparseMatrix M;
+  system.tangent(t, q, v, 1.0, 0.0, 0.0, M);
+  const std::vector<int> massless = massless_equations(M);
+  if (!massless.empty())
+    return partitioned_initial_acceleration(system, t, q, v, M, massless, r, a);
   TangentSolver mass_solver;
   if (!factor_tangent(system, mass_solver, t, q, v, 1.0, 0.0, 0.0))
     return Failure{Status::Singular,
@@ -136,8 +237,6 @@ std::optional<Failure> initial_acceleration(SecondOrderSystem& system,
                                "factorised ({}); every unconstrained DOF needs mass (add rotary "
                                "inertia or a small point mass, or constrain the DOF)",
                                t, mass_solver.failure())};
-  system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
-  ++summary.residual_evaluations;
   mass_solver.solve(-r, a);
   return std::nullopt;
 }
@@ -186,7 +285,9 @@ std::optional<Failure> newton_iterations(SecondOrderSystem& system,
       if (!factor_tangent(system, solver, ta, w.qa, w.va, c_m, c_c, c_k))
         return Failure{Status::Singular,
                        fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
-                                   "unconstrained rigid-body motion without mass",
+                                   "unconstrained rigid-body motion without mass (a massless "
+                                   "shaft needs stiffness on every DOF it keeps: bearings, "
+                                   "constraints, or `dofs` to leave DOFs out)",
                                    step, t1, solver.failure())};
       ++summary.factorizations;
       summary.solver = solver.description();
