@@ -56,6 +56,7 @@ gear::FlankModification flank(const model::FlankModificationSpec& f, double base
   m.end_relief_length_m = f.end_relief_length;
   m.end_relief_shape = shape(f.end_relief_shape);
   m.pitch_deviation_m = f.pitch_deviations;
+  m.where = f.where;
   return m;
 }
 

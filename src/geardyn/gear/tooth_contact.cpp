@@ -284,6 +284,9 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
   auto check_mod = [&](const FlankModification& m, const char* member, const GearGeometry& gg,
                        double rho_root, double rho_tip) {
     const std::string p = std::string("flank") + member + ".";
+    // Errors at the flank's table when it was read from one.
+    GearPairGeometry at = g;
+    if (m.where.line > 0) at.spec.where = m.where;
     auto rho_of = [&](double r) {
       return std::sqrt(std::max(0.0, r * r - gg.base_radius_m * gg.base_radius_m));
     };
@@ -292,11 +295,13 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
       const double rho = rho_of(r);
       const double lo = std::min(rho_root, rho_tip), hi = std::max(rho_root, rho_tip);
       if (!(r > gg.base_radius_m) || rho < lo || rho > hi)
-        fail(g, p + key,
-             fmt::format("a radius on the active profile, between {} and {} m",
-                         num(std::sqrt(gg.base_radius_m * gg.base_radius_m + lo * lo)),
-                         num(std::sqrt(gg.base_radius_m * gg.base_radius_m + hi * hi))),
-             num(r) + " m", "a relief must start on the part of the flank that meshes");
+        fail(at, p + key,
+             fmt::format("a start diameter on the active profile, between {} and {} m",
+                         num(2.0 * std::sqrt(gg.base_radius_m * gg.base_radius_m + lo * lo)),
+                         num(2.0 * std::sqrt(gg.base_radius_m * gg.base_radius_m + hi * hi))),
+             num(2.0 * r) + " m",
+             "a relief must start on the part of the flank that meshes (a roll angle is "
+             "converted to this diameter)");
     };
     within(m.tip_relief_start_radius_m, "tip_relief_start_diameter");
     within(m.root_relief_start_radius_m, "root_relief_start_diameter");
@@ -306,20 +311,20 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
           std::pair{m.profile_crowning_m, "profile_crowning"},
           std::pair{m.lead_crowning_m, "lead_crowning"}, std::pair{m.end_relief_m, "end_relief"}}) {
       if (!(std::abs(v) < 0.25 * depth))
-        fail(g, p + key,
+        fail(at, p + key,
              fmt::format("a modification well below the tooth depth ({} m)", num(depth)),
              num(v) + " m", "modification amounts are micrometres (1e-6 m)");
     }
     if (m.end_relief_length_m < 0.0 || m.end_relief_length_m > 0.5 * g.face_width_m)
-      fail(g, p + "end_relief_length",
+      fail(at, p + "end_relief_length",
            fmt::format("a length in [0, b/2 = {}] m", num(0.5 * g.face_width_m)),
            num(m.end_relief_length_m) + " m");
     if (m.end_relief_m != 0.0 && m.end_relief_length_m <= 0.0)
-      fail(g, p + "end_relief_length", "a positive length with end_relief",
+      fail(at, p + "end_relief_length", "a positive length with end_relief",
            num(m.end_relief_length_m) + " m");
     const int teeth = gg.teeth;
     if (!m.pitch_deviation_m.empty() && static_cast<int>(m.pitch_deviation_m.size()) != teeth)
-      fail(g, p + "pitch_deviations", fmt::format("one value per tooth ({})", teeth),
+      fail(at, p + "pitch_deviations", fmt::format("one value per tooth ({})", teeth),
            fmt::format("{} values", m.pitch_deviation_m.size()));
   };
   check_mod(pinion_, "1", g.pinion, rho1_low_, rho1_high_);

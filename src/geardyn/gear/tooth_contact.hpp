@@ -80,6 +80,8 @@ struct FlankModification {
   /// tooth in contact at u = 0 of the first cycle; positive: the flank stands ahead (closer to
   /// the mating flank, contacts early). Empty: none. Size = the gear's tooth count.
   std::vector<double> pitch_deviation_m;
+  /// Where the modification was read (errors point there; unset: the pair's location).
+  SourceLocation where;
 };
 
 /// Compliance of the tooth pairs (the analytic slice model of tooth_compliance.hpp, or an FE
