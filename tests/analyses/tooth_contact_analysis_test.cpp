@@ -213,10 +213,47 @@ torque = 250
   EXPECT_NEAR(res.face_load_factor / iso, 1.0, 0.05) << res.face_load_factor << " vs " << iso;
 }
 
+// ste_source = "tooth_contact": the pair's STE is the LTCA's loaded TE over the first mesh
+// cycle with its unloaded TE as e_g, so the mesh stiffness the dynamic models use,
+// F_s / (e - e_g), is the LTCA's secant stiffness at every position (the same numbers: 1e-12)
+// and F_s = T1 / r_b1 is the LTCA's force. mesh_force then runs on it.
+TEST(ToothContactAnalysis, PairSteFromTheContactAnalysisFeedsTheDynamics) {
+  const std::string extra = R"(inertia1 = 0.002
+inertia2 = 0.03
+ste_source = "tooth_contact"
+[gear_pairs.flank1]
+tip_relief = 8e-6
+tip_relief_start_diameter = 0.0625
+)";
+  const model::Model m = load(fresh_dir("ltca_ste_source"), spur("120", extra) + kAnalysis + R"(
+[[analyses]]
+name = "pair"
+type = "gear_pair"
+[[analyses]]
+name = "force"
+type = "mesh_force"
+speed_rpm = [1000, 3000]
+)");
+  check_inputs(m, {});
+  const Outcome ltca = run_entry(m, 0), pair = run_entry(m, 1), force = run_entry(m, 2);
+  ASSERT_EQ(ltca.output.status, Status::Ok) << ltca.output.message;
+  ASSERT_EQ(pair.output.status, Status::Ok) << pair.output.message;
+  EXPECT_EQ(force.output.status, Status::Ok) << force.output.message;
+  const auto& res = result(ltca).torques.front();
+  const Table& k = table(pair.output, "mesh_stiffness");
+  ASSERT_EQ(k.rows(), res.te_m.size());
+  for (std::size_t i = 0; i < k.rows(); ++i) {
+    EXPECT_NEAR(k.column("stiffness_n_per_m").numbers[i], res.stiffness_secant_n_per_m[i],
+                1e-12 * res.stiffness_secant_n_per_m[i]);
+    EXPECT_NEAR(k.column("ste_m").numbers[i], res.te_m[i], 1e-18);
+    EXPECT_NEAR(k.column("geometric_te_m").numbers[i], res.unloaded_te_m[i], 1e-18);
+  }
+}
+
 TEST(ToothContactAnalysis, BadModificationsAreLocated) {
   auto fails = [](const std::string& extra, const std::string& key) {
-    const model::Model m = load(fresh_dir("ltca_bad"), spur("100", extra) + kAnalysis);
-    try {
+    try {  // the parser (keys of one table) or the checks before a run (the geometry)
+      const model::Model m = load(fresh_dir("ltca_bad"), spur("100", extra) + kAnalysis);
       check_inputs(m, {});
       ADD_FAILURE() << "no error for " << key;
     } catch (const InputError& e) {
@@ -230,6 +267,7 @@ TEST(ToothContactAnalysis, BadModificationsAreLocated) {
   fails("[gear_pairs.flank1]\ntip_relief = 10e-6\n", "gear_pairs[0].flank1.tip_relief");
   fails("[gear_pairs.flank2]\npitch_deviations = [1e-6, 0]\n",
         "gear_pairs[0].flank2.pitch_deviations");
+  fails("ste_source = \"tooth_contact\"\nste_file = \"x.csv\"\n", "gear_pairs[0].ste_source");
 }
 
 }  // namespace

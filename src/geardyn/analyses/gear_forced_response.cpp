@@ -134,11 +134,11 @@ std::string force_note(const GearForcedResponseSettings& s, const GearForcedResp
   if (!g.from_pair) return "Mesh-order forces given (force_amplitude), along the line of action.";
   return fmt::format(
       "Mesh-order forces from pair '{}': harmonics of the infinite-inertia mesh force F_s k(t) "
-      "/ k_mean (F_s = {:.6g} N, {} STE), i.e. the blocked force k_mean e_p of the "
+      "/ k_mean (F_s = {:.6g} N, STE: {}), i.e. the blocked force k_mean e_p of the "
       "transmission error to first order; the rotor model carries the mesh stiffness itself, "
       "so its own dynamics shape the response (the pair's dynamic model is not used, it would "
       "count the mesh resonance twice).",
-      s.pair, g.pair_static_force_n, g.pair_ste_from_file ? "file" : "synthetic ISO 6336");
+      s.pair, g.pair_static_force_n, g.pair_ste_source);
 }
 
 }  // namespace
@@ -167,7 +167,7 @@ GearForcedResponseResult run_gear_forced_response(const model::Model& model,
       rs.harmonics.push_back({p, f[static_cast<std::size_t>(p - 1)]});
     g.from_pair = true;
     g.pair_static_force_n = pm.static_force_n;
-    g.pair_ste_from_file = pm.ste_from_file;
+    g.pair_ste_source = pm.ste_source_label();
   } else {
     for (int p = 1; p <= s.max_mesh_order; ++p)
       rs.harmonics.push_back({p, Complex(s.force_amplitude.size() == 1

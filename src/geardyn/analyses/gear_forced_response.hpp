@@ -49,7 +49,7 @@ struct GearForcedResponseResult {
   response::RotorForcedResult response;
   bool from_pair = false;            ///< forces from the gear pair (else force_amplitude)
   double pair_static_force_n = 0.0;  ///< F_s of the pair [N] (from_pair)
-  bool pair_ste_from_file = false;   ///< the pair's STE read from a file (from_pair)
+  std::string pair_ste_source;       ///< where the pair's STE came from (from_pair)
 
   /// The largest amplitude over speed of the sum of the mesh orders' amplitudes at sensor
   /// `sensor` (index into response.sensors) [m or rad].

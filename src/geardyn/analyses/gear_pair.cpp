@@ -29,7 +29,7 @@ Table ste_table(const PairModel& pm, const std::string& table_name) {
   t.title = fmt::format(
       "Static transmission error and mesh stiffness of '{}' over one mesh cycle "
       "({}; sample 0: a tooth pair enters contact)",
-      pm.pair->name, pm.ste_from_file ? "from " + pm.pair->ste_file : "synthetic, ISO 6336");
+      pm.pair->name, pm.ste_source_label());
   std::vector<double> u(n), angle(n), e(n), eg(n), k(n);
   for (std::size_t j = 0; j < n; ++j) {
     u[j] = static_cast<double>(j) / static_cast<double>(n);
@@ -108,9 +108,11 @@ void add_pair_output(AnalysisOutput& out, const PairModel& pm, bool several) {
   k.title = fmt::format("Mesh stiffness of '{}' over one mesh cycle", pm.pair->name);
   k.x_label = "rotation of gear 1 [deg]";
   k.y_label = "mesh stiffness [N/m]";
-  k.traces.push_back(line(pm.ste_from_file ? "from the STE file" : "ISO 6336 (synthetic STE)",
+  k.traces.push_back(line(pm.ste_from_file      ? "from the STE file"
+                          : pm.ste_from_contact ? "loaded tooth contact"
+                                                : "ISO 6336 (synthetic STE)",
                           angle, ste.column("stiffness_n_per_m").numbers));
-  if (pm.ste_from_file) {
+  if (pm.ste_from_file || pm.ste_from_contact) {
     // The ISO-based curve for comparison (unshifted: its sample 0 is the contact entry).
     std::vector<double> iso_angle = scaled(pm.stiffness.pinion_angle_rad, kDeg);
     k.traces.push_back(line("ISO 6336-1 (geometry)", iso_angle, pm.stiffness.stiffness_n_per_m,
@@ -139,8 +141,9 @@ void add_pair_output(AnalysisOutput& out, const PairModel& pm, bool several) {
       "N/m); the time-varying ISO curve is a single-pair law with load sharing, not a "
       "loaded tooth-contact analysis.",
       pm.pair->name, k_mean,
-      pm.ste_from_file ? fmt::format("STE file {}", pm.pair->ste_file)
-                       : std::string("synthetic STE"),
+      pm.ste_from_file      ? fmt::format("STE file {}", pm.pair->ste_file)
+      : pm.ste_from_contact ? std::string("loaded tooth contact analysis")
+                            : std::string("synthetic STE"),
       pm.stiffness.iso.mesh_stiffness_n_per_m));
   if (gear::is_bevel(g.spec.type))
     out.notes.push_back(fmt::format(

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "geardyn/analyses/context.hpp"
+#include "geardyn/analyses/tooth_contact.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/correlation.hpp"
@@ -135,6 +136,12 @@ std::size_t pair_index(const model::Model& model, const std::string& name) {
   throw std::logic_error("gearan: gear pair not resolved by the parser: " + name);
 }
 
+std::string PairModel::ste_source_label() const {
+  if (ste_from_file) return "file " + pair->ste_file;
+  if (ste_from_contact) return "loaded tooth contact analysis";
+  return "synthetic, ISO 6336";
+}
+
 double PairModel::equivalent_mass_kg() const {
   for (const auto& [key, inertia] :
        {std::pair{"inertia1", pair->inertia1}, std::pair{"inertia2", pair->inertia2}})
@@ -202,7 +209,10 @@ PairModel build_pair_model(const model::Model& model, std::size_t index) {
     pm.base_radius2_m = pm.geometry.wheel.mean_pitch_radius_m * cos_alpha_t;
     pm.static_force_n = synthetic.static_force_n;
 
-    if (p.ste_file.empty()) {
+    if (p.ste_file.empty() && p.ste_source == model::SteSourceKind::ToothContact) {
+      pm.ste = contact_ste(model, pm);
+      pm.ste_from_contact = true;
+    } else if (p.ste_file.empty()) {
       pm.ste = gear::SteCurve::from_samples(synthetic.ste_m, gear::SteInterpolation::Linear, {},
                                             p.torque)
                    .shifted(p.ste_shift);

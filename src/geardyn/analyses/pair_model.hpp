@@ -42,10 +42,14 @@ struct PairModel {
   gear::MeshStiffnessCurve stiffness;  ///< ISO 6336 based curve over one mesh cycle
   std::optional<gear::SteCurve> ste;   ///< the STE the dynamic model uses (after ste_shift)
   bool ste_from_file = false;
-  std::filesystem::path ste_path;                     ///< resolved ste_file (empty: synthetic)
+  bool ste_from_contact = false;   ///< from the loaded tooth contact analysis (ste_source)
+  std::filesystem::path ste_path;  ///< resolved ste_file (empty: synthetic)
   double base_radius1_m = 0.0, base_radius2_m = 0.0;  ///< r_b1, r_b2 (see above)
   double static_force_n = 0.0;                        ///< F_s = T / r_b1
 
+  /// Where the STE comes from, for tables and notes: "file <name>", "loaded tooth contact
+  /// analysis" or "synthetic, ISO 6336".
+  std::string ste_source_label() const;
   /// m_e from the pair's inertias; InputError at the pair when they are missing.
   double equivalent_mass_kg() const;
   /// Options of the dynamic mesh model for this pair (mass only for the dynamic model).

@@ -74,8 +74,31 @@ gear::ElasticConstants elastic(const model::Model& m, const std::string& materia
 
 std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
                                                              std::size_t index) {
+  return build_tooth_contact_model(model, build_pair_model(model, index));
+}
+
+gear::SteCurve contact_ste(const model::Model& model, const PairModel& pm) {
+  const auto tc = build_tooth_contact_model(model, pm);
+  const model::GearPair& p = *pm.pair;
+  const gear::ToothContactResult r = tc->contact->solve(p.torque);
+  if (r.status != Status::Ok)
+    throw InputError(p.where, pm.key_path + ".ste_source",
+                     "a tooth contact analysis that converges at the pair's torque",
+                     fmt::format("at T1 = {:.6g} N m: {}", p.torque, r.message),
+                     "check the flank modifications and the misalignment, or use \"iso\"");
+  const auto n = static_cast<std::size_t>(tc->options.positions);  // the first mesh cycle
+  std::vector<double> e(r.te_m.begin(), r.te_m.begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<double> eg(r.unloaded_te_m.begin(),
+                         r.unloaded_te_m.begin() + static_cast<std::ptrdiff_t>(n));
+  return gear::SteCurve::from_samples(std::move(e), gear::SteInterpolation::Linear, std::move(eg),
+                                      p.torque)
+      .shifted(p.ste_shift, static_cast<std::size_t>(std::max(0, p.ste_samples)));
+}
+
+std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
+                                                             const PairModel& pm) {
   auto tc = std::make_shared<ToothContactModel>();
-  tc->pair = build_pair_model(model, index);
+  tc->pair = pm;
   const model::GearPair& p = *tc->pair.pair;
   const gear::GearPairGeometry& g = tc->pair.geometry;
   const std::string path = tc->pair.key_path;

@@ -41,6 +41,15 @@ struct ToothContactModel {
 /// Builds and checks the LTCA of pair `index`. Throws InputError at the pair's keys.
 std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
                                                              std::size_t index);
+/// The same from the pair's geometry already built (`pm`'s STE is not used).
+std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
+                                                             const PairModel& pm);
+
+/// The STE of pair `pm` from its loaded tooth contact analysis at the pair's torque: the loaded
+/// TE over the first mesh cycle with the unloaded TE as e_g (so that F_s / (e - e_g) is the
+/// secant mesh stiffness), after ste_shift, resampled to ste_samples when given. InputError at
+/// the pair when the contact analysis fails there.
+gear::SteCurve contact_ste(const model::Model& model, const PairModel& pm);
 
 struct ToothContactRunResult {
   std::shared_ptr<ToothContactModel> model;

@@ -307,6 +307,7 @@ struct Solid {
 /// Direction of rotation of gear 1 seen from its back (cone base side), towards the apex.
 enum class GearRotation { Clockwise, CounterClockwise };
 enum class SteInterpolationKind { Linear, Hold };
+enum class SteSourceKind { Iso, ToothContact };
 
 enum class ReliefShapeKind { Linear, Parabolic };
 
@@ -372,6 +373,8 @@ struct GearPair {
   bool load_correction = true;              ///< ISO 6336-1 stiffness correction for light loads
   double rim_thickness = kNaN, web_thickness = kNaN;  ///< gear blank with a web [m]
   std::string ste_file;  ///< STE CSV as written (relative to the model file)
+  /// Without ste_file: the synthetic ISO 6336 STE or the loaded tooth contact analysis.
+  SteSourceKind ste_source = SteSourceKind::Iso;
   SteInterpolationKind ste_interpolation = SteInterpolationKind::Linear;
   double ste_shift = 0.0;          ///< fraction of a mesh cycle
   bool ste_extrapolation = false;  ///< torque outside the file's torques allowed

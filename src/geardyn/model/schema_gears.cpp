@@ -32,6 +32,14 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
   }
   const bool bevel = g.type == GearType::StraightBevel || g.type == GearType::SpiralBevel ||
                      g.type == GearType::Hypoid;
+  if (g.ste_source == SteSourceKind::ToothContact && t.has("ste_file"))
+    t.fail("ste_source", "\"iso\" (the default) with an ste_file: the file is the STE",
+           "\"tooth_contact\" and an ste_file");
+  if (g.ste_source == SteSourceKind::ToothContact && bevel)
+    t.fail("ste_source",
+           "\"iso\" or an ste_file for bevel and hypoid pairs (the tooth contact analysis is for "
+           "spur and helical pairs)",
+           "\"tooth_contact\"");
   if (g.internal && bevel)
     t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
            "true");
@@ -226,6 +234,14 @@ std::vector<Field> gear_pair_fields_2() {
            "entering contact.")
           .note("synthetic STE e = F_s / k from the ISO 6336 mesh stiffness")
           .to(&GearPair::ste_file),
+      choice("ste_source", {"iso", "tooth_contact"},
+             "Where the STE comes from when there is no ste_file: \"iso\", synthetic e = F_s / k "
+             "from the ISO 6336 mesh stiffness; \"tooth_contact\", the loaded tooth contact "
+             "analysis of the pair at its torque (flank modifications, misalignment; "
+             "[gear_pairs.flank1/2], [gear_pairs.contact]; spur and helical pairs), its first "
+             "mesh cycle.")
+          .def("\"iso\"")
+          .to_enum(&GearPair::ste_source, {SteSourceKind::Iso, SteSourceKind::ToothContact}),
       choice("ste_interpolation", {"linear", "hold"},
              "How the STE file is read between its rows: periodic linear, or each row "
              "held to the next (contact steps).")
