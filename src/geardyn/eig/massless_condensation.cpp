@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "geardyn/linalg/submatrix.hpp"
+
 namespace geardyn::eig {
 namespace {
 
@@ -15,27 +17,6 @@ void mark(const SparseMatrix& A, std::vector<bool>& used) {
         used[static_cast<std::size_t>(it.row())] = true;
         used[static_cast<std::size_t>(it.col())] = true;
       }
-}
-
-// The rows `rows` and columns `cols` of A.
-SparseMatrix pick(const SparseMatrix& A, const std::vector<int>& rows,
-                  const std::vector<int>& cols) {
-  std::vector<int> row_of(static_cast<std::size_t>(A.rows()), -1),
-      col_of(static_cast<std::size_t>(A.cols()), -1);
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    row_of[static_cast<std::size_t>(rows[i])] = static_cast<int>(i);
-  for (std::size_t j = 0; j < cols.size(); ++j)
-    col_of[static_cast<std::size_t>(cols[j])] = static_cast<int>(j);
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-      const int i = row_of[static_cast<std::size_t>(it.row())];
-      const int j = col_of[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) triplets.emplace_back(i, j, it.value());
-    }
-  SparseMatrix out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-  out.setFromTriplets(triplets.begin(), triplets.end());
-  return out;
 }
 
 }  // namespace
@@ -59,8 +40,8 @@ MasslessCondensation::MasslessCondensation(const QuadraticPencil& p) {
     return;
   }
   // Columns of K_sp that couple to the condensed DOFs: only they change K_pp.
-  K_sp_ = pick(p.K, condensed_, kept_);
-  if (stiffness_.compute(pick(p.K, condensed_, condensed_)) != Status::Ok) {
+  K_sp_ = linalg::submatrix(p.K, condensed_, kept_);
+  if (stiffness_.compute(linalg::submatrix(p.K, condensed_, condensed_)) != Status::Ok) {
     ok_ = false;
     message_ = fmt::format(
         "{} DOFs have neither mass nor damping and their stiffness matrix is singular ({}): a "
@@ -70,11 +51,11 @@ MasslessCondensation::MasslessCondensation(const QuadraticPencil& p) {
     return;
   }
   const Eigen::MatrixXd X = stiffness_.solve(Eigen::MatrixXd(K_sp_));  // K_ss^{-1} K_sp
-  const SparseMatrix K_ps = pick(p.K, kept_, condensed_);
+  const SparseMatrix K_ps = linalg::submatrix(p.K, kept_, condensed_);
   SparseMatrix correction = (K_ps * X).sparseView(0.0, 0.0);
-  reduced_.M = pick(p.M, kept_, kept_);
-  reduced_.C = pick(p.C, kept_, kept_);
-  reduced_.K = SparseMatrix(pick(p.K, kept_, kept_) - correction);
+  reduced_.M = linalg::submatrix(p.M, kept_, kept_);
+  reduced_.C = linalg::submatrix(p.C, kept_, kept_);
+  reduced_.K = SparseMatrix(linalg::submatrix(p.K, kept_, kept_) - correction);
   reduced_.K.makeCompressed();
   if (p.low_rank_basis.cols() > 0) {
     reduced_.low_rank_basis.resize(static_cast<Eigen::Index>(kept_.size()),

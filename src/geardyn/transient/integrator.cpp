@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "geardyn/linalg/submatrix.hpp"
 #include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
@@ -133,27 +134,6 @@ std::vector<int> massless_equations(const SparseMatrix& M) {
   return out;
 }
 
-// The rows `rows` and columns `cols` of A (index lists in increasing order).
-SparseMatrix pick(const SparseMatrix& A, const std::vector<int>& rows,
-                  const std::vector<int>& cols) {
-  std::vector<int> row_of(static_cast<std::size_t>(A.rows()), -1),
-      col_of(static_cast<std::size_t>(A.cols()), -1);
-  for (std::size_t i = 0; i < rows.size(); ++i)
-    row_of[static_cast<std::size_t>(rows[i])] = static_cast<int>(i);
-  for (std::size_t j = 0; j < cols.size(); ++j)
-    col_of[static_cast<std::size_t>(cols[j])] = static_cast<int>(j);
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int k = 0; k < A.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(A, k); it; ++it) {
-      const int i = row_of[static_cast<std::size_t>(it.row())];
-      const int j = col_of[static_cast<std::size_t>(it.col())];
-      if (i >= 0 && j >= 0) triplets.emplace_back(i, j, it.value());
-    }
-  SparseMatrix out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
-  out.setFromTriplets(triplets.begin(), triplets.end());
-  return out;
-}
-
 // The initial acceleration of a system with massless DOFs s (zero rows and columns of M) and
 // massed DOFs p: M_pp a_p = -r_p(t_0, q_0, v_0, 0), and the massless DOFs follow the massed ones
 // statically (Guyan condensation, differentiated twice in time): K_ss a_s = -K_sp a_p. This is
@@ -180,7 +160,7 @@ std::optional<Failure> partitioned_initial_acceleration(
                                "masses)",
                                t)};
   TangentSolver mass_solver;
-  if (!mass_solver.factorize(pick(M, massed, massed)))
+  if (!mass_solver.factorize(linalg::submatrix(M, massed, massed)))
     return Failure{Status::Singular,
                    fmt::format("initial acceleration at t = {} s: the mass matrix of the {} DOFs "
                                "that have mass could not be factorised ({}); check for a mass "
@@ -192,7 +172,7 @@ std::optional<Failure> partitioned_initial_acceleration(
   SparseMatrix K;
   system.tangent(t, q, v, 0.0, 0.0, 1.0, K);
   TangentSolver stiffness_solver;
-  if (!stiffness_solver.factorize(pick(K, massless, massless)))
+  if (!stiffness_solver.factorize(linalg::submatrix(K, massless, massless)))
     return Failure{Status::Singular,
                    fmt::format("initial acceleration at t = {} s: {} DOFs have no mass and their "
                                "stiffness matrix is singular ({}): a massless part of the model "
@@ -200,7 +180,7 @@ std::optional<Failure> partitioned_initial_acceleration(
                                "it mass (a density > 0, a disk or point mass), support it "
                                "(bearings, constraints) or leave those DOFs out (`dofs`)",
                                t, massless.size(), stiffness_solver.failure())};
-  const Eigen::VectorXd rhs = -(pick(K, massless, massed) * a_p);
+  const Eigen::VectorXd rhs = -(linalg::submatrix(K, massless, massed) * a_p);
   Eigen::VectorXd a_s;
   stiffness_solver.solve(rhs, a_s);
   for (std::size_t i = 0; i < massed.size(); ++i) a[massed[i]] = a_p[static_cast<Eigen::Index>(i)];
