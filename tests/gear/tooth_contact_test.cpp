@@ -12,6 +12,7 @@
 #include <numbers>
 #include <numeric>
 
+#include "contact_test_support.hpp"
 #include "geardyn/core/error.hpp"
 
 namespace {
@@ -19,26 +20,7 @@ namespace {
 using namespace geardyn;
 using namespace geardyn::gear;
 
-// Winkler slices: compliance c per unit face width [m^2/N] at every path position, no
-// coupling between slices; Hertz approach h(w) = alpha w^q (alpha = 0: none).
-class WinklerCompliance final : public ContactCompliance {
- public:
-  explicit WinklerCompliance(double c, double alpha = 0.0, double q = 0.9)
-      : c_(c), alpha_(alpha), q_(q) {}
-  Eigen::MatrixXd body_influence(const std::vector<double>& s, const std::vector<double>&,
-                                 double) const override {
-    const auto n = static_cast<Eigen::Index>(s.size());
-    return c_ * Eigen::MatrixXd::Identity(n, n);
-  }
-  double hertz_approach(double, double w) const override { return alpha_ * std::pow(w, q_); }
-  double hertz_compliance(double, double w) const override {
-    return alpha_ * q_ * std::pow(w, q_ - 1.0);
-  }
-  double max_pressure(double, double w) const override { return w; }
-
- private:
-  double c_, alpha_, q_;
-};
+using geardyn::test::WinklerCompliance;
 
 GearPairGeometry spur_pair(int z1 = 20, int z2 = 40, double b = 20e-3) {
   GearPairSpec s;
