@@ -1,6 +1,6 @@
 // examples/spur_tip_relief: the loaded tooth contact analysis of a relieved spur pair runs, and
 // the numbers its README states hold: the TE peak-to-peak over torque has its minimum inside
-// the range near the relief's design load (the Harris map: D.L. Harris, "Dynamic loads on the
+// the range near the relief's design load (the Harris map: S.L. Harris, "Dynamic loads on the
 // teeth of spur gears", Proc. IMechE 172, 1958), and the face-load factor falls with the load.
 // The README quotes three significant digits; the tolerances are half a unit of the last one.
 #include <gtest/gtest.h>

@@ -145,6 +145,8 @@ ToothContactRunResult run_tooth_contact(const model::Model& model,
     r.torques.push_back(r.model->contact->solve(torques[i]));
     r.harmonics_m.push_back(gear::mesh_order_amplitudes(
         r.torques.back().te_m, r.model->contact->cycles(), settings.orders));
+    r.stiffness_harmonics_n_per_m.push_back(gear::mesh_order_amplitudes(
+        r.torques.back().stiffness_tangent_n_per_m, r.model->contact->cycles(), settings.orders));
     progress.update(i + 1);
   }
   progress.finish();
@@ -257,8 +259,8 @@ Table harmonics_table(const ToothContactRunResult& r) {
   t.name = "te_harmonics";
   t.title =
       "TE harmonics at the mesh orders: 0-peak amplitude and peak-peak (2 x 0-peak) of each "
-      "harmonic";
-  std::vector<double> torque, order, amp, pp, amp_rad;
+      "harmonic, and the 0-peak harmonics of the tangent mesh stiffness";
+  std::vector<double> torque, order, amp, pp, amp_rad, stiffness;
   for (std::size_t i = 0; i < r.torques.size(); ++i)
     for (std::size_t k = 0; k < r.harmonics_m[i].size(); ++k) {
       torque.push_back(r.torques[i].torque_nm);
@@ -266,12 +268,14 @@ Table harmonics_table(const ToothContactRunResult& r) {
       amp.push_back(r.harmonics_m[i][k]);
       pp.push_back(2.0 * r.harmonics_m[i][k]);
       amp_rad.push_back(r.harmonics_m[i][k] / rb1);
+      stiffness.push_back(r.stiffness_harmonics_n_per_m[i][k]);
     }
   t.add("torque_nm", "N m", torque);
   t.add("mesh_order", "", order);
   t.add("amplitude_0_peak_m", "m", amp);
   t.add("amplitude_peak_peak_m", "m", pp);
   t.add("amplitude_0_peak_rad", "rad", amp_rad);
+  t.add("stiffness_0_peak_n_per_m", "N/m", stiffness);
   return t;
 }
 

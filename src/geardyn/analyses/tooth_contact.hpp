@@ -56,6 +56,8 @@ struct ToothContactRunResult {
   std::vector<gear::ToothContactResult> torques;  ///< in the order of the settings' torques
   std::size_t distribution_index = 0;             ///< which torque's distribution is written
   std::vector<std::vector<double>> harmonics_m;   ///< per torque: 0-peak TE at orders 1..n
+  /// Per torque: 0-peak amplitude of the tangent mesh stiffness at orders 1..n [N/m].
+  std::vector<std::vector<double>> stiffness_harmonics_n_per_m;
 };
 
 ToothContactRunResult run_tooth_contact(const model::Model& model,
