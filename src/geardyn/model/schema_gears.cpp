@@ -432,7 +432,7 @@ Section contact_section() {
                "at the analysed torque, without that mesh's spring and with torsion held, tilts "
                "the two gear nodes; their relative tilt in the plane of action times the face "
                "width adds to the misalignment (docs/theory.md §15.7).")
-              .note("none: the misalignment is the given one")
+              .note("the misalignment is the given one")
               .to(&ContactModelSpec::deflection_mesh),
       });
 }
