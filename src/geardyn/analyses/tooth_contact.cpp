@@ -112,9 +112,8 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   tc->pinion = flank(p.flank1, g.pinion.base_radius_m, p, (path + ".flank1").c_str());
   tc->wheel = flank(p.flank2, g.wheel.base_radius_m, p, (path + ".flank2").c_str());
   const model::ContactModelSpec& c = p.contact;
-  tc->misalignment_m = c.misalignment +
-                       c.axis_inclination_deviation * std::sin(g.working_pressure_angle_rad) +
-                       c.axis_deviation * std::cos(g.working_pressure_angle_rad);
+  tc->misalignment = contact_misalignment(model, tc->pair);
+  tc->misalignment_m = tc->misalignment.at(p.torque);
   tc->options.positions = c.positions;
   tc->options.slices = c.slices;
   tc->options.misalignment_in_plane_m = tc->misalignment_m;
@@ -142,7 +141,7 @@ ToothContactRunResult run_tooth_contact(const model::Model& model,
   Progress& progress = context.progress();
   progress.start("torques", torques.size());
   for (std::size_t i = 0; i < torques.size(); ++i) {
-    r.torques.push_back(r.model->contact->solve(torques[i]));
+    r.torques.push_back(solve_contact(*r.model, torques[i]));
     r.harmonics_m.push_back(gear::mesh_order_amplitudes(
         r.torques.back().te_m, r.model->contact->cycles(), settings.orders));
     r.stiffness_harmonics_n_per_m.push_back(gear::mesh_order_amplitudes(
@@ -227,10 +226,12 @@ Table summary_table(const ToothContactRunResult& r) {
   t.name = "summary";
   t.title =
       "Per torque: TE peak-to-peak and mean, mesh stiffness, face-load factor, peak "
-      "contact pressure";
-  std::vector<double> torque, ppm, ppr, mte, ks, kt, khb, pmax, wmax;
+      "contact pressure, mesh misalignment used (of which from the rotor's deflection)";
+  std::vector<double> torque, ppm, ppr, mte, ks, kt, khb, pmax, wmax, fma, fdefl;
   for (const auto& res : r.torques) {
     torque.push_back(res.torque_nm);
+    fma.push_back(r.model->misalignment.at(res.torque_nm));
+    fdefl.push_back(r.model->misalignment.deflection_at(res.torque_nm));
     ppm.push_back(peak_peak(res.te_m));
     ppr.push_back(peak_peak(res.te_m) / rb1);
     mte.push_back(mean(res.te_m));
@@ -250,6 +251,8 @@ Table summary_table(const ToothContactRunResult& r) {
   t.add("face_load_factor", "", khb);
   t.add("max_pressure_pa", "Pa", pmax);
   t.add("max_line_load_n_per_m", "N/m", wmax);
+  t.add("misalignment_m", "m", fma);
+  t.add("misalignment_deflection_m", "m", fdefl);
   return t;
 }
 
@@ -427,12 +430,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
           : std::string("slices uncoupled (coupling_length = 0): a point-like contact spreads "
                         "no load to its neighbours, which over-estimates the load peaks at "
                         "modification edges")));
-  out.notes.push_back(fmt::format(
-      "'{}': mesh misalignment in the plane of action f_ma = {:.6g} m (misalignment + "
-      "f_Sigma_delta sin(alpha_wt) + f_Sigma_beta cos(alpha_wt)); the out-of-plane component "
-      "is not modelled (it moves the contact along the profile, a second-order effect on the "
-      "gap).",
-      m.pair.pair->name, m.misalignment_m));
+  out.notes.push_back(misalignment_note(m));
   for (const auto& res : r.torques) {
     const double covered = [&] {
       int n = 0;

@@ -11,6 +11,7 @@
 
 #include "geardyn/analyses/context.hpp"
 #include "geardyn/analyses/pair_model.hpp"
+#include "geardyn/analyses/tooth_contact_misalignment.hpp"
 #include "geardyn/gear/slice_compliance.hpp"
 #include "geardyn/gear/tooth_compliance.hpp"
 #include "geardyn/gear/tooth_contact.hpp"
@@ -35,7 +36,8 @@ struct ToothContactModel {
   std::unique_ptr<gear::ToothCompliance> teeth;
   std::unique_ptr<gear::SliceCompliance> compliance;
   std::unique_ptr<gear::ToothContact> contact;
-  double misalignment_m = 0.0;  ///< f_ma used (direct + axis deviations)
+  double misalignment_m = 0.0;       ///< f_ma used at the pair's torque (misalignment.at(T_pair))
+  ContactMisalignment misalignment;  ///< given and from the rotor's deflection
 };
 
 /// Builds and checks the LTCA of pair `index`. Throws InputError at the pair's keys.

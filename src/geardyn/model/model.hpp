@@ -342,6 +342,9 @@ struct ContactModelSpec {
   double axis_inclination_deviation = 0.0;  ///< f_Sigma_delta over b [m]
   double axis_deviation = 0.0;              ///< f_Sigma_beta over b [m]
   bool hunting_period = true;               ///< with pitch deviations: lcm(z1, z2) cycles
+  /// [[gear_meshes]] name of the rotor's mesh of this pair (empty: none): its static
+  /// deflection under the pair's tooth forces adds to the misalignment (docs/theory.md §15.7).
+  std::string deflection_mesh;
   SourceLocation where;
 };
 

@@ -426,6 +426,14 @@ Section contact_section() {
                   "(false: the first mesh cycle only).")
               .def("true")
               .to(&ContactModelSpec::hunting_period),
+          text("deflection_mesh",
+               "Name of the [[gear_meshes]] entry of the rotor model that is this pair: the "
+               "static deflection of the rotor (shafts, bearings) under the pair's tooth forces "
+               "at the analysed torque, without that mesh's spring and with torsion held, tilts "
+               "the two gear nodes; their relative tilt in the plane of action times the face "
+               "width adds to the misalignment (docs/theory.md §15.7).")
+              .note("the misalignment is the given one")
+              .to(&ContactModelSpec::deflection_mesh),
       });
 }
 
