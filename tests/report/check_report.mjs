@@ -3,7 +3,7 @@
 // driven by playwright-core from the repository's node_modules), with every non-file request
 // blocked, waits until the page says all plots are drawn, then checks that
 //   - every plot box holds a rendered plotly figure ('.main-svg') with one drawn trace per trace
-//     in its data,
+//     in its data (curves and heat maps),
 //   - figures asked for equal axes (scaleanchor) draw one unit of x and of y with the same length,
 //   - the console logged no error and the page threw none,
 //   - nothing was requested from outside the file (the report must be self-contained).
@@ -85,7 +85,8 @@ try {
       const info = { id: div.id, rendered: div.querySelector('.main-svg') !== null };
       if (div._fullData) {
         info.traces = div._fullData.length;
-        info.drawnTraces = div.querySelectorAll('.scatterlayer .trace').length;
+        // Curves are drawn in the scatter layer, heat maps in the heatmap layer (class 'hm').
+        info.drawnTraces = div.querySelectorAll('.scatterlayer .trace, .heatmaplayer .hm').length;
       }
       const layout = div._fullLayout;
       if (layout && layout.yaxis && layout.yaxis.scaleanchor === 'x') {

@@ -349,6 +349,49 @@ TEST(RenderHtml, NonFiniteValuesBecomeGaps) {
   EXPECT_TRUE(figs[0]["data"][0]["y"][2].is_null());
 }
 
+// A heat map (the contact pattern of tooth_contact): a plotly heatmap trace with the grid as
+// given (z has one row per y, one value per x; no thinning, even beyond the point budget), NaN
+// cells null (blank), the z label on the colour bar and in the hover text, no legend.
+TEST(RenderHtml, HeatMapsKeepTheirGridAndLabelTheColourBar) {
+  AnalysisOutput out;
+  out.name = "pattern";
+  out.type = "tooth_contact";
+  Plot p;
+  p.name = "line_load_map";
+  p.title = "Line load";
+  p.x_label = "face position [mm]";
+  p.y_label = "roll angle of gear 1 [deg]";
+  Trace t;
+  t.name = "200 N m";
+  t.z_label = "line load <N/mm>";
+  t.x = {0.5, 1.5, 2.5};
+  t.y = {10.0, 11.0};
+  t.z = {{1.0, 2.0, 3.0}, {4.0, std::numeric_limits<double>::quiet_NaN(), 6.123456789}};
+  p.traces.push_back(t);
+  out.plots.push_back(p);
+  ReportOptions options;
+  options.max_points_per_trace = 2;  // below the 6 cells: a heat map is still drawn whole
+  const std::string html = render_html(RunInfo{}, {out}, options);
+  const nlohmann::json figs = figures_of(html);
+  ASSERT_EQ(figs.size(), 1u);
+  const nlohmann::json& d = figs[0]["data"][0];
+  EXPECT_EQ(d["type"], "heatmap");
+  EXPECT_EQ(d["x"], nlohmann::json({0.5, 1.5, 2.5}));
+  EXPECT_EQ(d["y"], nlohmann::json({10.0, 11.0}));
+  ASSERT_EQ(d["z"].size(), 2u);
+  ASSERT_EQ(d["z"][1].size(), 3u);
+  EXPECT_EQ(d["z"][0][2], 3.0);
+  EXPECT_TRUE(d["z"][1][1].is_null());
+  // Rounded to display_digits + 2 = 8 significant digits, like the curves.
+  EXPECT_DOUBLE_EQ(d["z"][1][2].get<double>(), 6.1234568);
+  EXPECT_EQ(d["colorbar"]["title"]["text"], "line load &lt;N/mm&gt;");
+  EXPECT_NE(d["hovertemplate"].get<std::string>().find("line load &lt;N/mm&gt; = %{z}"),
+            std::string::npos);
+  EXPECT_FALSE(figs[0]["layout"]["showlegend"].get<bool>());
+  EXPECT_EQ(html.find("thinned to at most"), std::string::npos);
+  EXPECT_EQ(count(html, "class=\"geardyn-plot\""), 1u);
+}
+
 TEST(RenderHtml, NoAnalysesIsStillAPage) {
   const std::string html = render_html(RunInfo{}, {});
   EXPECT_NE(html.find("No analyses ran."), std::string::npos);

@@ -1,7 +1,8 @@
 // Writes a sample results folder (CSV tables, manifest.json, report.html) whose report holds every
 // kind of plot geardyn draws: log-log receptances, a linear phase plot, a Campbell diagram with
 // many traces (dashed backward whirl, dotted engine orders, markers with hover text), equal-aspect
-// orbits, a long time history that the report thins, and a failed and an incomplete analysis.
+// orbits, a long time history that the report thins, a heat map (contact pattern), and a failed
+// and an incomplete analysis.
 // The browser test (check_report.mjs) then opens the report in Chromium.
 //
 // Usage: make_sample_report OUTDIR      (prints the number of plots in the report)
@@ -50,9 +51,9 @@ AnalysisOutput frf_analysis() {
   Plot amplitude{
       "amplitude", "Receptance magnitude", "frequency [Hz]", "|H| [m/N]", true, true, false, {}};
   Plot phase{"phase", "Receptance phase", "frequency [Hz]", "phase [deg]", true, false, false, {}};
-  Trace a11{"H11 drive point", f, {}, Trace::Mode::Lines, "", {}};
-  Trace a12{"H12 transfer", f, {}, Trace::Mode::Lines, "dash", {}};
-  Trace p11{"H11 drive point", f, {}, Trace::Mode::Lines, "", {}};
+  Trace a11{"H11 drive point", f, {}, Trace::Mode::Lines, "", {}, {}, {}};
+  Trace a12{"H12 transfer", f, {}, Trace::Mode::Lines, "dash", {}, {}, {}};
+  Trace p11{"H11 drive point", f, {}, Trace::Mode::Lines, "", {}, {}, {}};
   for (std::size_t i = 0; i < f.size(); ++i) {
     std::complex<double> h11 = 0.0, h12 = 0.0;
     for (int r = 0; r < 3; ++r) {
@@ -104,18 +105,24 @@ AnalysisOutput campbell_analysis() {
   for (int m = 0; m < 8; ++m) {
     const double f0 = 40.0 + 95.0 * m + 8.0 * m * m;
     for (int dir = 0; dir < 2; ++dir) {
-      Trace t{fmt_mode(m, dir), speed, {}, Trace::Mode::Lines, dir ? "dash" : "", {}};
+      Trace t{fmt_mode(m, dir), speed, {}, Trace::Mode::Lines, dir ? "dash" : "", {}, {}, {}};
       for (double s : speed)
         t.y.push_back(f0 * (1.0 + (dir ? -1.0 : 1.0) * 0.04 * (m + 1) * s / 12000.0));
       plot.traces.push_back(t);
     }
   }
   for (int order : {1, 23}) {
-    Trace t{std::to_string(order) + "x", {0.0, 12000.0}, {0.0, order * 200.0},
-            Trace::Mode::Lines,          "dot",          {}};
+    Trace t{std::to_string(order) + "x",
+            {0.0, 12000.0},
+            {0.0, order * 200.0},
+            Trace::Mode::Lines,
+            "dot",
+            {},
+            {},
+            {}};
     plot.traces.push_back(t);
   }
-  Trace marks{"critical speeds", {}, {}, Trace::Mode::Markers, "", {}};
+  Trace marks{"critical speeds", {}, {}, Trace::Mode::Markers, "", {}, {}, {}};
   for (int m = 0; m < 8; ++m) {
     // Forward branch f = f0 (1 + c s) meets the 1x line f = s / 60 at s = f0 / (1/60 - f0 c).
     const double f0 = 40.0 + 95.0 * m + 8.0 * m * m;
@@ -151,7 +158,7 @@ AnalysisOutput orbit_analysis() {
   Plot plot{"orbits", "Orbits at 9000 rpm", "y [µm]", "z [µm]", false, false, true, {}};
   const double a[3] = {12.0, 7.5, 20.0}, b[3] = {6.0, 7.0, 4.0}, tilt[3] = {0.3, 0.0, -0.8};
   for (int k = 0; k < 3; ++k) {
-    Trace t{"bearing " + std::to_string(k + 1), {}, {}, Trace::Mode::Lines, "", {}};
+    Trace t{"bearing " + std::to_string(k + 1), {}, {}, Trace::Mode::Lines, "", {}, {}, {}};
     for (int i = 0; i <= 180; ++i) {
       const double phi = 2 * kPi * i / 180.0;
       const double u = a[k] * std::cos(phi), v = b[k] * std::sin(phi);
@@ -184,7 +191,7 @@ AnalysisOutput transient_analysis() {
             "time [s]",     "y [µm]",
             false,          false,
             false,          {}};
-  Trace y{"y", {}, {}, Trace::Mode::Lines, "", {}};
+  Trace y{"y", {}, {}, Trace::Mode::Lines, "", {}, {}, {}};
   y.x.reserve(n);
   y.y.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -202,6 +209,36 @@ AnalysisOutput transient_analysis() {
   table.add("time_s", "s", y.x);
   table.add("y_um", "µm", y.y);
   out.tables.push_back(table);
+  return out;
+}
+
+// A contact pattern: the line load over face width x roll angle as a heat map (a crowned tooth:
+// the load gathers at mid face), with blank (NaN) cells where the flank never meshes.
+AnalysisOutput contact_pattern_analysis() {
+  AnalysisOutput out;
+  out.name = "contact_pattern";
+  out.type = "tooth_contact";
+  out.run_time_s = 0.05;
+  Plot plot;
+  plot.name = "line_load_map";
+  plot.title = "Line load over the flank at 200 N m";
+  plot.x_label = "face position [mm]";
+  plot.y_label = "roll angle of gear 1 [deg]";
+  Trace map;
+  map.name = "200 N m";
+  map.z_label = "line load [N/mm]";
+  for (int k = 0; k < 40; ++k) map.x.push_back(0.5 + k);
+  for (int i = 0; i < 30; ++i) map.y.push_back(12.0 + 0.5 * i);
+  for (int i = 0; i < 30; ++i) {
+    std::vector<double> row;
+    for (int k = 0; k < 40; ++k) {
+      const double z = (map.x[static_cast<std::size_t>(k)] - 20.0) / 20.0;
+      row.push_back(i < 2 ? std::nan("") : 300.0 * (1.0 - z * z) * (1.0 + 0.3 * (i % 10 < 5)));
+    }
+    map.z.push_back(row);
+  }
+  plot.traces.push_back(map);
+  out.plots = {plot};
   return out;
 }
 
@@ -259,9 +296,10 @@ int main(int argc, char** argv) {
     info.model_path = model;
     info.model_sha256 = io::sha256_file(model);
     info.command_line = "make_sample_report " + std::string(argv[1]);
-    const std::vector<AnalysisOutput> outputs = {incomplete_analysis(), campbell_analysis(),
-                                                 frf_analysis(),        orbit_analysis(),
-                                                 transient_analysis(),  failed_analysis()};
+    const std::vector<AnalysisOutput> outputs = {
+        incomplete_analysis(),     campbell_analysis(),  frf_analysis(),
+        orbit_analysis(),          transient_analysis(), failed_analysis(),
+        contact_pattern_analysis()};
     std::size_t plots = 0;
     for (const auto& o : outputs) plots += o.plots.size();
     io::write_results(outdir, info, outputs, report::render_html(info, outputs));

@@ -109,10 +109,11 @@ void add_pair_output(AnalysisOutput& out, const PairModel& pm, bool several) {
   k.x_label = "rotation of gear 1 [deg]";
   k.y_label = "mesh stiffness [N/m]";
   k.traces.push_back(line(pm.ste_from_file      ? "from the STE file"
+                          : pm.ste_from_ltca    ? "from the LTCA table"
                           : pm.ste_from_contact ? "loaded tooth contact"
                                                 : "ISO 6336 (synthetic STE)",
                           angle, ste.column("stiffness_n_per_m").numbers));
-  if (pm.ste_from_file || pm.ste_from_contact) {
+  if (pm.ste_from_file || pm.ste_from_ltca || pm.ste_from_contact) {
     // The ISO-based curve for comparison (unshifted: its sample 0 is the contact entry).
     std::vector<double> iso_angle = scaled(pm.stiffness.pinion_angle_rad, kDeg);
     k.traces.push_back(line("ISO 6336-1 (geometry)", iso_angle, pm.stiffness.stiffness_n_per_m,
@@ -142,6 +143,7 @@ void add_pair_output(AnalysisOutput& out, const PairModel& pm, bool several) {
       "loaded tooth-contact analysis.",
       pm.pair->name, k_mean,
       pm.ste_from_file      ? fmt::format("STE file {}", pm.pair->ste_file)
+      : pm.ste_from_ltca    ? fmt::format("LTCA table {}", pm.pair->ltca_file)
       : pm.ste_from_contact ? std::string("loaded tooth contact analysis")
                             : std::string("synthetic STE"),
       pm.stiffness.iso.mesh_stiffness_n_per_m));

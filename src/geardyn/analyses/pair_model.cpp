@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/correlation.hpp"
+#include "geardyn/gear/ltca_table.hpp"
 
 namespace geardyn::analyses {
 
@@ -119,6 +121,57 @@ double modulus_of(const model::Model& m, const std::string& material) {
 
 }  // namespace
 
+namespace {
+
+// The STE of an imported LTCA table (ltca_file) at the pair's torque and mounting errors. The
+// table's own errors keep their file location; a point outside the table is reported at the model
+// key that put it there (torque, contact.mounting_h/v/j).
+gear::SteCurve ltca_ste(const model::Model& model, const PairModel& pm) {
+  const model::GearPair& p = *pm.pair;
+  const fs::path path = resolve_model_path(model, p.ltca_file);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(p.where, pm.key_path + ".ltca_file",
+                     "a readable LTCA table CSV file (relative to the model file)",
+                     fmt::format("\"{}\" ({} does not exist)", p.ltca_file, path.string()));
+  const model::ContactModelSpec& c = p.contact;
+  const SourceLocation contact_at = c.where.line > 0 ? c.where : p.where;
+  if (c.shaft_angle_error != 0.0)
+    throw InputError(contact_at, pm.key_path + ".contact.shaft_angle_error_deg",
+                     "0 with an ltca_file (the table has no shaft-angle-error axis)",
+                     fmt::format("{} deg", c.shaft_angle_error * 180.0 / units::kPi),
+                     "export the table at the shaft angle error, or remove the key");
+  gear::LtcaReadOptions read;
+  read.teeth = p.teeth1;
+  read.base_radius_m = pm.base_radius1_m;
+  const gear::LtcaTable table = gear::LtcaTable::read(path, read);
+  const gear::LtcaPoint point{p.torque, c.mounting_h, c.mounting_v, c.mounting_j};
+  try {
+    return table.ste(point, pm.base_radius1_m, p.ste_extrapolation, p.ste_shift,
+                     static_cast<std::size_t>(std::max(0, p.ste_samples)),
+                     p.ste_interpolation == model::SteInterpolationKind::Hold
+                         ? gear::SteInterpolation::Hold
+                         : gear::SteInterpolation::Linear);
+  } catch (const InputError& e) {
+    static const std::map<std::string, std::string, std::less<>> keys = {
+        {"torque", "torque"},
+        {"h", "contact.mounting_h"},
+        {"v", "contact.mounting_v"},
+        {"j", "contact.mounting_j"}};
+    const auto it = keys.find(e.key_path());
+    const bool contact = it != keys.end() && it->first != "torque";
+    throw InputError(contact ? contact_at : p.where,
+                     pm.key_path + "." + (it != keys.end() ? it->second : std::string("ltca_file")),
+                     fmt::format("{} (LTCA table {})", e.expected(), p.ltca_file), e.found(),
+                     e.hint().empty()
+                         ? "set ste_extrapolation = true to extrapolate, or add that point to the "
+                           "table"
+                         : e.hint());
+  }
+}
+
+}  // namespace
+
 fs::path resolve_model_path(const model::Model& model, const std::string& file) {
   const fs::path p(file);
   if (p.is_absolute() || model.source_file.empty()) return p;
@@ -138,6 +191,7 @@ std::size_t pair_index(const model::Model& model, const std::string& name) {
 
 std::string PairModel::ste_source_label() const {
   if (ste_from_file) return "file " + pair->ste_file;
+  if (ste_from_ltca) return "LTCA table " + pair->ltca_file;
   if (ste_from_contact) return "loaded tooth contact analysis";
   return "synthetic, ISO 6336";
 }
@@ -209,7 +263,11 @@ PairModel build_pair_model(const model::Model& model, std::size_t index) {
     pm.base_radius2_m = pm.geometry.wheel.mean_pitch_radius_m * cos_alpha_t;
     pm.static_force_n = synthetic.static_force_n;
 
-    if (p.ste_file.empty() && p.ste_source == model::SteSourceKind::ToothContact) {
+    if (!p.ltca_file.empty()) {
+      pm.ste = ltca_ste(model, pm);
+      pm.ste_from_ltca = true;
+      pm.ste_path = resolve_model_path(model, p.ltca_file);
+    } else if (p.ste_file.empty() && p.ste_source == model::SteSourceKind::ToothContact) {
       pm.ste = contact_ste(model, pm);
       pm.ste_from_contact = true;
     } else if (p.ste_file.empty()) {

@@ -2,7 +2,8 @@
 // One [[gear_pairs]] entry of a model turned into the inputs of the gear library (docs/theory.md
 // §11-13): the geometry (gear::gear_pair_geometry), the ISO 6336-1 stiffness options, the tooth
 // forces for drive and coast, and the static transmission error that drives the dynamic mesh model
-// — read from the pair's `ste_file` or synthetic, e = F_s / k, from the ISO 6336 mesh stiffness
+// — read from the pair's `ste_file`, interpolated in an imported LTCA table (`ltca_file`), from
+// the loaded tooth contact analysis, or synthetic, e = F_s / k, from the ISO 6336 mesh stiffness
 // curve.
 //
 // Conventions (stated once here, used by every gear analysis):
@@ -43,12 +44,13 @@ struct PairModel {
   std::optional<gear::SteCurve> ste;   ///< the STE the dynamic model uses (after ste_shift)
   bool ste_from_file = false;
   bool ste_from_contact = false;   ///< from the loaded tooth contact analysis (ste_source)
-  std::filesystem::path ste_path;  ///< resolved ste_file (empty: synthetic)
+  bool ste_from_ltca = false;      ///< from an imported LTCA table (ltca_file)
+  std::filesystem::path ste_path;  ///< resolved ste_file or ltca_file (empty: synthetic)
   double base_radius1_m = 0.0, base_radius2_m = 0.0;  ///< r_b1, r_b2 (see above)
   double static_force_n = 0.0;                        ///< F_s = T / r_b1
 
-  /// Where the STE comes from, for tables and notes: "file <name>", "loaded tooth contact
-  /// analysis" or "synthetic, ISO 6336".
+  /// Where the STE comes from, for tables and notes: "file <name>", "LTCA table <name>",
+  /// "loaded tooth contact analysis" or "synthetic, ISO 6336".
   std::string ste_source_label() const;
   /// m_e from the pair's inertias; InputError at the pair when they are missing.
   double equivalent_mass_kg() const;

@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 
 #include "geardyn/analyses/gear_helpers.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/gear/topography_csv.hpp"
 
 namespace geardyn::analyses {
 
@@ -58,6 +60,20 @@ gear::FlankModification flank(const model::FlankModificationSpec& f, double base
   m.pitch_deviation_m = f.pitch_deviations;
   m.where = f.where;
   return m;
+}
+
+// The flank's topography_file, read into the modification's TopographyMap (errors at the file's
+// line and column, or at the key when the file is missing).
+void add_topography(const model::Model& model, const model::FlankModificationSpec& f,
+                    const model::GearPair& p, const std::string& key, gear::FlankModification& m) {
+  if (f.topography_file.empty()) return;
+  const std::filesystem::path path = resolve_model_path(model, f.topography_file);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(f.where.line > 0 ? f.where : p.where, key + ".topography_file",
+                     "a readable topography CSV file (relative to the model file)",
+                     fmt::format("\"{}\" ({} does not exist)", f.topography_file, path.string()));
+  m.topography = gear::read_topography_csv(path);
 }
 
 gear::ElasticConstants elastic(const model::Model& m, const std::string& material) {
@@ -111,6 +127,8 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
                      "STE with ste_file");
   tc->pinion = flank(p.flank1, g.pinion.base_radius_m, p, (path + ".flank1").c_str());
   tc->wheel = flank(p.flank2, g.wheel.base_radius_m, p, (path + ".flank2").c_str());
+  add_topography(model, p.flank1, p, path + ".flank1", tc->pinion);
+  add_topography(model, p.flank2, p, path + ".flank2", tc->wheel);
   const model::ContactModelSpec& c = p.contact;
   tc->misalignment = contact_misalignment(model, tc->pair);
   tc->misalignment_m = tc->misalignment.at(p.torque);
@@ -349,6 +367,87 @@ Plot plot(std::string name, std::string title, std::string x, std::string y) {
   return p;
 }
 
+// A quantity of the load distribution over the flank of gear 1 as a heat map: face position
+// (slice centres) x roll angle of gear 1, on a uniform grid of the path of contact. Each slice's
+// candidate points (every mesh position and tooth pair) lie on the path s; where several fall on
+// one s (the cycles of a hunting period: different teeth) the largest is kept, so the map is the
+// envelope a tooth flank sees while it rolls through the mesh; between the points of a slice it
+// is linear in s, and blank beyond them.
+Trace flank_map(const ToothContactRunResult& r, const gear::ToothContactResult& res,
+                double (*value)(const gear::ContactPoint&), std::string z_label) {
+  const gear::ToothContact& contact = *r.model->contact;
+  const auto& g = contact.geometry();
+  const int slices = contact.options().slices;
+  const double path = g.path_of_contact_m;
+  // One grid row per sampled step of the path, p_bt / positions (at most 201 rows).
+  const double step = g.transverse_base_pitch_m / contact.options().positions;
+  const auto rows = static_cast<std::size_t>(
+      std::clamp(std::lround(path / step) + 1, static_cast<long>(2), static_cast<long>(201)));
+  std::vector<std::vector<std::pair<double, double>>> per_slice(static_cast<std::size_t>(slices));
+  for (const auto& c : res.distribution) {
+    const auto k = static_cast<std::size_t>(
+        std::clamp(static_cast<int>(c.face_m / g.face_width_m * slices), 0, slices - 1));
+    per_slice[k].emplace_back(c.path_m, value(c));
+  }
+  Trace t;
+  t.name = fmt::format("{:.6g} N m", res.torque_nm);
+  t.z_label = std::move(z_label);
+  for (int k = 0; k < slices; ++k) t.x.push_back((k + 0.5) * g.face_width_m / slices * 1e3);
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double s = path * static_cast<double>(i) / static_cast<double>(rows - 1);
+    t.y.push_back(contact.pinion_roll_length(s) / contact.base_radius1() * kDeg);
+  }
+  t.z.assign(rows, std::vector<double>(static_cast<std::size_t>(slices),
+                                       std::numeric_limits<double>::quiet_NaN()));
+  const double merge = 1e-9 * path;
+  for (std::size_t k = 0; k < per_slice.size(); ++k) {
+    auto& pts = per_slice[k];
+    std::sort(pts.begin(), pts.end());
+    std::vector<std::pair<double, double>> merged;
+    for (const auto& pt : pts)
+      if (!merged.empty() && pt.first - merged.back().first < merge)
+        merged.back().second = std::max(merged.back().second, pt.second);
+      else
+        merged.push_back(pt);
+    if (merged.empty()) continue;
+    for (std::size_t i = 0; i < rows; ++i) {
+      const double s = path * static_cast<double>(i) / static_cast<double>(rows - 1);
+      if (s < merged.front().first - merge || s > merged.back().first + merge) continue;
+      auto hi = std::lower_bound(merged.begin(), merged.end(), std::pair{s, -1e300});
+      if (hi == merged.end()) hi = std::prev(hi);
+      const auto lo = hi == merged.begin() ? hi : std::prev(hi);
+      const double f = hi->first > lo->first ? (s - lo->first) / (hi->first - lo->first) : 0.0;
+      t.z[i][k] = lo->second + std::clamp(f, 0.0, 1.0) * (hi->second - lo->second);
+    }
+  }
+  return t;
+}
+
+void add_flank_maps(AnalysisOutput& out, const ToothContactRunResult& r) {
+  const auto& res = r.torques[r.distribution_index];
+  const int cycles = r.model->contact->cycles();
+  const std::string envelope =
+      cycles > 1 ? fmt::format(", largest over the {} cycles of the hunting period", cycles) : "";
+  Plot load = plot("line_load_map",
+                   fmt::format("Line load over the flank of gear 1 (contact pattern) at T1 = "
+                               "{:.6g} N m{}",
+                               res.torque_nm, envelope),
+                   "face position [mm]", "roll angle of gear 1 [deg]");
+  load.traces.push_back(flank_map(
+      r, res, [](const gear::ContactPoint& c) { return c.line_load_n_per_m * 1e-3; },
+      "line load [N/mm]"));
+  Plot pressure = plot("pressure_map",
+                       fmt::format("Peak contact pressure over the flank of gear 1 at T1 = "
+                                   "{:.6g} N m{}",
+                                   res.torque_nm, envelope),
+                       "face position [mm]", "roll angle of gear 1 [deg]");
+  pressure.traces.push_back(flank_map(
+      r, res, [](const gear::ContactPoint& c) { return c.pressure_pa * 1e-6; },
+      "contact pressure [MPa]"));
+  out.plots.push_back(std::move(load));
+  out.plots.push_back(std::move(pressure));
+}
+
 void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
   const double pitch_deg = 360.0 / r.model->pair.pair->teeth1;
   const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
@@ -395,6 +494,7 @@ void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
     }
     out.plots.push_back(std::move(harris));
   }
+  add_flank_maps(out, r);
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ struct Table {
   bool has_column(const std::string& column_name) const;
 };
 
-/// One curve of a plot.
+/// One curve of a plot, or a heat map when `z` is given.
 struct Trace {
   enum class Mode { Lines, Markers, LinesMarkers };
   std::string name;
@@ -49,6 +49,12 @@ struct Trace {
   Mode mode = Mode::Lines;
   std::string dash;                ///< "" solid, "dash", "dot"
   std::vector<std::string> hover;  ///< optional per-point hover text
+  /// A heat map (a value over a grid, e.g. the line load over face width x roll angle): z[i][k]
+  /// is the value at (x[k], y[i]); x and y are the grid's increasing coordinates (z has y.size()
+  /// rows of x.size() values); NaN cells are left blank. Empty: a curve through (x[i], y[i]).
+  std::vector<std::vector<double>> z;
+  std::string z_label;  ///< heat map: the colour bar's title with unit, e.g. "line load [N/mm]"
+  bool is_heatmap() const { return !z.empty(); }
 };
 
 /// A 2D plot, rendered by the report with plotly.js.

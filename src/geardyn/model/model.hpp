@@ -329,6 +329,9 @@ struct FlankModificationSpec {
   double end_relief = 0.0, end_relief_length = 0.0;
   ReliefShapeKind end_relief_shape = ReliefShapeKind::Linear;
   std::vector<double> pitch_deviations;  ///< per tooth [m] (empty: none)
+  /// Topological modification map, CSV over roll angle x face position (relative to the model
+  /// file; empty: none).
+  std::string topography_file;
   SourceLocation where;
 };
 
@@ -341,6 +344,10 @@ struct ContactModelSpec {
   double misalignment = 0.0;                ///< f_ma in the plane of action over b [m]
   double axis_inclination_deviation = 0.0;  ///< f_Sigma_delta over b [m]
   double axis_deviation = 0.0;              ///< f_Sigma_beta over b [m]
+  double mounting_h = 0.0;                  ///< bevel / hypoid mounting error H [m]
+  double mounting_v = 0.0;                  ///< bevel / hypoid mounting error V [m]
+  double mounting_j = 0.0;                  ///< bevel / hypoid mounting error J [m]
+  double shaft_angle_error = 0.0;           ///< bevel / hypoid shaft angle error [rad]
   bool hunting_period = true;               ///< with pitch deviations: lcm(z1, z2) cycles
   /// [[gear_meshes]] name of the rotor's mesh of this pair (empty: none): its static
   /// deflection under the pair's tooth forces adds to the misalignment (docs/theory.md §15.7).
@@ -376,6 +383,8 @@ struct GearPair {
   bool load_correction = true;              ///< ISO 6336-1 stiffness correction for light loads
   double rim_thickness = kNaN, web_thickness = kNaN;  ///< gear blank with a web [m]
   std::string ste_file;  ///< STE CSV as written (relative to the model file)
+  /// LTCA table of another tool (TE, stiffness over angle x torque x H/V/J), as written.
+  std::string ltca_file;
   /// Without ste_file: the synthetic ISO 6336 STE or the loaded tooth contact analysis.
   SteSourceKind ste_source = SteSourceKind::Iso;
   SteInterpolationKind ste_interpolation = SteInterpolationKind::Linear;

@@ -51,12 +51,23 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
     t.fail(t.has("rim_thickness") ? "web_thickness" : "rim_thickness",
            "rim_thickness and web_thickness together (a gear blank with a web), or neither",
            "only one of them");
-  if (!t.has("ste_file") &&
+  // An LTCA table (ltca_file) is an STE source like ste_file: the two exclude each other and
+  // ste_source = "tooth_contact"; it takes ste_interpolation and ste_extrapolation.
+  if (t.has("ltca_file") && t.has("ste_file"))
+    t.fail("ltca_file", "either an ltca_file or an ste_file (each gives the STE)", "both");
+  if (t.has("ltca_file") && g.ste_source == SteSourceKind::ToothContact)
+    t.fail("ltca_file", "no ltca_file with ste_source = \"tooth_contact\" (each gives the STE)",
+           "both");
+  if (t.has("ltca_file") && t.has("ste_speed_rpm"))
+    t.fail("ste_speed_rpm", "no ste_speed_rpm with an ltca_file (its abscissa is the angle)",
+           "ste_speed_rpm");
+  if (!t.has("ste_file") && !t.has("ltca_file") &&
       (t.has("ste_interpolation") || t.has("ste_extrapolation") || t.has("ste_speed_rpm")))
     t.fail(t.has("ste_interpolation")   ? "ste_interpolation"
            : t.has("ste_extrapolation") ? "ste_extrapolation"
                                         : "ste_speed_rpm",
-           "an ste_file to apply to (the synthetic STE from ISO 6336 is sampled uniformly)",
+           "an ste_file (or ltca_file) to apply to (the synthetic STE from ISO 6336 is sampled "
+           "uniformly)",
            "no ste_file");
 }
 
@@ -234,6 +245,15 @@ std::vector<Field> gear_pair_fields_2() {
            "entering contact.")
           .note("synthetic STE e = F_s / k from the ISO 6336 mesh stiffness")
           .to(&GearPair::ste_file),
+      text("ltca_file",
+           "LTCA table exported by another tool (KISSsoft, MASTA, Romax, Gleason / Klingelnberg), "
+           "CSV relative to the model file (format in docs/input-files.md): loaded TE and "
+           "optionally the mesh stiffness over gear 1's angle in one mesh cycle x torque x the "
+           "mounting errors H, V, J, one row per sample on a regular grid; interpolated at the "
+           "pair's torque and [gear_pairs.contact] mounting_h, mounting_v, mounting_j, it gives "
+           "the STE like an ste_file (ste_extrapolation allows values outside the table).")
+          .note("no LTCA table")
+          .to(&GearPair::ltca_file),
       choice("ste_source", {"iso", "tooth_contact"},
              "Where the STE comes from when there is no ste_file: \"iso\", synthetic e = F_s / k "
              "from the ISO 6336 mesh stiffness; \"tooth_contact\", the loaded tooth contact "
@@ -373,6 +393,13 @@ Section flank_section(const char* name, const char* gear, FlankModificationSpec 
                   "period.")
               .def("[]")
               .to(&FlankModificationSpec::pitch_deviations),
+          text("topography_file",
+               "Topological modification: material removed over roll angle x face position, "
+               "CSV relative to the model file (format in docs/input-files.md: roll_angle_deg, "
+               "face_mm, removed_um columns on a regular grid); bilinear between its points, "
+               "constant beyond its edges, added to the modifications above.")
+              .note("no topography")
+              .to(&FlankModificationSpec::topography_file),
       })
       .choices(
           {{{{"tip_relief_start_diameter"}, {"tip_relief_start_roll_angle_deg"}}, false, {}},
@@ -421,6 +448,21 @@ Section contact_section() {
                  "plane of action.")
               .def("0.0")
               .to(&ContactModelSpec::axis_deviation),
+          number("mounting_h", kMetre,
+                 "Mounting error H of a bevel or hypoid pair: axial displacement of the pinion.")
+              .def("0.0")
+              .to(&ContactModelSpec::mounting_h),
+          number("mounting_v", kMetre,
+                 "Mounting error V of a bevel or hypoid pair: change of the offset.")
+              .def("0.0")
+              .to(&ContactModelSpec::mounting_v),
+          number("mounting_j", kMetre,
+                 "Mounting error J of a bevel or hypoid pair: axial displacement of the wheel.")
+              .def("0.0")
+              .to(&ContactModelSpec::mounting_j),
+          number("shaft_angle_error_deg", kDegree, "Shaft angle error of a bevel or hypoid pair.")
+              .def("0.0")
+              .to(&ContactModelSpec::shaft_angle_error),
           boolean("hunting_period",
                   "With pitch deviations, compute the hunting period lcm(z1, z2) mesh cycles "
                   "(false: the first mesh cycle only).")

@@ -169,13 +169,46 @@ json axis_layout(const std::string& label, bool log, double magnitude) {
           {"exponentformat", plain ? "none" : "power"}};
 }
 
+// A heat map trace: the grid is drawn as it is (no thinning: its size is the analysis's choice);
+// NaN cells become null, which plotly leaves blank. The colour bar carries the z label.
+json heatmap_trace(const Trace& t, const ReportOptions& options) {
+  auto rounded = [&](const std::vector<double>& v) {
+    json a = json::array();
+    for (double x : v)
+      a.push_back(std::isfinite(x) ? json(round_to_digits(x, options.display_digits + 2))
+                                   : json(nullptr));
+    return a;
+  };
+  json z = json::array();
+  for (const std::vector<double>& row : t.z) z.push_back(rounded(row));
+  return {{"type", "heatmap"},
+          {"name", plotly_text(t.name)},
+          {"x", rounded(t.x)},
+          {"y", rounded(t.y)},
+          {"z", std::move(z)},
+          {"colorscale", "Viridis"},
+          {"hoverongaps", false},
+          {"colorbar",
+           {{"title", {{"text", plotly_text(t.z_label)}, {"side", "right"}}},
+            {"thickness", 14},
+            {"exponentformat", "power"}}},
+          {"hovertemplate", "x = %{x}<br>y = %{y}<br>" + plotly_text(t.z_label) +
+                                " = %{z}<extra>%{fullData.name}</extra>"}};
+}
+
 // The figure of one plot: {id, data, layout, config} for Plotly.newPlot; `thinned` is set when a
 // trace was thinned for display.
 json plot_figure(const Plot& plot, const std::string& div_id, const ReportOptions& options,
                  bool& thinned) {
   thinned = false;
   json data = json::array();
+  bool heatmap = false;
   for (const Trace& t : plot.traces) {
+    if (t.is_heatmap()) {
+      data.push_back(heatmap_trace(t, options));
+      heatmap = true;
+      continue;
+    }
     const ThinnedTrace kept = thin(t, options.max_points_per_trace);
     thinned = thinned || kept.thinned;
     json x = json::array(), y = json::array();
@@ -246,7 +279,7 @@ json plot_figure(const Plot& plot, const std::string& div_id, const ReportOption
         {"font", {{"size", 15}}}}},
       {"xaxis", std::move(xaxis)},
       {"yaxis", std::move(yaxis)},
-      {"showlegend", n_traces > 1},
+      {"showlegend", n_traces > 1 && !heatmap},
       {"legend", std::move(legend)},
       {"hovermode", "closest"},
       {"height", (plot.equal_aspect ? 520 : 430) + 22 * legend_rows},
