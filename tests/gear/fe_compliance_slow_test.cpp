@@ -91,10 +91,14 @@ TEST(FeComplianceSlow, SingleToothLineLoadAtRootPitchAndTip) {
   EXPECT_NEAR(growth_fe / growth_an, 1.0, 0.15);
 }
 
-// Mesh convergence and the segment's boundary. Quadratic tets converge in energy as h^2: from
-// 0.5 m to 0.35 m at the loaded tooth the line-load compliance changes by < 3 % (measured ~2 %;
-// 0.35 -> 0.25 m: < 2 %, docs/validation.md). Fixed cut faces 1.5 pitches from the loaded tooth
-// (3 teeth) instead of 3.5 (7 teeth) stiffen the body: the compliance is lower at every radius.
+// Mesh convergence and the segment's boundary. A displacement FE model is too stiff and
+// converges from below, for quadratic tets as h^2 in energy: from 0.5 m to 0.35 m at the loaded
+// tooth the line-load compliance grows by 3.1 ... 3.6 % (measured), from 0.35 m to 0.25 m by
+// 1.7 ... 1.8 % (3 teeth, docs/validation.md): the ratio of the changes 1.95 matches the h^2
+// ratio (0.5^2 - 0.35^2) / (0.35^2 - 0.25^2) = 2.1, so the error left at 0.35 m is ~3.4 %, at
+// the default 0.25 m ~1.7 % (Richardson). Asserted: growth on refinement, below 5 %. Fixed cut
+// faces 1.5 pitches from the loaded tooth (3 teeth) instead of 3.5 (7 teeth) stiffen the body:
+// the compliance is lower at every radius.
 TEST(FeComplianceSlow, MeshConvergenceAndSegmentBoundary) {
   const Fixture& f = fixture();
   const double b = f.g.face_width_m, ga = f.g.path_of_contact_m;
@@ -107,16 +111,18 @@ TEST(FeComplianceSlow, MeshConvergenceAndSegmentBoundary) {
     const double t3 = fe_line(three, si, b);
     std::printf("s = %.3f mm: 0.35 m %.4e, 0.5 m %.4e (change %.2f %%), 3 teeth %.4e\n", si * 1e3,
                 fine, c, 100.0 * (fine - c) / fine, t3);
-    EXPECT_NEAR(c / fine, 1.0, 0.03);
+    EXPECT_GT(fine, c);
+    EXPECT_LT(fine / c - 1.0, 0.05);
     EXPECT_LT(t3, c);
   }
 }
 
 // The pair by both routes, unmodified spur pair at 300 N/mm: the mean secant mesh stiffness of
 // the FE route is higher than the analytic route's by the single-tooth difference above (the
-// pair compliance is the sum of two teeth of FE / analytic ~ 0.75 ... 0.86): agreement within
-// 30 % asserted, measured in docs/validation.md; both TE curves are periodic over the cycle with
-// the same double-contact / single-contact pattern (the TE is larger in single contact).
+// pair compliance is the sum of two teeth of FE / analytic ~ 0.75 ... 0.86). Measured: mean
+// secant stiffness FE 4.487e8, analytic 3.614e8 N/m (1.24; ISO 6336-1 c_gamma_alpha b 3.748e8),
+// mean loaded TE 14.2 vs 17.8 um (0.80). Asserted within 30 % (the single-tooth band); the TE
+// is larger in single than in double contact in the FE route too.
 TEST(FeComplianceSlow, LoadedTeAndMeshStiffnessOfBothRoutes) {
   const Fixture& f = fixture();
   const SliceCompliance slices(f.teeth, 0.0);
@@ -162,8 +168,9 @@ TEST(FeComplianceSlow, LoadedTeAndMeshStiffnessOfBothRoutes) {
 // (one face hat, 2 grid steps wide) at mid path, fitted by exp(-|y - y0| / lambda) (least
 // squares on the logarithm) over 1 m <= |y - y0| <= 2.5 m, where the kernel is past the load's
 // own width and clear of the face ends. The Pasternak layer's lambda is the fitted one. Measured:
-// lambda ~ 0.9 m (docs/validation.md); asserted: a decay length of the order of the tooth
-// height 2.25 m (0.3 ... 2 m) and a good exponential fit (residual < 10 %).
+// lambda = 6.41 mm = 2.14 m = 0.95 tooth heights (2.25 m), residual 0.6 % (docs/validation.md);
+// asserted: a decay length of the order of the tooth height (0.5 ... 1.5 of it, the range of
+// plate-strip decay lengths for a cantilever of that height) and an exponential fit within 5 %.
 TEST(FeComplianceSlow, FaceDecayLengthCalibratesCouplingLength) {
   const Fixture& f = fixture();
   const double m = f.g.normal_module_m, ga = f.g.path_of_contact_m;
@@ -197,9 +204,9 @@ TEST(FeComplianceSlow, FaceDecayLengthCalibratesCouplingLength) {
   std::printf(
       "face decay length lambda = %.3f mm = %.3f m = %.3f tooth heights; fit residual %.3f\n",
       lambda * 1e3, lambda / m, lambda / (2.25 * m), worst);
-  EXPECT_GT(lambda, 0.3 * m);
-  EXPECT_LT(lambda, 2.0 * m);
-  EXPECT_LT(worst, 0.10);
+  EXPECT_GT(lambda, 0.5 * 2.25 * m);
+  EXPECT_LT(lambda, 1.5 * 2.25 * m);
+  EXPECT_LT(worst, 0.05);
 }
 
 }  // namespace

@@ -459,7 +459,9 @@ Section contact_section() {
               .to(&ContactModelSpec::fe_face_points),
           integer("fe_teeth",
                   "compliance = \"fe\": teeth of the meshed gear segment (odd; the loaded "
-                  "tooth in the middle; capped at the largest odd number <= z / 2).")
+                  "tooth in the middle; capped at the largest odd number <= z / 2). The "
+                  "segment's cut faces are fixed: more teeth put them farther from the loaded "
+                  "tooth and the body closer to a full disc (docs/theory.md §15.7).")
               .def("7")
               .ge(1)
               .le(7)
