@@ -11,6 +11,7 @@
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/topography_csv.hpp"
+#include "geardyn/gear/fe_compliance.hpp"
 
 namespace geardyn::analyses {
 
@@ -111,6 +112,46 @@ gear::SteCurve contact_ste(const model::Model& model, const PairModel& pm) {
       .shifted(p.ste_shift, static_cast<std::size_t>(std::max(0, p.ste_samples)));
 }
 
+namespace {
+
+// The compliance route of [gear_pairs.contact] compliance (docs/theory.md §15.3, §15.8).
+std::unique_ptr<gear::ContactCompliance> make_compliance(const gear::ToothCompliance& teeth,
+                                                         const gear::ToothComplianceOptions& co,
+                                                         const model::ContactModelSpec& c) {
+  if (c.compliance == model::ContactComplianceKind::Analytic)
+    return std::make_unique<gear::SliceCompliance>(teeth, c.coupling_length);
+  gear::FeComplianceOptions fo;
+  fo.mesh_size = c.fe_mesh_size;
+  fo.profile_points = c.fe_profile_points;
+  fo.face_points = c.fe_face_points;
+  fo.segment_teeth = c.fe_teeth;
+  fo.teeth = co;
+  return std::make_unique<gear::FeCompliance>(teeth, fo);
+}
+
+// The note saying which compliance route ran, its mesh and its cost.
+std::string compliance_note(const ToothContactModel& m) {
+  const model::ContactModelSpec& c = m.pair.pair->contact;
+  const auto* fe = dynamic_cast<const gear::FeCompliance*>(m.compliance.get());
+  if (fe == nullptr)
+    return fmt::format(
+        "'{}': analytic compliance route (potential-energy tooth, Sainsot foundation, {}).",
+        m.pair.pair->name, c.coupling_length > 0.0 ? "shear-layer coupling" : "uncoupled slices");
+  const gear::ToothInfluence& p = fe->pinion();
+  const gear::ToothInfluence& w = fe->wheel();
+  return fmt::format(
+      "'{}': FE compliance route (docs/theory.md §15.8): tet10 segments of {} teeth fixed at "
+      "bore and cut faces, element size {:.3g} m_n at the loaded tooth; pinion {} nodes / {} "
+      "DOFs, wheel {} nodes / {} DOFs; grid {} profile x {} face points per gear; mesh + "
+      "factorisation {:.3g} s, load cases {:.3g} s (both gears); Hertzian approach analytic; "
+      "coupling_length not used.",
+      m.pair.pair->name, c.fe_teeth, c.fe_mesh_size, p.nodes, p.dofs, w.nodes, w.dofs,
+      p.path.size(), p.face.size(), p.mesh_seconds + w.mesh_seconds,
+      p.solve_seconds + w.solve_seconds);
+}
+
+}  // namespace
+
 std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
                                                              const PairModel& pm) {
   auto tc = std::make_shared<ToothContactModel>();
@@ -140,7 +181,7 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   co.pinion = elastic(model, p.material1);
   co.wheel = elastic(model, p.material2);
   tc->teeth = std::make_unique<gear::ToothCompliance>(g, co);
-  tc->compliance = std::make_unique<gear::SliceCompliance>(*tc->teeth, c.coupling_length);
+  tc->compliance = make_compliance(*tc->teeth, co, c);
   // The gear library reports keys as modifications1.<key>; the model calls them flank1.<key>.
   gear::GearPairGeometry keyed = g;
   keyed.spec.key_path = path;
@@ -530,6 +571,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
           : std::string("slices uncoupled (coupling_length = 0): a point-like contact spreads "
                         "no load to its neighbours, which over-estimates the load peaks at "
                         "modification edges")));
+  out.notes.push_back(compliance_note(m));
   out.notes.push_back(misalignment_note(m));
   for (const auto& res : r.torques) {
     const double covered = [&] {

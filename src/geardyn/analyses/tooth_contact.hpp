@@ -34,7 +34,7 @@ struct ToothContactModel {
   gear::FlankModification pinion, wheel;
   gear::ToothContactOptions options;
   std::unique_ptr<gear::ToothCompliance> teeth;
-  std::unique_ptr<gear::SliceCompliance> compliance;
+  std::unique_ptr<gear::ContactCompliance> compliance;  ///< SliceCompliance or FeCompliance
   std::unique_ptr<gear::ToothContact> contact;
   double misalignment_m = 0.0;       ///< f_ma used at the pair's torque (misalignment.at(T_pair))
   ContactMisalignment misalignment;  ///< given and from the rotor's deflection

@@ -336,6 +336,8 @@ struct FlankModificationSpec {
 };
 
 /// The slice model of the loaded tooth contact analysis ([gear_pairs.contact]).
+enum class ContactComplianceKind { Analytic, Fe };
+
 struct ContactModelSpec {
   int positions = 64;  ///< mesh positions per mesh cycle
   int slices = 40;     ///< slices over the face width
@@ -352,6 +354,12 @@ struct ContactModelSpec {
   /// [[gear_meshes]] name of the rotor's mesh of this pair (empty: none): its static
   /// deflection under the pair's tooth forces adds to the misalignment (docs/theory.md §15.7).
   std::string deflection_mesh;
+  /// Compliance route (docs/theory.md §15.8): analytic slices or FE influence coefficients.
+  ContactComplianceKind compliance = ContactComplianceKind::Analytic;
+  double fe_mesh_size = 0.25;  ///< element size at the loaded tooth / m_n
+  int fe_profile_points = 9;   ///< FE grid: roll positions over the active profile
+  int fe_face_points = 0;      ///< FE grid: face positions (0: one per m_n / 2, >= 5)
+  int fe_teeth = 7;            ///< teeth of the meshed segment (odd)
   SourceLocation where;
 };
 

@@ -476,6 +476,46 @@ Section contact_section() {
                "width adds to the misalignment (docs/theory.md §15.7).")
               .note("the misalignment is the given one")
               .to(&ContactModelSpec::deflection_mesh),
+          choice("compliance", {"analytic", "fe"},
+                 "Compliance of the tooth pairs (docs/theory.md §15.8): \"analytic\", slices "
+                 "with the potential-energy tooth, Sainsot's foundation and the shear-layer "
+                 "coupling_length; \"fe\", influence coefficients from a tet10 mesh of an "
+                 "involute segment of each gear (fixed at the bore and the segment's cut faces) "
+                 "plus the analytic Hertz term; spur external pairs; the slices couple through "
+                 "the FE (coupling_length is not used).")
+              .def("\"analytic\"")
+              .to_enum(&ContactModelSpec::compliance,
+                       {ContactComplianceKind::Analytic, ContactComplianceKind::Fe}),
+          number("fe_mesh_size", kNoUnit,
+                 "compliance = \"fe\": element size at the loaded tooth, in modules (4x that, "
+                 "at most one module, in the rest of the body).")
+              .def("0.25")
+              .ge(0.05)
+              .le(1.0)
+              .to(&ContactModelSpec::fe_mesh_size),
+          integer("fe_profile_points",
+                  "compliance = \"fe\": load / receiver points over the active profile (the "
+                  "influence is interpolated linearly between them).")
+              .def("9")
+              .ge(3)
+              .le(64)
+              .to(&ContactModelSpec::fe_profile_points),
+          integer("fe_face_points",
+                  "compliance = \"fe\": load / receiver points over the face width, hat loads "
+                  "between them; 0: one per half module, at least 5.")
+              .def("0")
+              .ge(0)
+              .le(201)
+              .to(&ContactModelSpec::fe_face_points),
+          integer("fe_teeth",
+                  "compliance = \"fe\": teeth of the meshed gear segment (odd; the loaded "
+                  "tooth in the middle; capped at the largest odd number <= z / 2). The "
+                  "segment's cut faces are fixed: more teeth put them farther from the loaded "
+                  "tooth and the body closer to a full disc (docs/theory.md §15.8).")
+              .def("7")
+              .ge(1)
+              .le(7)
+              .to(&ContactModelSpec::fe_teeth),
       });
 }
 
