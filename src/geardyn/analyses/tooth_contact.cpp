@@ -12,6 +12,7 @@
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/topography_csv.hpp"
 #include "geardyn/gear/fe_compliance.hpp"
+#include "geardyn/gear/tooth_forces.hpp"
 
 namespace geardyn::analyses {
 
@@ -87,6 +88,39 @@ gear::ElasticConstants elastic(const model::Model& m, const std::string& materia
   return e;
 }
 
+// Bevel / hypoid pairs (docs/theory.md §15.9): the ease-off and the mounting errors into the
+// options; returns the geometry the compliance is built on (the virtual cylindrical pair with
+// the mounting errors' centre distance change; the pair itself for a cylindrical pair).
+gear::GearPairGeometry bevel_contact(const model::GearPair& p, const gear::GearPairGeometry& g,
+                                     const std::string& path, gear::ToothContactOptions& o) {
+  const model::EaseOffSpec& e = p.ease_off;
+  o.ease_off = {e.profile_crowning, e.length_crowning, e.bias, e.profile_slope, e.length_slope};
+  const model::ContactModelSpec& c = p.contact;
+  o.mounting = {c.mounting_h, c.mounting_v, c.mounting_j, c.shaft_angle_error, true};
+  const bool given = !o.ease_off.zero() || !o.mounting.zero();
+  if (!gear::is_bevel(g.spec.type)) {
+    if (given)
+      throw InputError(e.where.line > 0 && !o.ease_off.zero() ? e.where : p.where,
+                       path + (o.ease_off.zero() ? ".contact.mounting_h" : ".ease_off"),
+                       "no ease-off or mounting errors H, V, J, shaft angle error (bevel and "
+                       "hypoid pairs only)",
+                       fmt::format("a {} pair with them", gear::to_string(g.spec.type)),
+                       "use [gear_pairs.flank1/2] and contact.misalignment for cylindrical pairs");
+    return g;
+  }
+  // The loaded pinion flank from hand and rotation, as the tooth forces take it.
+  const auto hand = p.hand == model::Hand::Left ? gear::SpiralHand::Left : gear::SpiralHand::Right;
+  const auto rot = p.rotation == model::GearRotation::Clockwise ? gear::Rotation::Clockwise
+                                                                : gear::Rotation::CounterClockwise;
+  o.mounting.pinion_concave_loaded =
+      g.spec.type == gear::GearType::StraightBevel ||
+      gear::loaded_flank(hand, rot, gear::MemberRole::Driving) == gear::Flank::Concave;
+  gear::GearPairGeometry keyed = g;
+  keyed.spec.key_path = path;
+  return gear::virtual_cylindrical_pair(
+      keyed, gear::mounting_effect(keyed, o.mounting).centre_distance_change_m);
+}
+
 }  // namespace
 
 std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model& model,
@@ -159,13 +193,6 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   const model::GearPair& p = *tc->pair.pair;
   const gear::GearPairGeometry& g = tc->pair.geometry;
   const std::string path = tc->pair.key_path;
-  if (gear::is_bevel(g.spec.type))
-    throw InputError(p.where, path + ".type",
-                     "a spur or helical pair (the slice model of tooth_contact is for "
-                     "cylindrical gears)",
-                     fmt::format("\"{}\"", gear::to_string(g.spec.type)),
-                     "bevel and hypoid pairs are not yet supported by tooth_contact; give their "
-                     "STE with ste_file");
   tc->pinion = flank(p.flank1, g.pinion.base_radius_m, p, (path + ".flank1").c_str());
   tc->wheel = flank(p.flank2, g.wheel.base_radius_m, p, (path + ".flank2").c_str());
   add_topography(model, p.flank1, p, path + ".flank1", tc->pinion);
@@ -180,7 +207,7 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   gear::ToothComplianceOptions co;
   co.pinion = elastic(model, p.material1);
   co.wheel = elastic(model, p.material2);
-  tc->teeth = std::make_unique<gear::ToothCompliance>(g, co);
+  tc->teeth = std::make_unique<gear::ToothCompliance>(bevel_contact(p, g, path, tc->options), co);
   tc->compliance = make_compliance(*tc->teeth, co, c);
   // The gear library reports keys as modifications1.<key>; the model calls them flank1.<key>.
   gear::GearPairGeometry keyed = g;
@@ -236,7 +263,7 @@ double mean(const std::vector<double>& v) {
 }
 
 Table te_table(const ToothContactRunResult& r) {
-  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  const double rb1 = r.model->contact->force_radius();
   const double pitch_deg = 360.0 / r.model->pair.pair->teeth1;
   Table t;
   t.name = "transmission_error";
@@ -280,7 +307,7 @@ Table te_table(const ToothContactRunResult& r) {
 }
 
 Table summary_table(const ToothContactRunResult& r) {
-  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  const double rb1 = r.model->contact->force_radius();
   Table t;
   t.name = "summary";
   t.title =
@@ -316,7 +343,7 @@ Table summary_table(const ToothContactRunResult& r) {
 }
 
 Table harmonics_table(const ToothContactRunResult& r) {
-  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  const double rb1 = r.model->contact->force_radius();
   Table t;
   t.name = "te_harmonics";
   t.title =
@@ -491,7 +518,7 @@ void add_flank_maps(AnalysisOutput& out, const ToothContactRunResult& r) {
 
 void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
   const double pitch_deg = 360.0 / r.model->pair.pair->teeth1;
-  const double rb1 = r.model->pair.geometry.pinion.base_radius_m;
+  const double rb1 = r.model->contact->force_radius();
   Plot te = plot("transmission_error", "Loaded transmission error over the mesh cycle",
                  "rotation of gear 1 [deg]", "TE of gear 1 [urad]");
   Plot k = plot("mesh_stiffness", "Mesh stiffness (tangent) over the mesh cycle",
@@ -538,6 +565,32 @@ void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
   add_flank_maps(out, r);
 }
 
+// Bevel / hypoid pairs: what the virtual pair and the mounting errors make of the pair, and the
+// first-order pattern centre (docs/theory.md §15.9).
+std::string bevel_note(const ToothContactModel& m) {
+  const gear::ToothContact& tc = *m.contact;
+  const gear::GearPairGeometry& v = tc.geometry();
+  const gear::MountingEffect& me = tc.mounting();
+  const gear::EaseOff& e = m.options.ease_off;
+  const auto [xi, eta] = gear::ease_off_centre(e, 0.5 * me.profile_gradient * v.path_of_contact_m,
+                                               0.5 * me.lead_slope_m);
+  return fmt::format(
+      "'{}': {} pair through its virtual cylindrical pair at mid face (ISO 10300-1; docs/theory.md "
+      "§15.9, an approximation: no cone taper of the compliance, straight contact lines, hypoid "
+      "offset via the virtual pair only): z_v = {:.4g} / {:.4g}, centre distance {:.6g} m, "
+      "eps_alpha = {:.4g}, F_bt = T1 / {:.6g} m. Mounting errors H = {:.6g} m, V = {:.6g} m, "
+      "J = {:.6g} m, Delta Sigma = {:.4g} deg (Gleason: H, J > 0 out of mesh; {} pinion flank "
+      "loaded): approach d.n = {:.4g} m, lead slope {:.4g} m (heel minus toe), centre distance "
+      "change {:.4g} m, profile gradient {:.4g}; first-order pattern centre (15.24) xi = {:.3g}, "
+      "eta = {:.3g} (NaN: the ease-off has no bounded minimum).",
+      m.pair.pair->name, gear::to_string(m.pair.geometry.spec.type), v.pinion.virtual_teeth,
+      v.wheel.virtual_teeth, v.centre_distance_m, v.transverse_contact_ratio, tc.force_radius(),
+      m.options.mounting.h_m, m.options.mounting.v_m, m.options.mounting.j_m,
+      m.options.mounting.shaft_angle_rad / units::kRadPerDegree,
+      m.options.mounting.pinion_concave_loaded ? "concave" : "convex", me.normal_approach_m,
+      me.lead_slope_m, me.centre_distance_change_m, me.profile_gradient, xi + 0.0, eta + 0.0);
+}
+
 }  // namespace
 
 AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
@@ -573,6 +626,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
                         "modification edges")));
   out.notes.push_back(compliance_note(m));
   out.notes.push_back(misalignment_note(m));
+  if (m.contact->bevel()) out.notes.push_back(bevel_note(m));
   for (const auto& res : r.torques) {
     const double covered = [&] {
       int n = 0;

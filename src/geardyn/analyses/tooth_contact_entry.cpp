@@ -74,6 +74,11 @@ double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
     for (double k : t.stiffness_tangent_n_per_m) sum += k;
     return sum / static_cast<double>(t.stiffness_tangent_n_per_m.size());
   }
+  if (q.quantity == "pattern_centre_face" || q.quantity == "pattern_centre_profile") {
+    unit.clear();
+    const auto [xi, eta] = gear::pattern_centre(*r.model->contact, t);
+    return q.quantity == "pattern_centre_face" ? eta : xi;
+  }
   throw std::runtime_error(fmt::format("tooth_contact offers no scalar '{}'", q.quantity));
 }
 
@@ -106,7 +111,8 @@ AnalysisType tooth_contact_analysis() {
   type.declare = [] {
     auto d = declaration<ToothContactSettings>(
         "tooth_contact",
-        "Loaded tooth contact analysis of a spur or helical pair (slice model): transmission "
+        "Loaded tooth contact analysis of a spur, helical, bevel or hypoid pair (slice model; "
+        "bevel and hypoid pairs through their virtual cylindrical pair): transmission "
         "error and its mesh-order harmonics per torque, mesh stiffness, load sharing, load "
         "distribution over the flank, contact pressure, face-load factor K_Hbeta.");
     d.fields = keys();
@@ -123,6 +129,16 @@ AnalysisType tooth_contact_analysis() {
       {"te_harmonic", "m", "0-peak TE amplitude at mesh order `mode`, first torque.", {"mode"}},
       {"face_load_factor", "", "Face-load factor K_Hbeta at torque `mode`.", {"mode"}},
       {"mesh_stiffness", "N/m", "Mean tangent mesh stiffness at torque `mode`.", {"mode"}},
+      {"pattern_centre_face",
+       "",
+       "Contact pattern centre along the face at torque `mode`: load-weighted mean of 2 y / b - "
+       "1 (-1: y = 0, a bevel pair's toe; +1: y = b, its heel).",
+       {"mode"}},
+      {"pattern_centre_profile",
+       "",
+       "Contact pattern centre on the pinion's profile at torque `mode`: load-weighted mean of "
+       "its normalised roll angle (-1: start of active profile, +1: tip).",
+       {"mode"}},
   };
   type.scalar = scalar;
   return type;

@@ -175,7 +175,8 @@ ToothCompliance::ToothCompliance(const GearPairGeometry& geometry,
     t.rb = m.base_radius_m;
     t.ra = m.tip_radius_m;
     t.rf = m.root_radius_m;
-    const double half_ref = (kPi / 2.0 + 2.0 * m.profile_shift * std::tan(alpha_n)) / m.teeth;
+    const double half_ref =
+        (kPi / 2.0 + 2.0 * m.profile_shift * std::tan(alpha_n)) / m.virtual_teeth;
     t.c0 = internal ? half_ref - inv_t : half_ref + inv_t;
     auto beta = [&](double a) { return internal ? t.c0 + inv(a) : t.c0 - inv(a); };
     const double alpha_tip = std::acos(t.rb / t.ra);
@@ -203,7 +204,7 @@ ToothCompliance::ToothCompliance(const GearPairGeometry& geometry,
       }
       // End of the rack-tip flat on the root circle (transverse): its half width is
       // flat m_n / cos(beta), rolled on the reference radius.
-      theta_f = kPi / m.teeth - flat * m_n / cos_beta / m.pitch_radius_m;
+      theta_f = kPi / m.virtual_teeth - flat * m_n / cos_beta / m.pitch_radius_m;
     } else {
       t.alpha_root = std::acos(t.rb / t.rf);
       t.y_root = t.rf * std::cos(beta(t.alpha_root));

@@ -258,11 +258,8 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
       wheel_(std::move(wheel)),
       compliance_(&compliance),
       options_(options) {
+  setup_bevel(geometry);
   const auto& g = geometry_;
-  if (is_bevel(g.spec.type))
-    fail(g, "type", "a cylindrical gear pair (spur or helical) for the slice model",
-         std::string(to_string(g.spec.type)),
-         "bevel and hypoid pairs go through their virtual cylindrical gears");
   if (options_.positions < 4)
     fail(g, "contact.positions", "at least 4 mesh positions per cycle",
          std::to_string(options_.positions));
@@ -331,9 +328,49 @@ ToothContact::ToothContact(const GearPairGeometry& geometry, FlankModification p
   check_mod(wheel_, "2", g.wheel, internal_ ? rho2_high_ : rho2_low_,
             internal_ ? rho2_low_ : rho2_high_);
 
+  if (!bevel_) nominal_rho1_low_ = rho1_low_, nominal_rho1_high_ = rho1_high_;
   const bool pitch = !pinion_.pitch_deviation_m.empty() || !wheel_.pitch_deviation_m.empty();
   cycles_ = 1;
   if (pitch && options_.hunting_period) cycles_ = std::lcm(g.pinion.teeth, g.wheel.teeth);
+}
+
+// Bevel / hypoid pairs: the slice model runs on the virtual cylindrical pair, its centre distance
+// changed by the mounting errors; the ease-off stays attached to the pinion's nominal active
+// profile (docs/theory.md §15.9).
+void ToothContact::setup_bevel(const GearPairGeometry& given) {
+  if (!is_bevel(given.spec.type)) {
+    if (!options_.ease_off.zero())
+      fail(given, "ease_off", "no ease-off (it applies to bevel and hypoid pairs)", "an ease-off",
+           "use [gear_pairs.flank1/2] for a cylindrical pair");
+    if (!options_.mounting.zero())
+      fail(given, "contact.mounting_h",
+           "no mounting errors H, V, J or shaft angle error (bevel and hypoid pairs only)",
+           "a mounting error", "use misalignment or axis_deviation for a cylindrical pair");
+    force_radius_ = given.pinion.base_radius_m;
+    return;
+  }
+  bevel_ = true;
+  mounting_ = mounting_effect(given, options_.mounting);
+  geometry_ = virtual_cylindrical_pair(given, mounting_.centre_distance_change_m);
+  const GearPairGeometry nominal = virtual_cylindrical_pair(given);
+  const double rb1 = nominal.pinion.base_radius_m, rb2 = nominal.wheel.base_radius_m;
+  nominal_rho1_high_ =
+      std::sqrt(nominal.pinion.tip_radius_m * nominal.pinion.tip_radius_m - rb1 * rb1);
+  nominal_rho1_low_ =
+      nominal.centre_distance_m * std::sin(nominal.working_pressure_angle_rad) -
+      std::sqrt(nominal.wheel.tip_radius_m * nominal.wheel.tip_radius_m - rb2 * rb2);
+  // F_t = T1 / r_m1 at the real pinion's mean point, F_bt = F_t / cos(alpha_t) (ISO 10300-1).
+  force_radius_ =
+      given.pinion.mean_pitch_radius_m * std::cos(nominal.transverse_pressure_angle_rad);
+}
+
+double ToothContact::bevel_gap(double rho1, double y) const {
+  if (!bevel_) return 0.0;
+  const double b = geometry_.face_width_m;
+  const double xi = ease_off_xi(rho1), eta = 2.0 * y / b - 1.0;
+  const double mid = 0.5 * (nominal_rho1_low_ + nominal_rho1_high_);
+  return options_.ease_off.at(xi, eta) + mounting_.lead_slope_m * (y / b - 0.5) +
+         mounting_.profile_gradient * (rho1 - mid);
 }
 
 double ToothContact::wheel_roll_length(double s) const {
@@ -382,6 +419,7 @@ double ToothContact::gap(double s, double y, int pair, int cycle) const {
   const double w_root = wheel_roll_length(g.path_of_contact_m), w_tip = wheel_roll_length(0.0);
   gap += flank_removal(wheel_, rho2, w_root, w_tip, g.wheel.base_radius_m, y);
   gap += options_.misalignment_in_plane_m * (y / g.face_width_m - 0.5);
+  gap += bevel_gap(rho1, y);
   auto tooth = [](int k, int z) { return ((k % z) + z) % z; };
   const int k = cycle - pair;
   if (!pinion_.pitch_deviation_m.empty())
@@ -397,7 +435,7 @@ ToothContactResult ToothContact::solve(double pinion_torque_nm) const {
     fail(g, "torque", "a positive finite torque", num(pinion_torque_nm) + " N m");
   ToothContactResult res;
   res.torque_nm = pinion_torque_nm;
-  res.force_n = pinion_torque_nm / g.pinion.base_radius_m;
+  res.force_n = pinion_torque_nm / force_radius_;
   const int positions = options_.positions, slices = options_.slices;
   const double b = g.face_width_m, dy = b / slices, p_bt = g.transverse_base_pitch_m;
   const double lag = std::tan(g.base_helix_angle_rad);
@@ -476,6 +514,94 @@ ToothContactResult ToothContact::solve(double pinion_torque_nm) const {
   res.face_load_factor =
       *std::max_element(res.face_load_n_per_m.begin(), res.face_load_n_per_m.end()) / mean;
   return res;
+}
+
+MountingEffect mounting_effect(const GearPairGeometry& g, const MountingErrors& e) {
+  MountingEffect m;
+  if (!is_bevel(g.spec.type) || e.zero()) return m;
+  // Frame at the mean point P of the pitch cones' common element (docs/theory.md (15.20)):
+  // e_R along the element away from the apex, e_t along the pinion's pitch-line motion, e_n
+  // normal to the pitch plane towards the pinion's axis. Axes a1 = (cos d1, 0, sin d1),
+  // a2 = (cos d2, 0, -sin d2); n is the unit normal of the loaded pinion flank (the direction of
+  // the force on the wheel): n . e_R = -+ cos(a_n) sin(beta) (concave / convex loaded: the
+  // concave flank's thrust pushes the pinion out of mesh, ISO 10300-1 / ANSI/AGMA 2005).
+  const double d1 = g.pinion.pitch_cone_angle_rad, d2 = g.wheel.pitch_cone_angle_rad;
+  const double an = g.normal_pressure_angle_rad, beta = g.helix_angle_rad;
+  const double rm = g.mean_cone_distance_m, b = g.face_width_m;
+  const double lengthwise = (e.pinion_concave_loaded ? -1.0 : 1.0) * std::cos(an) * std::sin(beta);
+  const double n[3] = {lengthwise, std::cos(an) * std::cos(beta), -std::sin(an)};
+  // Pinion displacement relative to the wheel at P. A shaft angle error turns the pinion by
+  // -dSigma about e_t through the crossing point: P moves by dSigma R_m e_n. That part is a
+  // rotation about the apex, whose gap (proportional to R) the pinion's rotation absorbs
+  // exactly: it separates the pair at P but adds no lead slope.
+  const double d[3] = {e.h_m * std::cos(d1) - e.j_m * std::cos(d2), e.v_m,
+                       e.h_m * std::sin(d1) + e.j_m * std::sin(d2)};
+  m.normal_approach_m = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+  // The rotation absorbs a uniform normal approach only at R_m (lever arm ~ R): the gap left is
+  // d . n (R - R_m) / R_m along the normal, / cos(beta_b) along the transverse line of action.
+  m.lead_slope_m = m.normal_approach_m / std::cos(g.base_helix_angle_rad) * b / rm;
+  m.centre_distance_change_m = d[2] + e.shaft_angle_rad * rm;
+  // Tilt about e_t: a flank point at height X_n = -(rho1 - rho1_C) sin(alpha_wt) above the pitch
+  // plane moves by -dSigma X_n e_R; its gap changes by dSigma X_n (n . e_R).
+  m.profile_gradient = -e.shaft_angle_rad * std::sin(g.working_pressure_angle_rad) * lengthwise /
+                       std::cos(g.base_helix_angle_rad);
+  return m;
+}
+
+GearPairGeometry virtual_cylindrical_pair(const GearPairGeometry& bevel, double change) {
+  GearPairGeometry v = bevel;
+  if (!is_bevel(bevel.spec.type)) return v;
+  v.spec.type = bevel.spec.type == GearType::StraightBevel ? GearType::Spur : GearType::Helical;
+  v.spec.helix_angle_rad = bevel.helix_angle_rad;
+  v.spec.pinion_spiral_angle_rad = std::numeric_limits<double>::quiet_NaN();
+  if (change == 0.0) return v;
+  const double rb1 = v.pinion.base_radius_m, rb2 = v.wheel.base_radius_m;
+  const double a = bevel.centre_distance_m + change;
+  const double g1 = std::sqrt(v.pinion.tip_radius_m * v.pinion.tip_radius_m - rb1 * rb1);
+  const double g2 = std::sqrt(v.wheel.tip_radius_m * v.wheel.tip_radius_m - rb2 * rb2);
+  const double t1t2 = a > rb1 + rb2 ? std::sqrt(a * a - (rb1 + rb2) * (rb1 + rb2)) : 0.0;
+  const double path = g1 + g2 - t1t2;
+  if (!(t1t2 - g2 > 0.0) || !(t1t2 - g1 > 0.0) || !(path > v.transverse_base_pitch_m))
+    fail(bevel, "contact.mounting_h",
+         fmt::format("mounting errors that keep the virtual pair in mesh (contact ratio >= 1, no "
+                     "interference): centre distance change {} m here",
+                     num(change)),
+         fmt::format("path of contact {} m, base pitch {} m", num(path),
+                     num(v.transverse_base_pitch_m)),
+         "reduce mounting_h, mounting_j or shaft_angle_error_deg");
+  v.centre_distance_m = a;
+  v.working_pressure_angle_rad = std::acos((rb1 + rb2) / a);
+  v.pinion.working_pitch_radius_m = rb1 / std::cos(v.working_pressure_angle_rad);
+  v.wheel.working_pitch_radius_m = rb2 / std::cos(v.working_pressure_angle_rad);
+  v.path_of_contact_m = path;
+  v.transverse_contact_ratio = path / v.transverse_base_pitch_m;
+  v.total_contact_ratio = v.transverse_contact_ratio + v.overlap_ratio;
+  return v;
+}
+
+std::pair<double, double> ease_off_centre(const EaseOff& e, double profile_linear_m,
+                                          double length_linear_m) {
+  const double a = 2.0 * e.profile_crowning_m, c = 2.0 * e.length_crowning_m, bb = e.bias_m;
+  const double det = a * c - bb * bb;
+  if (!(det > 0.0))
+    return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  const double fa = e.profile_slope_m + profile_linear_m, fb = e.length_slope_m + length_linear_m;
+  return {-(c * fa - bb * fb) / det, -(a * fb - bb * fa) / det};
+}
+
+std::pair<double, double> pattern_centre(const ToothContact& contact,
+                                         const ToothContactResult& result) {
+  double sum = 0.0, xi = 0.0, eta = 0.0;
+  const double b = contact.geometry().face_width_m, rb1 = contact.base_radius1();
+  for (const auto& p : result.distribution) {
+    if (!(p.line_load_n_per_m > 0.0)) continue;
+    sum += p.line_load_n_per_m;
+    xi += p.line_load_n_per_m * contact.ease_off_xi(p.roll_angle1_rad * rb1);
+    eta += p.line_load_n_per_m * (2.0 * p.face_m / b - 1.0);
+  }
+  if (!(sum > 0.0))
+    return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  return {xi / sum, eta / sum};
 }
 
 std::vector<double> mesh_order_amplitudes(const std::vector<double>& series, int cycles,

@@ -31,6 +31,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geardyn/core/status.hpp"
@@ -101,6 +102,76 @@ class ContactCompliance {
   virtual double max_pressure(double s, double w) const = 0;
 };
 
+/// Ease-off of a bevel / hypoid pair (docs/theory.md §15.9): the relative flank modification
+/// of the pair (material removed from the pinion flank relative to the conjugate of the wheel,
+/// along the virtual pair's transverse line of action) over the pinion's normalised roll angle
+/// xi in [-1, 1] (root to tip of the nominal active profile) and the normalised face position
+/// eta = 2 y / b - 1 in [-1, 1] (toe to heel):
+///     E(xi, eta) = C_a xi^2 + C_b eta^2 + B xi eta + F_a xi + F_b eta.
+struct EaseOff {
+  double profile_crowning_m = 0.0;  ///< C_a (at xi = +-1)
+  double length_crowning_m = 0.0;   ///< C_b (at eta = +-1)
+  /// B: twist of the flank; B > 0 removes material at (tip, heel) and (root, toe), so the
+  /// pattern runs from the pinion's tip at the toe to its root at the heel.
+  double bias_m = 0.0;
+  double profile_slope_m = 0.0;  ///< F_a: flank (pressure) angle modification, + unloads the tip
+  double length_slope_m = 0.0;   ///< F_b: spiral angle modification, + unloads the heel
+  double at(double xi, double eta) const {
+    return profile_crowning_m * xi * xi + length_crowning_m * eta * eta + bias_m * xi * eta +
+           profile_slope_m * xi + length_slope_m * eta;
+  }
+  bool zero() const {
+    return profile_crowning_m == 0.0 && length_crowning_m == 0.0 && bias_m == 0.0 &&
+           profile_slope_m == 0.0 && length_slope_m == 0.0;
+  }
+};
+
+/// Mounting errors of a bevel / hypoid pair (docs/theory.md §15.9; Gleason's V-H-J convention,
+/// after H.J. Stadtfeld, "Handbook of Bevel and Hypoid Gears", 1993): H moves the pinion along
+/// its axis, J the wheel along its axis, positive away from the crossing point of the axes
+/// (out of mesh); V moves the pinion along the common perpendicular of the axes, positive in the
+/// direction in which its loaded flank pushes the wheel at the mean point; a positive shaft
+/// angle error increases Sigma.
+struct MountingErrors {
+  double h_m = 0.0, v_m = 0.0, j_m = 0.0;
+  double shaft_angle_rad = 0.0;
+  /// Which pinion flank carries the load (the concave one pushes the pinion out of mesh, as
+  /// gear/tooth_forces.hpp derives from hand and rotation).
+  bool pinion_concave_loaded = true;
+  bool zero() const { return h_m == 0.0 && v_m == 0.0 && j_m == 0.0 && shaft_angle_rad == 0.0; }
+};
+
+/// First-order effect of the mounting errors on the virtual pair (docs/theory.md (15.20)-(15.23)).
+struct MountingEffect {
+  /// Approach of the pinion's loaded flank towards the wheel's at the mean point, d . n [m].
+  double normal_approach_m = 0.0;
+  /// Resulting lead slope of the gap along the transverse line of action, heel minus toe [m]:
+  /// (d . n / cos beta_b) b / R_m (the cone: a rotation's lever arm grows with R).
+  double lead_slope_m = 0.0;
+  /// Change of the virtual centre distance (the separation at the mean point) [m].
+  double centre_distance_change_m = 0.0;
+  /// Gap gradient along the path of contact from the shaft angle error (spiral pairs), d g / d
+  /// rho1 [m/m]: the tilt about the common perpendicular turns the flank normal's lengthwise
+  /// component into a height-proportional gap.
+  double profile_gradient = 0.0;
+};
+
+/// Ease-off centre (xi_c, eta_c): the minimum of E(xi, eta) + a xi + c eta (extra linear terms
+/// a, c [m] from the mounting errors), i.e. the solution of [2 C_a, B; B, 2 C_b] (xi, eta) =
+/// -(F_a + a, F_b + c). Needs 4 C_a C_b > B^2 (a bounded pattern); NaN otherwise.
+std::pair<double, double> ease_off_centre(const EaseOff& e, double profile_linear_m = 0.0,
+                                          double length_linear_m = 0.0);
+
+/// The mounting errors' first-order effect on the bevel / hypoid pair `bevel`.
+MountingEffect mounting_effect(const GearPairGeometry& bevel, const MountingErrors& errors);
+
+/// The virtual cylindrical pair of a bevel / hypoid pair (type spur or helical, the radii of the
+/// virtual gears), with its centre distance changed by `centre_distance_change_m` (working
+/// pressure angle, path of contact and contact ratio recomputed). Throws InputError (key
+/// contact.mounting_h) when the change leaves a contact ratio below 1 or reaches interference.
+GearPairGeometry virtual_cylindrical_pair(const GearPairGeometry& bevel,
+                                          double centre_distance_change_m = 0.0);
+
 struct ToothContactOptions {
   int positions = 64;  ///< mesh positions per mesh cycle (>= 4)
   int slices = 40;     ///< slices over the face width (>= 1)
@@ -112,6 +183,8 @@ struct ToothContactOptions {
   bool hunting_period = true;
   double tolerance = 1e-10;  ///< relative, on the contact equations (scaled by the approach)
   int max_iterations = 200;  ///< Newton + active-set iterations per position
+  EaseOff ease_off;          ///< bevel / hypoid pairs only
+  MountingErrors mounting;   ///< bevel / hypoid pairs only
 };
 
 /// One loaded contact point of the distribution.
@@ -152,9 +225,12 @@ struct ToothContactResult {
 /// The LTCA problem of one gear pair: geometry, modifications, compliance, options.
 class ToothContact {
  public:
-  /// Throws InputError (key path geometry.spec.key_path + ...) for a bevel / hypoid pair,
-  /// options out of range, pitch deviation vectors of the wrong size, or modifications that
-  /// exceed the tooth (a relief start outside the active profile).
+  /// A bevel / hypoid pair runs on its virtual cylindrical pair at mid face (docs/theory.md
+  /// §15.9) with the ease-off and the mounting errors of the options; the compliance must be
+  /// built on virtual_cylindrical_pair(geometry, mounting_effect(...).centre_distance_change_m).
+  /// Throws InputError (key path geometry.spec.key_path + ...) for ease-off or mounting errors on
+  /// a cylindrical pair, options out of range, pitch deviation vectors of the wrong size, or
+  /// modifications that exceed the tooth (a relief start outside the active profile).
   ToothContact(const GearPairGeometry& geometry, FlankModification pinion, FlankModification wheel,
                const ContactCompliance& compliance, ToothContactOptions options = {});
 
@@ -169,8 +245,22 @@ class ToothContact {
   double pinion_roll_length(double s) const { return rho1_a_ + s; }
   double wheel_roll_length(double s) const;
   double base_radius1() const { return geometry_.pinion.base_radius_m; }
+  /// Radius that turns the pinion torque into the force along the transverse line of action,
+  /// F_bt = T1 / radius (and a TE length into the pinion's angle): r_b1, or r_m1 cos(alpha_t)
+  /// of the real pinion for a bevel / hypoid pair.
+  double force_radius() const { return force_radius_; }
+  bool bevel() const { return bevel_; }
+  const MountingEffect& mounting() const { return mounting_; }
+  /// The ease-off coordinate xi of the pinion roll length rho1 (over the nominal active profile:
+  /// for a bevel / hypoid pair the one without mounting errors).
+  double ease_off_xi(double rho1) const {
+    return (2.0 * rho1 - nominal_rho1_low_ - nominal_rho1_high_) /
+           (nominal_rho1_high_ - nominal_rho1_low_);
+  }
 
  private:
+  void setup_bevel(const GearPairGeometry& given);
+  double bevel_gap(double rho1, double y) const;
   double flank_removal(const FlankModification& m, double rho, double rho_low, double rho_high,
                        double base_radius, double y) const;
 
@@ -182,7 +272,18 @@ class ToothContact {
   double rho1_low_ = 0.0, rho1_high_ = 0.0, rho2_low_ = 0.0, rho2_high_ = 0.0;
   bool internal_ = false;
   int cycles_ = 1;
+  double force_radius_ = 0.0;
+  bool bevel_ = false;
+  MountingEffect mounting_;
+  double nominal_rho1_low_ = 0.0, nominal_rho1_high_ = 1.0;
 };
+
+/// Centre of the contact pattern: the load-weighted mean over all computed positions of the
+/// pinion's profile coordinate xi = ToothContact::ease_off_xi(rho1) (-1 at the start of its
+/// nominal active profile, +1 at its tip) and of the face coordinate eta = 2 y / b - 1 (-1 at
+/// y = 0, the toe of a bevel pair). NaN when nothing is loaded.
+std::pair<double, double> pattern_centre(const ToothContact& contact,
+                                         const ToothContactResult& result);
 
 /// TE harmonics at mesh orders 1..n of a series sampled uniformly over `cycles` mesh cycles:
 /// amplitude (0-peak) of order k = the DFT bin k * cycles.

@@ -335,6 +335,17 @@ struct FlankModificationSpec {
   SourceLocation where;
 };
 
+/// Ease-off of a bevel / hypoid pair ([gear_pairs.ease_off], docs/theory.md §15.9): the relative
+/// flank modification over the pinion's normalised roll angle xi and face position eta [m].
+struct EaseOffSpec {
+  double profile_crowning = 0.0;  ///< C_a at xi = +-1
+  double length_crowning = 0.0;   ///< C_b at eta = +-1
+  double bias = 0.0;              ///< B, the xi eta (twist) term
+  double profile_slope = 0.0;     ///< F_a, the flank-angle modification at xi = 1
+  double length_slope = 0.0;      ///< F_b, the spiral-angle modification at eta = 1
+  SourceLocation where;
+};
+
 /// The slice model of the loaded tooth contact analysis ([gear_pairs.contact]).
 enum class ContactComplianceKind { Analytic, Fe };
 
@@ -346,10 +357,10 @@ struct ContactModelSpec {
   double misalignment = 0.0;                ///< f_ma in the plane of action over b [m]
   double axis_inclination_deviation = 0.0;  ///< f_Sigma_delta over b [m]
   double axis_deviation = 0.0;              ///< f_Sigma_beta over b [m]
-  double mounting_h = 0.0;                  ///< bevel / hypoid mounting error H [m]
-  double mounting_v = 0.0;                  ///< bevel / hypoid mounting error V [m]
-  double mounting_j = 0.0;                  ///< bevel / hypoid mounting error J [m]
-  double shaft_angle_error = 0.0;           ///< bevel / hypoid shaft angle error [rad]
+  double mounting_h = 0.0;                  ///< bevel / hypoid mounting error H: pinion axial [m]
+  double mounting_v = 0.0;                  ///< bevel / hypoid mounting error V: offset [m]
+  double mounting_j = 0.0;                  ///< bevel / hypoid mounting error J: wheel axial [m]
+  double shaft_angle_error = 0.0;           ///< bevel / hypoid mounting error Delta Sigma [rad]
   bool hunting_period = true;               ///< with pitch deviations: lcm(z1, z2) cycles
   /// [[gear_meshes]] name of the rotor's mesh of this pair (empty: none): its static
   /// deflection under the pair's tooth forces adds to the misalignment (docs/theory.md §15.7).
@@ -405,6 +416,7 @@ struct GearPair {
   double mesh_damping_ratio = 0.08;  ///< zeta of the dynamic mesh model
   double backlash = kNaN;            ///< [m] (NaN: no back-side contact)
   FlankModificationSpec flank1, flank2;
+  EaseOffSpec ease_off;  ///< bevel / hypoid only
   ContactModelSpec contact;
   SourceLocation where;
 };

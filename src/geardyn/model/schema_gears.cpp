@@ -37,8 +37,9 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
            "\"tooth_contact\" and an ste_file");
   if (g.ste_source == SteSourceKind::ToothContact && bevel)
     t.fail("ste_source",
-           "\"iso\" or an ste_file for bevel and hypoid pairs (the tooth contact analysis is for "
-           "spur and helical pairs)",
+           "\"iso\" or an ste_file for bevel and hypoid pairs (the tooth contact analysis "
+           "feeds the dynamics of spur and helical pairs only; run the tooth_contact analysis "
+           "and give its TE as an ste_file)",
            "\"tooth_contact\"");
   if (g.internal && bevel)
     t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
@@ -449,18 +450,24 @@ Section contact_section() {
               .def("0.0")
               .to(&ContactModelSpec::axis_deviation),
           number("mounting_h", kMetre,
-                 "Mounting error H of a bevel or hypoid pair: axial displacement of the pinion.")
+                 "Bevel / hypoid mounting error H: the pinion moved along its axis, positive away "
+                 "from the crossing point of the axes (Gleason convention; docs/theory.md "
+                 "§15.9).")
               .def("0.0")
               .to(&ContactModelSpec::mounting_h),
           number("mounting_v", kMetre,
-                 "Mounting error V of a bevel or hypoid pair: change of the offset.")
+                 "Bevel / hypoid mounting error V: the pinion moved along the common "
+                 "perpendicular of the axes (the offset), positive in the direction in which its "
+                 "loaded flank pushes the wheel.")
               .def("0.0")
               .to(&ContactModelSpec::mounting_v),
           number("mounting_j", kMetre,
-                 "Mounting error J of a bevel or hypoid pair: axial displacement of the wheel.")
+                 "Bevel / hypoid mounting error J: the wheel moved along its axis, positive away "
+                 "from the crossing point of the axes.")
               .def("0.0")
               .to(&ContactModelSpec::mounting_j),
-          number("shaft_angle_error_deg", kDegree, "Shaft angle error of a bevel or hypoid pair.")
+          number("shaft_angle_error_deg", kDegree,
+                 "Bevel / hypoid shaft angle error Delta Sigma (positive: a larger shaft angle).")
               .def("0.0")
               .to(&ContactModelSpec::shaft_angle_error),
           boolean("hunting_period",
@@ -519,6 +526,42 @@ Section contact_section() {
       });
 }
 
+Section ease_off_section() {
+  return S("ease_off", SectionKind::Table, "[gear_pairs.ease_off]",
+           "Ease-off of a bevel or hypoid pair for the loaded tooth contact analysis "
+           "(docs/theory.md §15.9): the relative flank modification of the pair, material "
+           "removed in metres along the virtual pair's line of action, E = C_a xi^2 + C_b eta^2 "
+           "+ B xi eta + F_a xi + F_b eta over the pinion's normalised roll angle xi (-1 at the "
+           "start of its active profile, +1 at its tip) and the normalised face position eta "
+           "(-1 at the toe, +1 at the heel).")
+      .in_table(&GearPair::ease_off)
+      .located(&EaseOffSpec::where)
+      .fields({
+          number("profile_crowning", kMetre, "Profile crowning C_a (at xi = +-1).")
+              .def("0.0")
+              .ge(0)
+              .to(&EaseOffSpec::profile_crowning),
+          number("length_crowning", kMetre, "Length crowning C_b (at eta = +-1).")
+              .def("0.0")
+              .ge(0)
+              .to(&EaseOffSpec::length_crowning),
+          number("bias", kMetre,
+                 "Bias B (the twist term B xi eta): positive removes material at the pinion's "
+                 "tip at the heel and root at the toe, so the pattern runs from tip-toe to "
+                 "root-heel.")
+              .def("0.0")
+              .to(&EaseOffSpec::bias),
+          number("profile_slope", kMetre,
+                 "Flank (pressure) angle modification F_a at xi = 1 (positive unloads the tip).")
+              .def("0.0")
+              .to(&EaseOffSpec::profile_slope),
+          number("length_slope", kMetre,
+                 "Spiral angle modification F_b at eta = 1 (positive unloads the heel).")
+              .def("0.0")
+              .to(&EaseOffSpec::length_slope),
+      });
+}
+
 }  // namespace
 
 Section gear_pairs_section() {
@@ -535,7 +578,8 @@ Section gear_pairs_section() {
       .located(&GearPair::where)
       .fields(join_fields({gear_pair_fields_1(), gear_pair_fields_2()}))
       .sections({flank_section("flank1", "1", &GearPair::flank1),
-                 flank_section("flank2", "2", &GearPair::flank2), contact_section()})
+                 flank_section("flank2", "2", &GearPair::flank2), contact_section(),
+                 ease_off_section()})
       .choices({{{{"face_width"}, {"face_width1", "face_width2"}}, true, {}}})
       .variants("type",
                 {
