@@ -10,9 +10,9 @@
 #include "geardyn/analyses/gear_helpers.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
-#include "geardyn/gear/topography_csv.hpp"
 #include "geardyn/gear/fe_compliance.hpp"
 #include "geardyn/gear/tooth_forces.hpp"
+#include "geardyn/gear/topography_csv.hpp"
 
 namespace geardyn::analyses {
 
