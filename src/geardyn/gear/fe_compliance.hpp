@@ -45,7 +45,7 @@ namespace geardyn::gear {
 
 struct FeComplianceOptions {
   /// Element size at the loaded tooth / m_n, in [0.05, 1].
-  double mesh_size = 0.25;
+  double mesh_size = 0.35;
   /// Element size in the rest of the body / m_n (>= mesh_size; NaN: min(1, 4 mesh_size)).
   double body_size = std::numeric_limits<double>::quiet_NaN();
   int profile_points = 9;  ///< roll positions over the active profile (>= 3)

@@ -367,7 +367,7 @@ struct ContactModelSpec {
   std::string deflection_mesh;
   /// Compliance route (docs/theory.md §15.8): analytic slices or FE influence coefficients.
   ContactComplianceKind compliance = ContactComplianceKind::Analytic;
-  double fe_mesh_size = 0.25;  ///< element size at the loaded tooth / m_n
+  double fe_mesh_size = 0.35;  ///< element size at the loaded tooth / m_n
   int fe_profile_points = 9;   ///< FE grid: roll positions over the active profile
   int fe_face_points = 0;      ///< FE grid: face positions (0: one per m_n / 2, >= 5)
   int fe_teeth = 7;            ///< teeth of the meshed segment (odd)
