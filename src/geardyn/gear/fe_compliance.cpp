@@ -359,7 +359,7 @@ ToothInfluence fe_tooth_influence(const ToothCompliance& teeth, bool wheel,
 }
 
 FeCompliance::FeCompliance(const ToothCompliance& teeth, const FeComplianceOptions& options)
-    : teeth_(&teeth),
+    : HertzianContactCompliance(teeth),
       pinion_(fe_tooth_influence(teeth, false, options)),
       wheel_(fe_tooth_influence(teeth, true, options)) {}
 
@@ -374,16 +374,6 @@ Eigen::MatrixXd FeCompliance::body_influence(const std::vector<double>& s,
       a(i, k) = pinion_.at(s[ui], y[ui], s[uk], ya, yb) + wheel_.at(s[ui], y[ui], s[uk], ya, yb);
     }
   return a;
-}
-
-double FeCompliance::hertz_approach(double s, double w) const {
-  return teeth_->hertz_approach(s, w);
-}
-double FeCompliance::hertz_compliance(double s, double w) const {
-  return teeth_->hertz_compliance(s, w);
-}
-double FeCompliance::max_pressure(double s, double w) const {
-  return w > 0.0 ? teeth_->hertz_max_pressure(s, w) : 0.0;
 }
 
 }  // namespace geardyn::gear

@@ -38,6 +38,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geardyn/gear/slice_compliance.hpp"
 #include "geardyn/gear/tooth_compliance.hpp"
 #include "geardyn/gear/tooth_contact.hpp"
 
@@ -75,7 +76,7 @@ struct ToothInfluence {
 ToothInfluence fe_tooth_influence(const ToothCompliance& teeth, bool wheel,
                                   const FeComplianceOptions& options);
 
-class FeCompliance final : public ContactCompliance {
+class FeCompliance final : public HertzianContactCompliance {
  public:
   /// Builds both gears' grids (the expensive part: two meshes, two factorisations). `teeth`
   /// must outlive this object; its Hertz terms are used.
@@ -83,15 +84,11 @@ class FeCompliance final : public ContactCompliance {
 
   Eigen::MatrixXd body_influence(const std::vector<double>& s, const std::vector<double>& y,
                                  double dy) const override;
-  double hertz_approach(double s, double w) const override;
-  double hertz_compliance(double s, double w) const override;
-  double max_pressure(double s, double w) const override;
 
   const ToothInfluence& pinion() const { return pinion_; }
   const ToothInfluence& wheel() const { return wheel_; }
 
  private:
-  const ToothCompliance* teeth_;
   ToothInfluence pinion_, wheel_;
 };
 

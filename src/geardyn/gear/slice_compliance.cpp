@@ -7,7 +7,7 @@
 namespace geardyn::gear {
 
 SliceCompliance::SliceCompliance(const ToothCompliance& teeth, double coupling_length_m)
-    : teeth_(&teeth),
+    : HertzianContactCompliance(teeth),
       coupling_length_(coupling_length_m),
       path_(teeth.geometry().path_of_contact_m),
       table_(1025) {
@@ -69,13 +69,13 @@ Eigen::MatrixXd SliceCompliance::body_influence(const std::vector<double>& s,
   return a;
 }
 
-double SliceCompliance::hertz_approach(double s, double w) const {
+double HertzianContactCompliance::hertz_approach(double s, double w) const {
   return teeth_->hertz_approach(s, w);
 }
-double SliceCompliance::hertz_compliance(double s, double w) const {
+double HertzianContactCompliance::hertz_compliance(double s, double w) const {
   return teeth_->hertz_compliance(s, w);
 }
-double SliceCompliance::max_pressure(double s, double w) const {
+double HertzianContactCompliance::max_pressure(double s, double w) const {
   return w > 0.0 ? teeth_->hertz_max_pressure(s, w) : 0.0;
 }
 

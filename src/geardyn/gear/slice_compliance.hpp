@@ -20,21 +20,31 @@
 
 namespace geardyn::gear {
 
-class SliceCompliance final : public ContactCompliance {
+/// The flanks' analytic Hertzian terms of `teeth` (Weber-Banaschek approach, Johnson's peak
+/// pressure) under a body compliance that the derived class supplies: the slice route here and
+/// the FE route (fe_compliance.hpp) share them. `teeth` must outlive the object.
+class HertzianContactCompliance : public ContactCompliance {
+ public:
+  explicit HertzianContactCompliance(const ToothCompliance& teeth) : teeth_(&teeth) {}
+  double hertz_approach(double s, double w) const final;
+  double hertz_compliance(double s, double w) const final;
+  double max_pressure(double s, double w) const final;
+
+ protected:
+  const ToothCompliance* teeth_;
+};
+
+class SliceCompliance final : public HertzianContactCompliance {
  public:
   /// `teeth` must outlive this object. coupling_length_m >= 0.
   SliceCompliance(const ToothCompliance& teeth, double coupling_length_m);
 
   Eigen::MatrixXd body_influence(const std::vector<double>& s, const std::vector<double>& y,
                                  double dy) const override;
-  double hertz_approach(double s, double w) const override;
-  double hertz_compliance(double s, double w) const override;
-  double max_pressure(double s, double w) const override;
 
  private:
   double body(double s) const;  // tabulated c(s), s clamped to the path
 
-  const ToothCompliance* teeth_;
   double coupling_length_;
   double path_ = 0.0;
   std::vector<double> table_;
