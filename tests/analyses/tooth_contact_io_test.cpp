@@ -170,7 +170,7 @@ TEST(LtcaTableImport, BadKeysAreLocated) {
     }
   };
   fails("ltca_file = \"ltca.csv\"\nste_file = \"ste.csv\"\n", "gear_pairs[0].ltca_file");
-  fails("ltca_file = \"ltca.csv\"\nste_source = \"tooth_contact\"\n", "gear_pairs[0].ltca_file");
+  fails("ltca_file = \"ltca.csv\"\nste_source = \"tooth_contact\"\n", "gear_pairs[0].ste_source");
   fails("ltca_file = \"missing.csv\"\n", "gear_pairs[0].ltca_file");
   fails("ltca_file = \"ltca.csv\"\n[gear_pairs.contact]\nmounting_h = 60e-6\n",
         "gear_pairs[0].contact.mounting_h");

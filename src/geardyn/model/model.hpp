@@ -404,8 +404,9 @@ struct GearPair {
   std::string ste_file;  ///< STE CSV as written (relative to the model file)
   /// LTCA table of another tool (TE, stiffness over angle x torque x H/V/J), as written.
   std::string ltca_file;
-  /// Without ste_file: the synthetic ISO 6336 STE or the loaded tooth contact analysis.
-  SteSourceKind ste_source = SteSourceKind::Iso;
+  /// Without ste_file / ltca_file: the loaded tooth contact analysis (default) or the
+  /// synthetic ISO 6336 STE.
+  SteSourceKind ste_source = SteSourceKind::ToothContact;
   SteInterpolationKind ste_interpolation = SteInterpolationKind::Linear;
   double ste_shift = 0.0;          ///< fraction of a mesh cycle
   bool ste_extrapolation = false;  ///< torque outside the file's torques allowed

@@ -32,15 +32,13 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
   }
   const bool bevel = g.type == GearType::StraightBevel || g.type == GearType::SpiralBevel ||
                      g.type == GearType::Hypoid;
-  if (g.ste_source == SteSourceKind::ToothContact && t.has("ste_file"))
-    t.fail("ste_source", "\"iso\" (the default) with an ste_file: the file is the STE",
-           "\"tooth_contact\" and an ste_file");
-  if (g.ste_source == SteSourceKind::ToothContact && bevel)
-    t.fail("ste_source",
-           "\"iso\" or an ste_file for bevel and hypoid pairs (the tooth contact analysis "
-           "feeds the dynamics of spur and helical pairs only; run the tooth_contact analysis "
-           "and give its TE as an ste_file)",
-           "\"tooth_contact\"");
+  // ste_source chooses between the two STEs computed here; a file (ste_file, ltca_file) is
+  // the STE itself, so an explicit ste_source with a file is a contradiction.
+  for (const char* file : {"ste_file", "ltca_file"})
+    if (t.has("ste_source") && t.has(file))
+      t.fail("ste_source",
+             fmt::format("no ste_source with an {} (the file is the STE)", file),
+             fmt::format("ste_source and an {}", file));
   if (g.internal && bevel)
     t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
            "true");
@@ -56,9 +54,6 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
   // ste_source = "tooth_contact"; it takes ste_interpolation and ste_extrapolation.
   if (t.has("ltca_file") && t.has("ste_file"))
     t.fail("ltca_file", "either an ltca_file or an ste_file (each gives the STE)", "both");
-  if (t.has("ltca_file") && g.ste_source == SteSourceKind::ToothContact)
-    t.fail("ltca_file", "no ltca_file with ste_source = \"tooth_contact\" (each gives the STE)",
-           "both");
   if (t.has("ltca_file") && t.has("ste_speed_rpm"))
     t.fail("ste_speed_rpm", "no ste_speed_rpm with an ltca_file (its abscissa is the angle)",
            "ste_speed_rpm");
@@ -211,7 +206,8 @@ std::vector<Field> gear_pair_fields_2() {
           .note("steel, E = 206 GPa")
           .to(&GearPair::material2),
       number("stiffness_correction", kNoUnit,
-             "ISO 6336-1 correction factor C_M (measured / theoretical stiffness).")
+             "ISO 6336-1 correction factor C_M (measured / theoretical stiffness) of the ISO "
+             "stiffness (the gear_pair table; the STE with ste_source = \"iso\").")
           .def("0.8")
           .gt(0)
           .le(2.0)
@@ -255,14 +251,16 @@ std::vector<Field> gear_pair_fields_2() {
            "the STE like an ste_file (ste_extrapolation allows values outside the table).")
           .note("no LTCA table")
           .to(&GearPair::ltca_file),
-      choice("ste_source", {"iso", "tooth_contact"},
-             "Where the STE comes from when there is no ste_file: \"iso\", synthetic e = F_s / k "
-             "from the ISO 6336 mesh stiffness; \"tooth_contact\", the loaded tooth contact "
-             "analysis of the pair at its torque (flank modifications, misalignment; "
-             "[gear_pairs.flank1/2], [gear_pairs.contact]; spur and helical pairs), its first "
-             "mesh cycle.")
-          .def("\"iso\"")
-          .to_enum(&GearPair::ste_source, {SteSourceKind::Iso, SteSourceKind::ToothContact}),
+      choice("ste_source", {"tooth_contact", "iso"},
+             "Where the STE comes from without an ste_file or ltca_file: \"tooth_contact\", the "
+             "loaded tooth contact analysis of the pair at its torque (its first mesh cycle: the "
+             "loaded TE and the secant mesh stiffness, with the flank modifications and "
+             "misalignment of [gear_pairs.flank1/2] and [gear_pairs.contact]; bevel and hypoid "
+             "pairs through their virtual cylindrical pair); \"iso\", synthetic e = F_s / k from "
+             "the ISO 6336-1 mesh stiffness curve (stiffness_correction, load_correction, "
+             "rim_thickness, web_thickness), no modifications.")
+          .def("\"tooth_contact\"")
+          .to_enum(&GearPair::ste_source, {SteSourceKind::ToothContact, SteSourceKind::Iso}),
       choice("ste_interpolation", {"linear", "hold"},
              "How the STE file is read between its rows: periodic linear, or each row "
              "held to the next (contact steps).")
