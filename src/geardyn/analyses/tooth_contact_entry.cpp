@@ -54,7 +54,7 @@ const gear::ToothContactResult& torque_of(const ToothContactRunResult& r, const 
 
 double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
   const ToothContactRunResult& r = result(o);
-  if (q.quantity == "te_correlation_mean_ratio" || q.quantity == "te_correlation_max_db") {
+  if (q.quantity == "te_correlation_mean_ratio" || q.quantity == "te_correlation_max_difference") {
     if (!r.te_correlation)
       throw std::runtime_error(q.quantity + ": the analysis has no measured_te_file");
     const bool ratio = q.quantity == "te_correlation_mean_ratio";
@@ -160,7 +160,7 @@ AnalysisType tooth_contact_analysis() {
        "",
        "Mean of measured / computed TE harmonic over the compared points of measured_te_file.",
        {}},
-      {"te_correlation_max_db",
+      {"te_correlation_max_difference",
        "dB",
        "Largest |20 log10(measured / computed)| over the compared points of measured_te_file.",
        {}},
