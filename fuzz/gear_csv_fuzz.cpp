@@ -1,5 +1,6 @@
-// libFuzzer target: arbitrary bytes -> the STE reader (parse_ste_csv, then at_torque) and the
-// measured-response reader (parse_measured_response_csv, then estimate_peak).
+// libFuzzer target: arbitrary bytes -> the STE reader (parse_ste_csv, then at_torque), the
+// measured-response reader (parse_measured_response_csv, then estimate_peak) and the TE rig
+// reader (parse_te_rig_csv, then compare_te).
 //
 // Bad input must end in geardyn::InputError; any other exception, crash, leak or sanitizer
 // report is a bug. The first byte chooses the reader options (tooth count, abscissa period,
@@ -9,10 +10,12 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/gear/correlation.hpp"
 #include "geardyn/gear/ste.hpp"
+#include "geardyn/gear/te_rig_csv.hpp"
 
 namespace {
 
@@ -42,6 +45,13 @@ void run_measured(const std::string& text) {
   (void)geardyn::gear::estimate_peak(r.x, r.amplitude);
 }
 
+void run_te_rig(const std::string& text) {
+  const geardyn::gear::TeRigFile rig = geardyn::gear::parse_te_rig_csv(text, "fuzz.csv");
+  const std::vector<double> torques{50.0, 100.0, 400.0};
+  const std::vector<std::vector<double>> harmonics(3, std::vector<double>{1e-6, 0.5e-6, 0.0});
+  (void)geardyn::gear::compare_te(rig, torques, harmonics, 0.03);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -54,6 +64,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     run_measured(text);
+  } catch (const geardyn::InputError&) {
+  }
+  try {
+    run_te_rig(text);
   } catch (const geardyn::InputError&) {
   }
   return 0;

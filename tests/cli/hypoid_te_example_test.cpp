@@ -6,29 +6,74 @@
 // weighted centre moves less (checked: between 1/2 and 1 of the estimate, same sign).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
+#include <regex>
 #include <string>
 #include <vector>
 
-#include "cli/cli_support.hpp"
+#include "support/example_runs.hpp"
 
 namespace {
 
 using namespace geardyn::cli_test;
 
-std::vector<double> numbers(const std::vector<std::string>& cells) {
-  std::vector<double> v;
-  for (const auto& c : cells) v.push_back(std::stod(c));
-  return v;
+// The synthetic rig file (te_measured_synthetic.csv) was made as computed x 1.10 + 0.05 um,
+// rounded to 0.01 um: the te_correlation table of te_map must give back that relation at every
+// point, ratio = 1.10 + 0.05 um / computed within the rounding (0.005 um, with a margin for the
+// last digit: 0.0051 um / computed), and the note's least-squares line must give 1.10 and 0.05 um
+// within the bound the rounding errors e_i (|e_i| <= 0.0051 um) allow: the gain moves by
+// sum (x_i - mean x) e_i / S_xx, the offset by sum e_i (1/n - mean x (x_i - mean x) / S_xx)
+// (x_i the computed amplitudes), plus half a unit of the note's fourth digit.
+void check_correlation(const fs::path& out, const std::map<std::pair<double, double>, double>& c) {
+  auto table = read_csv(out / "te_map" / "te_correlation.csv");
+  const auto t = numbers(table["torque_nm"]), order = numbers(table["mesh_order"]);
+  const auto computed = numbers(table["computed_0_peak_m"]);
+  const auto measured = numbers(table["measured_0_peak_m"]);
+  const auto ratio = numbers(table["ratio_measured_to_computed"]);
+  const auto db = numbers(table["difference_db"]);
+  const auto compared = numbers(table["compared"]);
+  ASSERT_EQ(t.size(), 12u);
+  const double rounding = 0.0051e-6;
+  double mean = 0.0, sum_ratio = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    ASSERT_TRUE(c.count({t[i], order[i]})) << t[i] << " " << order[i];
+    EXPECT_EQ(computed[i], c.at({t[i], order[i]}));  // the te_harmonics value, same digits
+    EXPECT_EQ(compared[i], 1.0);
+    EXPECT_NEAR(ratio[i], 1.10 + 0.05e-6 / computed[i], rounding / computed[i]) << i;
+    EXPECT_NEAR(db[i], 20.0 * std::log10(ratio[i]), 1e-12) << i;
+    EXPECT_NEAR(measured[i], ratio[i] * computed[i], 1e-12 * measured[i]);
+    mean += computed[i] / 12.0;
+    sum_ratio += ratio[i];
+  }
+  // The README's summary: mean ratio 1.43, largest difference +8.14 dB (100 N m, order 2).
+  EXPECT_NEAR(sum_ratio / 12.0, 1.43, 0.005);
+  EXPECT_NEAR(*std::max_element(db.begin(), db.end()), 8.14, 0.005);
+  double sxx = 0.0, gain_bound = 0.0, offset_bound = 0.0;
+  for (double x : computed) sxx += (x - mean) * (x - mean);
+  for (double x : computed) {
+    gain_bound += rounding * std::abs(x - mean) / sxx;
+    offset_bound += rounding * std::abs(1.0 / 12.0 - mean * (x - mean) / sxx);
+  }
+  std::smatch m;
+  bool found = false;
+  for (const std::string& note : notes_of(out, "te_map")) {
+    static const std::regex fit(R"(measured = ([-+0-9.e]+) x computed ([-+0-9.e]+) um)");
+    static const std::regex mean_ratio(R"(Mean ratio measured / computed ([0-9.e+-]+);)");
+    if (!std::regex_search(note, m, fit)) continue;
+    found = true;
+    EXPECT_NEAR(std::stod(m[1]), 1.10, gain_bound + 0.0005) << note;
+    EXPECT_NEAR(std::stod(m[2]) * 1e-6, 0.05e-6, offset_bound + 0.000005e-6) << note;
+    ASSERT_TRUE(std::regex_search(note, m, mean_ratio)) << note;
+    EXPECT_NEAR(std::stod(m[1]), sum_ratio / 12.0, 0.0005 * sum_ratio / 12.0) << note;
+  }
+  EXPECT_TRUE(found);
 }
 
 TEST(HypoidTeExample, RunsAndTheSweepOfHMovesThePattern) {
-  const fs::path out = fresh_dir("hypoid_te");
-  const ProcessResult r =
-      run("run -q " + kSource + "/examples/hypoid_te/model.toml -o " + out.string());
+  ProcessResult r;
+  const fs::path out = run_example("hypoid_te", r);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(read_json(out / "manifest.json")["status"], "ok");
 
@@ -41,7 +86,8 @@ TEST(HypoidTeExample, RunsAndTheSweepOfHMovesThePattern) {
   EXPECT_NEAR(khb[0], 2.21, 0.005);
   EXPECT_NEAR(khb[5], 1.20, 0.005);
 
-  // The first mesh-order harmonic at each torque, and the synthetic rig file against it.
+  // The first mesh-order harmonic at each torque, and the synthetic rig file against it
+  // (te_correlation).
   auto harmonics = read_csv(out / "te_map" / "te_harmonics.csv");
   const auto t = numbers(harmonics["torque_nm"]), order = numbers(harmonics["mesh_order"]);
   const auto amp = numbers(harmonics["amplitude_0_peak_m"]);
@@ -50,23 +96,7 @@ TEST(HypoidTeExample, RunsAndTheSweepOfHMovesThePattern) {
   const double h300 = computed[{300.0, 1.0}], h100 = computed[{100.0, 1.0}];
   EXPECT_NEAR(h300, 1.15e-6, 0.005e-6);
   EXPECT_NEAR(h100, 0.574e-6, 0.0005e-6);
-  // The synthetic file was made as computed x 1.10 + 0.05 um (rounded to 0.01 um): reading it
-  // back gives that relation within the rounding.
-  std::ifstream rig(kSource + "/examples/hypoid_te/te_measured_synthetic.csv");
-  std::string line;
-  int rows = 0;
-  while (std::getline(rig, line)) {
-    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
-    std::stringstream ss(line);
-    double torque = 0, ord = 0, um = 0;
-    char comma = 0;
-    ss >> torque >> comma >> ord >> comma >> um;
-    const std::pair<double, double> key{torque, ord};
-    ASSERT_TRUE(computed.count(key)) << line;
-    EXPECT_NEAR(um * 1e-6, 1.10 * computed[key] + 0.05e-6, 0.0051e-6) << line;
-    ++rows;
-  }
-  EXPECT_EQ(rows, 12);
+  check_correlation(out, computed);
 
   // The H sweep at 300 N m: the pattern moves to the heel for H > 0 (out of mesh) and to the
   // toe for H < 0, nearly antisymmetrically; the TE's first harmonic is largest at H = 0.

@@ -9,22 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "cli/cli_support.hpp"
+#include "support/example_runs.hpp"
 
 namespace {
 
 using namespace geardyn::cli_test;
 
-std::vector<double> numbers(const std::vector<std::string>& cells) {
-  std::vector<double> v;
-  for (const auto& c : cells) v.push_back(std::stod(c));
-  return v;
-}
-
 TEST(SpurTipReliefExample, RunsAndShowsTheHarrisMapMinimum) {
-  const fs::path out = fresh_dir("spur_tip_relief");
-  const ProcessResult r =
-      run("run -q " + kSource + "/examples/spur_tip_relief/model.toml -o " + out.string());
+  ProcessResult r;
+  const fs::path out = run_example("spur_tip_relief", r);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const auto manifest = read_json(out / "manifest.json");
   EXPECT_EQ(manifest["status"], "ok");

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "geardyn/analyses/gear_helpers.hpp"
+#include "geardyn/analyses/tooth_contact_correlation.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/gear/fe_compliance.hpp"
@@ -235,6 +236,7 @@ ToothContactRunResult run_tooth_contact(const model::Model& model,
     progress.update(i + 1);
   }
   progress.finish();
+  r.te_correlation = correlate_measured_te(model, settings, r, context);
   double want = settings.distribution_torque;
   if (std::isnan(want)) {
     const double own = r.model->pair.pair->torque;
@@ -544,7 +546,7 @@ void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
   out.plots.push_back(std::move(te));
   out.plots.push_back(std::move(k));
   out.plots.push_back(std::move(face));
-  if (r.torques.size() > 1) {
+  if (r.torques.size() > 1 || r.te_correlation) {
     Plot harris =
         plot("te_vs_torque", "TE peak-to-peak and mesh-order harmonics versus torque (Harris map)",
              "torque of gear 1 [N m]", "TE of gear 1 [urad]");
@@ -560,6 +562,7 @@ void add_plots(AnalysisOutput& out, const ToothContactRunResult& r) {
       harris.traces.push_back(line(fmt::format("order {} (0-peak)", k2 + 1), torque, a,
                                    Trace::Mode::LinesMarkers, "dash"));
     }
+    if (r.te_correlation) add_measured_te_traces(harris, *r.te_correlation);
     out.plots.push_back(std::move(harris));
   }
   add_flank_maps(out, r);
@@ -595,7 +598,7 @@ std::string bevel_note(const ToothContactModel& m) {
 
 AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
                                     const ToothContactSettings& /*settings*/,
-                                    const ToothContactRunResult& r, const Context& /*context*/) {
+                                    const ToothContactRunResult& r, const Context& context) {
   AnalysisOutput out;
   for (const auto& res : r.torques)
     if (res.status != Status::Ok) {
@@ -606,6 +609,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
   out.tables.push_back(summary_table(r));
   out.tables.push_back(te_table(r));
   out.tables.push_back(harmonics_table(r));
+  if (r.te_correlation) out.tables.push_back(te_correlation_table(*r.te_correlation));
   out.tables.push_back(face_load_table(r));
   out.tables.push_back(distribution_table(r));
   add_plots(out, r);
@@ -627,6 +631,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
   out.notes.push_back(compliance_note(m));
   out.notes.push_back(misalignment_note(m));
   if (m.contact->bevel()) out.notes.push_back(bevel_note(m));
+  if (r.te_correlation) out.notes.push_back(te_correlation_note(context.name(), *r.te_correlation));
   for (const auto& res : r.torques) {
     const double covered = [&] {
       int n = 0;

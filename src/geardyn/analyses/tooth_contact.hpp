@@ -6,6 +6,7 @@
 // K_Hbeta, from the pair's geometry, its flank modifications ([gear_pairs.flank1/2]), the slice
 // model and misalignment ([gear_pairs.contact]).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/analyses/tooth_contact_misalignment.hpp"
 #include "geardyn/gear/slice_compliance.hpp"
+#include "geardyn/gear/te_rig_csv.hpp"
 #include "geardyn/gear/tooth_compliance.hpp"
 #include "geardyn/gear/tooth_contact.hpp"
 #include "geardyn/model/model.hpp"
@@ -26,6 +28,9 @@ struct ToothContactSettings : model::SettingsOf<ToothContactSettings> {
   /// Torque of the load-distribution table [N m] (NaN: the pair's torque if among `torques`,
   /// else the largest).
   double distribution_torque = std::numeric_limits<double>::quiet_NaN();
+  /// A rig's TE at the mesh orders over torque (docs/input-files.md §3a), as written (relative
+  /// to the model file); empty: no comparison.
+  std::string measured_te_file;
 };
 
 /// The LTCA problem of a model's pair: the gear library's inputs built from the model keys.
@@ -60,6 +65,8 @@ struct ToothContactRunResult {
   std::vector<std::vector<double>> harmonics_m;   ///< per torque: 0-peak TE at orders 1..n
   /// Per torque: 0-peak amplitude of the tangent mesh stiffness at orders 1..n [N/m].
   std::vector<std::vector<double>> stiffness_harmonics_n_per_m;
+  /// The measured_te_file against harmonics_m (tooth_contact_correlation.hpp).
+  std::optional<gear::TeComparison> te_correlation;
 };
 
 ToothContactRunResult run_tooth_contact(const model::Model& model,

@@ -10,6 +10,7 @@
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/registry.hpp"
 #include "geardyn/analyses/tooth_contact.hpp"
+#include "geardyn/analyses/tooth_contact_correlation.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -35,6 +36,8 @@ void check_inputs(const model::Model& m, const Analysis& a, const InputContext& 
                               "[gear_pairs.contact] (Nyquist)",
                               tc->options.positions),
                   std::to_string(s.orders), "raise gear_pairs.contact.positions or lower orders");
+  check_measured_te(m, s,
+                    s.torques.empty() ? std::vector<double>{tc->pair.pair->torque} : s.torques, c);
 }
 
 const ToothContactRunResult& result(const Outcome& o) {
@@ -51,6 +54,13 @@ const gear::ToothContactResult& torque_of(const ToothContactRunResult& r, const 
 
 double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
   const ToothContactRunResult& r = result(o);
+  if (q.quantity == "te_correlation_mean_ratio" || q.quantity == "te_correlation_max_difference") {
+    if (!r.te_correlation)
+      throw std::runtime_error(q.quantity + ": the analysis has no measured_te_file");
+    const bool ratio = q.quantity == "te_correlation_mean_ratio";
+    unit = ratio ? std::string() : std::string("dB");
+    return ratio ? r.te_correlation->mean_ratio : r.te_correlation->max_abs_db;
+  }
   if (q.quantity == "te_harmonic") {
     unit = std::string("m");
     if (q.mode < 1 || static_cast<std::size_t>(q.mode) > r.harmonics_m.front().size())
@@ -100,6 +110,13 @@ std::vector<model::Field> keys() {
           .gt(0)
           .note("the pair's torque if computed, else the largest")
           .to_settings(&ToothContactSettings::distribution_torque),
+      text("measured_te_file",
+           "A test rig's TE at the mesh orders over torque (CSV: torque_nm, mesh_order, "
+           "amplitude_0_peak_um or another convention and unit, docs/input-files.md) compared "
+           "point by point with the computed harmonics (table te_correlation) and overlaid on "
+           "the TE-versus-torque plot.")
+          .note("no comparison")
+          .to_settings(&ToothContactSettings::measured_te_file),
   };
 }
 
@@ -139,6 +156,14 @@ AnalysisType tooth_contact_analysis() {
        "Contact pattern centre on the pinion's profile at torque `mode`: load-weighted mean of "
        "its normalised roll angle (-1: start of active profile, +1: tip).",
        {"mode"}},
+      {"te_correlation_mean_ratio",
+       "",
+       "Mean of measured / computed TE harmonic over the compared points of measured_te_file.",
+       {}},
+      {"te_correlation_max_difference",
+       "dB",
+       "Largest |20 log10(measured / computed)| over the compared points of measured_te_file.",
+       {}},
   };
   type.scalar = scalar;
   return type;
