@@ -496,7 +496,7 @@ Section contact_section() {
           number("fe_mesh_size", kNoUnit,
                  "compliance = \"fe\": element size at the loaded tooth, in modules (3 "
                  "modules in the rest of the body); 0.35 leaves about 2.6 % discretisation "
-                 "error in the compliance, 0.25 about 1.3 % at 2.5 times the cost "
+                 "error in the compliance, 0.25 about 1.3 % at three times the cost "
                  "(docs/theory.md §15.8).")
               .def("0.35")
               .ge(0.05)
