@@ -1,11 +1,12 @@
 // Benchmark of the FE compliance route of the loaded tooth contact analysis
-// (gear/fe_compliance.hpp): the influence coefficients of one tooth pair (both gears: segment
-// mesh, assembly, Cholesky, load cases), and one mesh cycle of the contact analysis with them.
+// (gear/fe_compliance.hpp): the influence coefficients of one tooth pair (both gears: mesh of
+// the whole gear, assembly, Cholesky, load cases), and one mesh cycle of the contact analysis
+// with them.
 // Figures are recorded in docs/performance.md ("Loaded tooth contact").
 //
 //   spur 20/40 teeth, m = 3 mm, alpha = 20 deg, b = 20 mm, steel, T1 = 169 N m (300 N/mm);
-//   FE segments of 7 teeth, element size 0.35 m (0.25 m: the finer case) at the loaded tooth,
-//   9 profile x 15 face points per gear.
+//   FE of the whole gears (the default fe_teeth = 0), element size 0.35 m (0.25 m: the finer
+//   case) at the loaded tooth, 3 m elsewhere, 9 profile x 15 face points per gear.
 #include <benchmark/benchmark.h>
 
 #include "geardyn/gear/fe_compliance.hpp"
@@ -27,12 +28,12 @@ gear::GearPairGeometry spur() {
 gear::FeComplianceOptions options(double size) {
   gear::FeComplianceOptions o;
   o.mesh_size = size;
-  o.segment_teeth = 7;
+  o.segment_teeth = 0;
   o.profile_points = 9;
   return o;
 }
 
-// Arg: element size at the loaded tooth in 1/100 modules. Counters: DOFs of both segments.
+// Arg: element size at the loaded tooth in 1/100 modules. Counters: DOFs of both gears.
 void BM_FeInfluenceCoefficients(benchmark::State& state) {
   const gear::GearPairGeometry g = spur();
   const gear::ToothCompliance teeth(g);

@@ -1,11 +1,13 @@
 // The FE compliance route against the analytic one (gear/fe_compliance.hpp vs
 // gear/tooth_compliance.hpp, docs/theory.md §15.8): single-tooth deflection under a line load at
-// root, pitch and tip of the active profile, mesh convergence, the segment's boundary, the pair's
+// five radii of the active profile, the same in a thin (plane-stress) gear, the body's boundary
+// (segments with fixed and free cut faces bracket the whole gear), mesh convergence, the pair's
 // loaded TE and mesh stiffness by both routes, and the decay length of the face influence line
-// (the calibration of the analytic route's coupling_length). Minutes: label slow.
+// (the calibration of the analytic route's coupling_length). About a minute: label slow.
 //
-// Pair: spur 20 / 40, m = 3 mm, alpha = 20 deg, b = 20 mm, steel; FE segments of 7 teeth,
-// element size 0.35 m at the loaded tooth, 5 x 15 grid (the figures of docs/validation.md).
+// Pair: spur 20 / 40, m = 3 mm, alpha = 20 deg, b = 20 mm, steel; FE of the whole gears (every
+// tooth, fixed at the bore r_int = r_f / 2), element size 0.35 m at the loaded tooth, 5 x 15
+// grid (the figures of docs/validation.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,18 +23,19 @@ namespace {
 
 using namespace geardyn::gear;
 
-GearPairGeometry pair_geometry() {
+GearPairGeometry pair_geometry(double face_width = 20e-3) {
   GearPairSpec s;
   s.teeth_pinion = 20;
   s.teeth_wheel = 40;
   s.module_m = 3e-3;
-  s.face_width_m = 20e-3;
+  s.face_width_m = face_width;
   return gear_pair_geometry(s);
 }
 
-FeComplianceOptions options(int teeth, double size) {
+FeComplianceOptions options(int teeth, double size, bool fixed_cuts = true) {
   FeComplianceOptions o;
   o.segment_teeth = teeth;
+  o.fix_cut_faces = fixed_cuts;
   o.mesh_size = size;
   o.profile_points = 5;
   return o;
@@ -41,7 +44,7 @@ FeComplianceOptions options(int teeth, double size) {
 struct Fixture {
   GearPairGeometry g = pair_geometry();
   ToothCompliance teeth{g};
-  FeCompliance fe{teeth, options(7, 0.35)};
+  FeCompliance fe{teeth, options(0, 0.35)};
 };
 
 const Fixture& fixture() {
@@ -49,80 +52,159 @@ const Fixture& fixture() {
   return *f;
 }
 
-double analytic_pinion(const ToothCompliance& t, double s) {
+double analytic_tooth(const ToothCompliance& t, double s, bool wheel) {
   const PointCompliance c = t.at(s);
-  return c.bending_pinion + c.shear_pinion + c.compression_pinion + c.foundation_pinion;
+  return wheel ? c.bending_wheel + c.shear_wheel + c.compression_wheel + c.foundation_wheel
+               : c.bending_pinion + c.shear_pinion + c.compression_pinion + c.foundation_pinion;
 }
 
-// Deflection at mid face per uniform line load over the face (plane strain in the middle of a
-// face of 6.7 m).
+// Deflection at mid face per uniform line load over the face.
 double fe_line(const ToothInfluence& ti, double s, double b) {
   return ti.at(s, 0.5 * b, s, 0.0, b);
 }
 
-// Single pinion tooth under a uniform line load at the start of the active profile (near the
-// root), mid path (near the pitch point) and the end (tip), FE vs the analytic potential-energy
-// tooth with Sainsot's foundation (D.C.H. Yang, J.Y. Lin 1987; Z. Chen, Y. Shao 2011; P.
-// Sainsot, P. Velex, O. Duverger, "Contribution of gear body to tooth deflections - a new
-// bidimensional analytical formula", J. Mech. Design 126, 2004).
-// Measured (docs/validation.md): FE / analytic = 0.75, 0.76, 0.86. Not "a few per cent": the
-// segment is fixed at its cut faces 3.5 pitches from the loaded tooth, a stiffer body than
-// Sainsot's full disc (3 teeth: 0.58, 0.63, 0.80 -- the FE compliance grows by 4e-12 m^2/N at
-// every radius as the cuts move away, see the next test). The tooth itself agrees better: the
-// growth of the compliance from root to tip (bending + shear, the foundation part nearly
-// cancels) is within 15 % of the analytic one (measured 0.89). The band asserted: FE below the
-// analytic (the stiffer segment) and above 0.65 of it; the growth within 15 %.
-TEST(FeComplianceSlow, SingleToothLineLoadAtRootPitchAndTip) {
-  const Fixture& f = fixture();
-  const double b = f.g.face_width_m, ga = f.g.path_of_contact_m;
-  const std::vector<double> s = {0.0, 0.5 * ga, ga};
-  std::vector<double> fe, an;
-  for (double si : s) {
-    fe.push_back(fe_line(f.fe.pinion(), si, b));
-    an.push_back(analytic_pinion(f.teeth, si));
-    std::printf("s = %.3f mm, r = %.3f mm: FE %.4e, analytic %.4e m^2/N, ratio %.3f\n", si * 1e3,
-                f.teeth.pinion_radius(si) * 1e3, fe.back(), an.back(), fe.back() / an.back());
-    EXPECT_LT(fe.back(), an.back());
-    EXPECT_GT(fe.back(), 0.65 * an.back());
-  }
-  const double growth_fe = fe[2] - fe[0], growth_an = an[2] - an[0];
-  std::printf("root-to-tip growth: FE %.4e, analytic %.4e, ratio %.3f\n", growth_fe, growth_an,
-              growth_fe / growth_an);
-  EXPECT_NEAR(growth_fe / growth_an, 1.0, 0.15);
+std::vector<double> five_points(const GearPairGeometry& g) {
+  const double ga = g.path_of_contact_m;
+  return {0.0, 0.25 * ga, 0.5 * ga, 0.75 * ga, ga};
 }
 
-// Mesh convergence and the segment's boundary. A displacement FE model is too stiff and
-// converges from below, for quadratic tets as h^2 in energy: from 0.5 m to 0.35 m at the loaded
-// tooth the line-load compliance grows by 3.1 ... 3.6 % (measured), from 0.35 m to 0.25 m by
-// 1.7 ... 1.8 % (3 teeth, docs/validation.md): the ratio of the changes 1.95 matches the h^2
-// ratio (0.5^2 - 0.35^2) / (0.35^2 - 0.25^2) = 2.1, so the error left at 0.35 m is ~3.4 %, at
-// the default 0.25 m ~1.7 % (Richardson). Asserted: growth on refinement, below 5 %. Fixed cut
-// faces 1.5 pitches from the loaded tooth (3 teeth) instead of 3.5 (7 teeth) stiffen the body:
-// the compliance is lower at every radius.
-TEST(FeComplianceSlow, MeshConvergenceAndSegmentBoundary) {
+// Single tooth of each gear under a uniform line load at five points of the active profile
+// (root ... tip), FE of the whole gear (the body of Sainsot's formula: a full disc fixed at its
+// bore) vs the analytic potential-energy tooth with Sainsot's foundation (D.C.H. Yang, J.Y. Lin
+// 1987; Z. Chen, Y. Shao 2011; P. Sainsot, P. Velex, O. Duverger, "Contribution of gear body to
+// tooth deflections - a new bidimensional analytical formula", J. Mech. Design 126, 2004).
+// Measured (docs/validation.md): FE / analytic = 0.85 ... 0.89 (pinion), 0.85 ... 0.91 (wheel);
+// with the mesh error left at 0.35 m (2.6 %, next tests) 0.87 ... 0.93. Not "a few per cent":
+// with the same body the analytic sum is the outlier, 7 ... 14 % above the FE at every
+// radius, and not from the plane-strain assumption (the thin-gear test below gives the same
+// ratios in plane stress) nor from the body's boundary (the bracket test): the tooth part alone
+// (the growth from root to tip, where the foundation nearly cancels) agrees within 10 %
+// (measured 0.91 pinion, 0.93 wheel), the rest is Sainsot's foundation term, about 1.25 times
+// the FE body deflection under the tooth (theory §15.8). Asserted: FE / analytic in
+// [0.82, 0.96] at every point (measured band widened by the mesh error and 3 % of mesh-generator
+// variation), the root-to-tip growth within 12 %.
+TEST(FeComplianceSlow, SingleToothLineLoadAtFiveRadii) {
   const Fixture& f = fixture();
-  const double b = f.g.face_width_m, ga = f.g.path_of_contact_m;
-  const ToothInfluence coarse = fe_tooth_influence(f.teeth, false, options(7, 0.5));
-  const ToothInfluence three = fe_tooth_influence(f.teeth, false, options(3, 0.5));
-  std::printf("pinion DOFs: 0.35 m / 7 teeth %d, 0.5 m / 7 teeth %d, 0.5 m / 3 teeth %d\n",
-              f.fe.pinion().dofs, coarse.dofs, three.dofs);
-  for (double si : {0.0, 0.5 * ga, ga}) {
-    const double fine = fe_line(f.fe.pinion(), si, b), c = fe_line(coarse, si, b);
-    const double t3 = fe_line(three, si, b);
-    std::printf("s = %.3f mm: 0.35 m %.4e, 0.5 m %.4e (change %.2f %%), 3 teeth %.4e\n", si * 1e3,
-                fine, c, 100.0 * (fine - c) / fine, t3);
-    EXPECT_GT(fine, c);
-    EXPECT_LT(fine / c - 1.0, 0.05);
-    EXPECT_LT(t3, c);
+  const double b = f.g.face_width_m;
+  for (const bool wheel : {false, true}) {
+    const ToothInfluence& ti = wheel ? f.fe.wheel() : f.fe.pinion();
+    std::vector<double> fe, an;
+    for (double si : five_points(f.g)) {
+      fe.push_back(fe_line(ti, si, b));
+      an.push_back(analytic_tooth(f.teeth, si, wheel));
+      const double r = wheel ? f.teeth.wheel_radius(si) : f.teeth.pinion_radius(si);
+      std::printf("%s s = %.3f mm, r = %.3f mm: FE %.4e, analytic %.4e m^2/N, ratio %.3f\n",
+                  wheel ? "wheel" : "pinion", si * 1e3, r * 1e3, fe.back(), an.back(),
+                  fe.back() / an.back());
+      EXPECT_GT(fe.back() / an.back(), 0.82);
+      EXPECT_LT(fe.back() / an.back(), 0.96);
+    }
+    // Root to tip: the pinion's root is at s = 0, the wheel's at s = g_alpha.
+    const double growth_fe = std::abs(fe.back() - fe.front());
+    const double growth_an = std::abs(an.back() - an.front());
+    std::printf("root-to-tip growth: FE %.4e, analytic %.4e, ratio %.3f\n", growth_fe, growth_an,
+                growth_fe / growth_an);
+    EXPECT_NEAR(growth_fe / growth_an, 1.0, 0.12);
   }
 }
 
-// The pair by both routes, unmodified spur pair at 300 N/mm: the mean secant mesh stiffness of
-// the FE route is higher than the analytic route's by the single-tooth difference above (the
-// pair compliance is the sum of two teeth of FE / analytic ~ 0.75 ... 0.86). Measured: mean
-// secant stiffness FE 4.487e8, analytic 3.614e8 N/m (1.24; ISO 6336-1 c_gamma_alpha b 3.748e8),
-// mean loaded TE 14.2 vs 17.8 um (0.80). Asserted within 30 % (the single-tooth band); the TE
-// is larger in single than in double contact in the FE route too.
+// Plane strain or plane stress is not the difference. A gear 1 m wide (3 mm) is in plane
+// stress; the analytic route in plane stress (ToothComplianceOptions::plane_strain false) then
+// describes the same 2D body. The FE / analytic ratio of the thin pinion matches the 6.7 m wide
+// one's (plane strain in the analytic tooth) within 3 % at every radius (measured: differences
+// of 0.8 ... 2.0 %): the analytic excess is a 2D one.
+TEST(FeComplianceSlow, ThinGearInPlaneStressGivesTheSameRatio) {
+  const Fixture& f = fixture();
+  const GearPairGeometry thin = pair_geometry(3e-3);
+  ToothComplianceOptions ps;
+  ps.plane_strain = false;
+  const ToothCompliance teeth(thin, ps);
+  const ToothInfluence t = fe_tooth_influence(teeth, false, options(0, 0.35));
+  for (double si : five_points(f.g)) {
+    const double wide =
+        fe_line(f.fe.pinion(), si, f.g.face_width_m) / analytic_tooth(f.teeth, si, false);
+    const double narrow = fe_line(t, si, thin.face_width_m) / analytic_tooth(teeth, si, false);
+    std::printf(
+        "s = %.3f mm: FE / analytic b = 6.7 m (plane strain) %.3f, b = 1 m (plane "
+        "stress) %.3f\n",
+        si * 1e3, wide, narrow);
+    EXPECT_NEAR(narrow / wide, 1.0, 0.03);
+  }
+}
+
+// The body's boundary. A segment of n teeth fixed at its two radial cut faces is stiffer than
+// the whole gear, and less so as the cuts move away (its compliance grows with n); with free
+// cut faces it is softer (the rim ends are loose) and its compliance falls with n: the two
+// bracket the whole gear's compliance at every radius (measured at 0.5 m, pinion root / tip:
+// fixed 3, 5, 7 teeth 0.66 / 0.89, 0.79 / 0.93, 0.87 / 0.96 of the whole gear; free 2.54 / 1.52,
+// 1.43 / 1.13, 1.18 / 1.05). This is why the whole gear is meshed (theory §15.8).
+TEST(FeComplianceSlow, SegmentsWithFixedAndFreeCutsBracketTheWholeGear) {
+  const Fixture& f = fixture();
+  const double b = f.g.face_width_m;
+  const ToothInfluence whole = fe_tooth_influence(f.teeth, false, options(0, 0.5));
+  std::vector<ToothInfluence> fixed, free;
+  for (int n : {3, 5, 7}) {
+    fixed.push_back(fe_tooth_influence(f.teeth, false, options(n, 0.5, true)));
+    free.push_back(fe_tooth_influence(f.teeth, false, options(n, 0.5, false)));
+  }
+  for (double si : five_points(f.g)) {
+    const double w = fe_line(whole, si, b);
+    std::printf(
+        "s = %.3f mm: whole %.4e; fixed 3/5/7 %.3f %.3f %.3f, free 3/5/7 %.3f %.3f %.3f "
+        "of it\n",
+        si * 1e3, w, fe_line(fixed[0], si, b) / w, fe_line(fixed[1], si, b) / w,
+        fe_line(fixed[2], si, b) / w, fe_line(free[0], si, b) / w, fe_line(free[1], si, b) / w,
+        fe_line(free[2], si, b) / w);
+    for (std::size_t k = 0; k < 3; ++k) {
+      EXPECT_LT(fe_line(fixed[k], si, b), w);
+      EXPECT_GT(fe_line(free[k], si, b), w);
+      if (k == 0) continue;
+      EXPECT_GT(fe_line(fixed[k], si, b), fe_line(fixed[k - 1], si, b));
+      EXPECT_LT(fe_line(free[k], si, b), fe_line(free[k - 1], si, b));
+    }
+  }
+}
+
+// Mesh convergence. A displacement FE model is too stiff and converges from below, for
+// quadratic tets as h^2 (to h^3 where the field is smooth) in energy. Whole pinion, element size
+// 0.5, 0.35, 0.25 m at the loaded tooth: the line-load compliance grows by 3.0 ... 3.3 % and
+// then by 1.2 ... 1.4 % (measured); the ratio of the steps, 2.15 ... 2.65, lies between the h^2
+// ratio (0.5^2 - 0.35^2) / (0.35^2 - 0.25^2) = 2.13 and the h^3 one 2.93. Richardson with the
+// slower h^2 rate leaves ~1.3 % at 0.25 m and ~2.6 % at 0.35 m (the default). Asserted:
+// monotonic growth, each step < 5 %, the ratio of the steps in [1.7, 3.3] (h^2 ... h^3 with
+// 20 % for the non-uniform mesh).
+TEST(FeComplianceSlow, MeshConvergence) {
+  const Fixture& f = fixture();
+  const double b = f.g.face_width_m;
+  const ToothInfluence coarse = fe_tooth_influence(f.teeth, false, options(0, 0.5));
+  const ToothInfluence fine = fe_tooth_influence(f.teeth, false, options(0, 0.25));
+  std::printf("pinion DOFs: 0.5 m %d, 0.35 m %d, 0.25 m %d\n", coarse.dofs, f.fe.pinion().dofs,
+              fine.dofs);
+  for (double si : five_points(f.g)) {
+    const double c = fe_line(coarse, si, b), m = fe_line(f.fe.pinion(), si, b);
+    const double x = fe_line(fine, si, b);
+    const double steps = (m - c) / (x - m);
+    std::printf(
+        "s = %.3f mm: 0.5 m %.4e, 0.35 m %.4e (+%.2f %%), 0.25 m %.4e (+%.2f %%), ratio "
+        "of the steps %.2f\n",
+        si * 1e3, c, m, 100.0 * (m / c - 1.0), x, 100.0 * (x / m - 1.0), steps);
+    EXPECT_GT(m, c);
+    EXPECT_GT(x, m);
+    EXPECT_LT(m / c - 1.0, 0.05);
+    EXPECT_LT(x / m - 1.0, 0.05);
+    EXPECT_GT(steps, 1.7);
+    EXPECT_LT(steps, 3.3);
+  }
+}
+
+// The pair by both routes, unmodified spur pair at 300 N/mm: the pair compliance is the two
+// teeth (FE / analytic 0.84 ... 0.91 above) plus the Hertzian approach, the same analytic term
+// in both routes, so the FE route's mean secant mesh stiffness is higher and its TE lower by a
+// little less than the single-tooth difference. Measured: mean secant stiffness FE 4.081e8,
+// analytic 3.614e8 N/m (1.13; ISO 6336-1 c_gamma_alpha b 3.748e8, between them), mean loaded
+// TE 15.7 vs 17.8 um (0.88). Asserted: TE ratio in [0.82, 0.96] and stiffness ratio in
+// [1.04, 1.22] (the single-tooth band, its inverse); the TE is larger in single than in double
+// contact in the FE route too.
 TEST(FeComplianceSlow, LoadedTeAndMeshStiffnessOfBothRoutes) {
   const Fixture& f = fixture();
   const SliceCompliance slices(f.teeth, 0.0);
@@ -147,9 +229,10 @@ TEST(FeComplianceSlow, LoadedTeAndMeshStiffnessOfBothRoutes) {
   std::printf("loaded TE: FE mean %.3f um p-p %.3f um; analytic mean %.3f um p-p %.3f um\n",
               mean(rf.te_m) * 1e6, (*fmax - *fmin) * 1e6, mean(ra.te_m) * 1e6,
               (*amax - *amin) * 1e6);
-  EXPECT_GT(kf, ka);
-  EXPECT_NEAR(kf / ka, 1.0, 0.30);
-  EXPECT_NEAR(mean(rf.te_m) / mean(ra.te_m), 1.0, 0.30);
+  EXPECT_GT(kf / ka, 1.04);
+  EXPECT_LT(kf / ka, 1.22);
+  EXPECT_GT(mean(rf.te_m) / mean(ra.te_m), 0.82);
+  EXPECT_LT(mean(rf.te_m) / mean(ra.te_m), 0.96);
   // Single contact (pair 0 alone: share 1) has the larger TE in both routes.
   double single_fe = 0, double_fe = 0;
   int ns = 0, nd = 0;
@@ -167,8 +250,9 @@ TEST(FeComplianceSlow, LoadedTeAndMeshStiffnessOfBothRoutes) {
 // of the pair (pinion + wheel, centre line) along the face under a load concentrated at mid face
 // (one face hat, 2 grid steps wide) at mid path, fitted by exp(-|y - y0| / lambda) (least
 // squares on the logarithm) over 1 m <= |y - y0| <= 2.5 m, where the kernel is past the load's
-// own width and clear of the face ends. The Pasternak layer's lambda is the fitted one. Measured:
-// lambda = 6.41 mm = 2.14 m = 0.95 tooth heights (2.25 m), residual 0.6 % (docs/validation.md);
+// own width and clear of the face ends. The Pasternak layer's lambda is the fitted one. Measured
+// (whole gears): lambda = 7.54 mm = 2.51 m = 1.12 tooth heights (2.25 m), residual 0.7 %
+// (docs/validation.md; the segments fixed at their cuts gave 2.14 m: a stiffer body);
 // asserted: a decay length of the order of the tooth height (0.5 ... 1.5 of it, the range of
 // plate-strip decay lengths for a cantilever of that height) and an exponential fit within 5 %.
 TEST(FeComplianceSlow, FaceDecayLengthCalibratesCouplingLength) {

@@ -175,14 +175,16 @@ std::string compliance_note(const ToothContactModel& m) {
   const gear::ToothInfluence& p = fe->pinion();
   const gear::ToothInfluence& w = fe->wheel();
   return fmt::format(
-      "'{}': FE compliance route (docs/theory.md §15.8): tet10 segments of {} teeth fixed at "
-      "bore and cut faces, element size {:.3g} m_n at the loaded tooth; pinion {} nodes / {} "
+      "'{}': FE compliance route (docs/theory.md §15.8): tet10 meshes of {}, element size "
+      "{:.3g} m_n at the loaded tooth; pinion {} nodes / {} "
       "DOFs, wheel {} nodes / {} DOFs; grid {} profile x {} face points per gear; mesh + "
       "factorisation {:.3g} s, load cases {:.3g} s (both gears); Hertzian approach analytic; "
       "coupling_length not used.",
-      m.pair.pair->name, c.fe_teeth, c.fe_mesh_size, p.nodes, p.dofs, w.nodes, w.dofs,
-      p.path.size(), p.face.size(), p.mesh_seconds + w.mesh_seconds,
-      p.solve_seconds + w.solve_seconds);
+      m.pair.pair->name,
+      c.fe_teeth == 0 ? std::string("the whole gears fixed at the bore")
+                      : fmt::format("segments of {} teeth fixed at bore and cut faces", c.fe_teeth),
+      c.fe_mesh_size, p.nodes, p.dofs, w.nodes, w.dofs, p.path.size(), p.face.size(),
+      p.mesh_seconds + w.mesh_seconds, p.solve_seconds + w.solve_seconds);
 }
 
 }  // namespace

@@ -44,8 +44,10 @@ void check(const GearPairGeometry& g, const FeComplianceOptions& o) {
     fail(g, "fe_profile_points", "3 ... 64", fmt::format("{}", o.profile_points));
   if (o.face_points != 0 && (o.face_points < 2 || o.face_points > 201))
     fail(g, "fe_face_points", "0 (automatic) or 2 ... 201", fmt::format("{}", o.face_points));
-  if (o.segment_teeth < 1 || o.segment_teeth % 2 == 0 || o.segment_teeth > 7)
-    fail(g, "fe_teeth", "an odd number of teeth 1 ... 7", fmt::format("{}", o.segment_teeth));
+  if (o.segment_teeth != 0 &&
+      (o.segment_teeth < 1 || o.segment_teeth % 2 == 0 || o.segment_teeth > 7))
+    fail(g, "fe_teeth", "0 (the whole gear) or an odd number of teeth 1 ... 7",
+         fmt::format("{}", o.segment_teeth));
 }
 
 /// The segment mesh parameters of one gear.
@@ -55,7 +57,8 @@ meshgen::InvoluteSegmentParams segment_params(const GearPairGeometry& g, bool wh
   const ElasticConstants& ec = wheel ? o.teeth.wheel : o.teeth.pinion;
   meshgen::InvoluteSegmentParams p;
   p.teeth = gg.teeth;
-  p.segment_teeth = std::min(o.segment_teeth, std::max(1, (gg.teeth / 2) - (gg.teeth / 2 + 1) % 2));
+  const int largest_odd = std::max(1, (gg.teeth / 2) - (gg.teeth / 2 + 1) % 2);
+  p.segment_teeth = o.segment_teeth == 0 ? gg.teeth : std::min(o.segment_teeth, largest_odd);
   p.module = g.normal_module_m;
   p.pressure_angle = g.normal_pressure_angle_rad;
   p.profile_shift = gg.profile_shift;
@@ -68,8 +71,7 @@ meshgen::InvoluteSegmentParams segment_params(const GearPairGeometry& g, bool wh
   p.bore_radius = std::isnan(bore) ? 0.5 * rf : std::max(bore, rf / 7.0);
   p.face_width = g.face_width_m;
   p.tooth_size = o.mesh_size * p.module;
-  p.body_size =
-      (std::isnan(o.body_size) ? std::min(1.0, 4.0 * o.mesh_size) : o.body_size) * p.module;
+  p.body_size = (std::isnan(o.body_size) ? 3.0 : o.body_size) * p.module;
   p.material.name = wheel ? "wheel" : "pinion";
   p.material.E = ec.youngs_modulus_pa;
   p.material.nu = ec.poisson_ratio;
@@ -79,7 +81,7 @@ meshgen::InvoluteSegmentParams segment_params(const GearPairGeometry& g, bool wh
   return p;
 }
 
-/// The loaded flank of the middle tooth (centred on +x) at radius r: point, unit load direction
+/// The loaded flank of the loaded tooth (centred on +x) at radius r: point, unit load direction
 /// (into the tooth, along the involute normal = the base-circle tangent) and the centre-line
 /// point where that line crosses the x axis.
 struct FlankPoint {
@@ -99,7 +101,7 @@ FlankPoint flank_point(const std::vector<meshgen::ProfilePoint>& prof, int teeth
   return f;
 }
 
-/// Boundary faces (6-node triangles) of the tets near the middle tooth.
+/// Boundary faces (6-node triangles) of the tets near the loaded tooth.
 struct Face {
   std::array<int, 6> nodes;  ///< corners a b c, mid-nodes ab bc ca
 };
@@ -279,9 +281,12 @@ ToothInfluence fe_tooth_influence(const ToothCompliance& teeth, bool wheel,
   const meshgen::InvoluteSegmentParams params = segment_params(g, wheel, o);
   const std::vector<meshgen::ProfilePoint> prof = meshgen::tooth_space_profile(params);
   solid::Mesh mesh = meshgen::involute_segment(params);
-  for (const char* set : {"bore", "cut"})
-    for (int n : mesh.node_sets.at(set))
-      mesh.constraints.push_back({n, {true, true, true, false, false, false}, {}});
+  std::vector<int> fixed = mesh.node_sets.at("bore");
+  if (o.fix_cut_faces) {
+    const std::vector<int>& cut = mesh.node_sets.at("cut");  // empty for the whole gear
+    fixed.insert(fixed.end(), cut.begin(), cut.end());
+  }
+  for (int n : fixed) mesh.constraints.push_back({n, {true, true, true, false, false, false}, {}});
   solid::AssemblyOptions ao;
   ao.mass = false;
   const solid::SolidSystem sys = solid::assemble(mesh, ao);

@@ -62,8 +62,11 @@ ProfilePoint generate(double r, double datum, double x, double d, double nx, dou
 
 void validate(const InvoluteSegmentParams& p) {
   if (p.teeth < 6) fail(p, "teeth", "a gear of >= 6 teeth", p.teeth);
-  if (p.segment_teeth < 1 || p.segment_teeth % 2 == 0 || 2 * p.segment_teeth > p.teeth)
-    fail(p, "segment_teeth", fmt::format("an odd number of teeth in 1 ... z / 2 = {}", p.teeth / 2),
+  if (p.segment_teeth != p.teeth &&
+      (p.segment_teeth < 1 || p.segment_teeth % 2 == 0 || 2 * p.segment_teeth > p.teeth))
+    fail(p, "segment_teeth",
+         fmt::format("an odd number of teeth in 1 ... z / 2 = {}, or z (the whole gear)",
+                     p.teeth / 2),
          p.segment_teeth);
   if (!(p.module > 0.0) || !std::isfinite(p.module))
     fail(p, "module", "a positive module", p.module);
@@ -169,7 +172,7 @@ Section section_of(const InvoluteSegmentParams& p) {
   Section s;
   const int n = p.segment_teeth;
   for (int j = 0; j < n; ++j) {
-    const double c = (j - 0.5 * (n - 1)) * pitch;
+    const double c = (j - n / 2) * pitch;  // the middle tooth (j = n / 2) on +x
     s.centres.push_back(c);
     std::vector<Eigen::Vector2d> left, right;
     for (const ProfilePoint& q : prof) left.push_back(polar(q.radius, c - 0.5 * pitch + q.angle));
@@ -188,6 +191,7 @@ namespace occ = gmsh::model::occ;
 
 /// The plane face of the section at z = 0; returns its tag.
 int add_section(const InvoluteSegmentParams& p, const Section& s) {
+  const bool full = p.segment_teeth == p.teeth;
   const int origin = occ::addPoint(0, 0, 0);
   std::vector<int> curves;
   int first = -1, last = -1;
@@ -199,6 +203,10 @@ int add_section(const InvoluteSegmentParams& p, const Section& s) {
         tags.push_back(last);
         continue;
       }
+      if (full && i + 1 == pts.size() && f + 1 == s.flanks.size()) {
+        tags.push_back(first);  // the whole gear: the last space closes on the first
+        continue;
+      }
       tags.push_back(occ::addPoint(pts[i].x(), pts[i].y(), 0));
     }
     if (first < 0) first = tags.front();
@@ -208,6 +216,11 @@ int add_section(const InvoluteSegmentParams& p, const Section& s) {
     }
     curves.push_back(occ::addSpline(tags));
     last = tags.back();
+  }
+  if (full) {
+    const int outer = occ::addCurveLoop(curves);
+    const int bore = occ::addCurveLoop({occ::addCircle(0, 0, 0, p.bore_radius)});
+    return occ::addPlaneSurface({outer, bore});
   }
   const Eigen::Vector2d b_hi = polar(p.bore_radius, s.theta_hi);
   const Eigen::Vector2d b_mid = polar(p.bore_radius, 0.5 * (s.theta_lo + s.theta_hi));
@@ -271,11 +284,16 @@ solid::Mesh build(const InvoluteSegmentParams& p) {
   const std::vector<int> surfaces = boundary_surfaces(volumes);
   mesh.node_sets["bore"] =
       extraction.body_nodes_on(0, 2, surfaces_at_radius(surfaces, p.bore_radius, tol));
-  std::vector<int> cuts = surfaces_on_half_plane(s.theta_lo, tol);
-  const std::vector<int> hi = surfaces_on_half_plane(s.theta_hi, tol);
-  cuts.insert(cuts.end(), hi.begin(), hi.end());
-  mesh.node_sets["cut"] = extraction.body_nodes_on(0, 2, cuts);
-  if (mesh.node_sets["bore"].empty() || mesh.node_sets["cut"].empty())
+  const bool full = p.segment_teeth == p.teeth;
+  if (!full) {
+    std::vector<int> cuts = surfaces_on_half_plane(s.theta_lo, tol);
+    const std::vector<int> hi = surfaces_on_half_plane(s.theta_hi, tol);
+    cuts.insert(cuts.end(), hi.begin(), hi.end());
+    mesh.node_sets["cut"] = extraction.body_nodes_on(0, 2, cuts);
+  } else {
+    mesh.node_sets["cut"] = {};
+  }
+  if (mesh.node_sets["bore"].empty() || (!full && mesh.node_sets["cut"].empty()))
     throw NumericalError(kAnalysis, "the bore or the cut faces were not found on the mesh");
   mesh.source = fmt::format(
       "involute_segment(z={}, {} teeth, m={:.6g}, tooth size {:.6g}, body size {:.6g}, tet10)",

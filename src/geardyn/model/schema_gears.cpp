@@ -484,18 +484,18 @@ Section contact_section() {
           choice("compliance", {"analytic", "fe"},
                  "Compliance of the tooth pairs (docs/theory.md §15.8): \"analytic\", slices "
                  "with the potential-energy tooth, Sainsot's foundation and the shear-layer "
-                 "coupling_length; \"fe\", influence coefficients from a tet10 mesh of an "
-                 "involute segment of each gear (fixed at the bore and the segment's cut faces) "
-                 "plus the analytic Hertz term; spur external pairs; the slices couple through "
-                 "the FE (coupling_length is not used).")
+                 "coupling_length; \"fe\", influence coefficients from a tet10 mesh of each "
+                 "whole gear (every tooth, fixed at the bore) plus the analytic Hertz term; "
+                 "spur external pairs; the slices couple through the FE (coupling_length is not "
+                 "used).")
               .def("\"analytic\"")
               .to_enum(&ContactModelSpec::compliance,
                        {ContactComplianceKind::Analytic, ContactComplianceKind::Fe}),
           number("fe_mesh_size", kNoUnit,
-                 "compliance = \"fe\": element size at the loaded tooth, in modules (4x that, "
-                 "at most one module, in the rest of the body); 0.35 leaves about 3.4 % "
-                 "discretisation error in the compliance, 0.25 about 1.7 % at three times the "
-                 "cost (docs/theory.md §15.8).")
+                 "compliance = \"fe\": element size at the loaded tooth, in modules (3 "
+                 "modules in the rest of the body); 0.35 leaves about 2.6 % discretisation "
+                 "error in the compliance, 0.25 about 1.3 % at three times the cost "
+                 "(docs/theory.md §15.8).")
               .def("0.35")
               .ge(0.05)
               .le(1.0)
@@ -515,12 +515,14 @@ Section contact_section() {
               .le(201)
               .to(&ContactModelSpec::fe_face_points),
           integer("fe_teeth",
-                  "compliance = \"fe\": teeth of the meshed gear segment (odd; the loaded "
-                  "tooth in the middle; capped at the largest odd number <= z / 2). The "
-                  "segment's cut faces are fixed: more teeth put them farther from the loaded "
-                  "tooth and the body closer to a full disc (docs/theory.md §15.8).")
-              .def("7")
-              .ge(1)
+                  "compliance = \"fe\": 0, mesh the whole gear (the body of Sainsot's "
+                  "foundation formula, a full disc fixed at its bore); an odd 1 ... 7, only a "
+                  "segment of that many teeth (the loaded tooth in the middle; capped at the "
+                  "largest odd number <= z / 2) fixed at its bore and its two radial cut faces: "
+                  "cheaper, but a stiffer body (7 teeth: 4 ... 13 % less tooth compliance than "
+                  "the whole gear; docs/theory.md §15.8).")
+              .def("0")
+              .ge(0)
               .le(7)
               .to(&ContactModelSpec::fe_teeth),
       });
