@@ -195,6 +195,10 @@ poisson_ratio = 0.3
 // the path of contact, whose compliance varies (soft near the tips), differently at mid face
 // and at the face ends; K_Hbeta = 1.015 for this pair, converged in the positions (64, 256 and
 // 1024 per cycle give 1.0153, 1.0150, 1.0150), so it is bounded by 1.03.
+// ISO's distribution is that of independent springs along the face: the comparison is made with
+// uncoupled slices (coupling_length = 0). The default coupling (2.5 m_n, calibrated on the FE
+// route) concentrates the load more towards the closing face end, as the FE does
+// (FeComplianceSlow.MisalignedPairLoadConcentrationNeedsTheSliceCoupling): 1.45 here.
 TEST(ToothContactAnalysis, MisalignedHelicalPairFaceLoadFactorFollowsIso6336) {
   const std::string helical = R"(version = 1
 [[gear_pairs]]
@@ -206,6 +210,8 @@ module = 0.0025
 helix_angle_deg = 20
 face_width = 0.03
 torque = 250
+[gear_pairs.contact]
+coupling_length = 0.0
 )";
   const model::Model aligned = load(fresh_dir("ltca_helical0"), helical + kAnalysis);
   const Outcome o0 = run_entry(aligned);
@@ -214,7 +220,7 @@ torque = 250
   EXPECT_LT(result(o0).torques.front().face_load_factor, 1.03);
 
   const model::Model m = load(fresh_dir("ltca_helical"),
-                              helical + "[gear_pairs.contact]\nmisalignment = 8e-6\n" + kAnalysis);
+                              helical + "misalignment = 8e-6\n" + kAnalysis);
   const Outcome o = run_entry(m);
   ASSERT_EQ(o.output.status, Status::Ok) << o.output.message;
   const auto& res = result(o).torques.front();
@@ -253,6 +259,64 @@ speed_rpm = [1000, 3000]
   ASSERT_EQ(pair.output.status, Status::Ok) << pair.output.message;
   EXPECT_EQ(force.output.status, Status::Ok) << force.output.message;
   const auto& res = result(ltca).torques.front();
+  const Table& k = table(pair.output, "mesh_stiffness");
+  ASSERT_EQ(k.rows(), res.te_m.size());
+  for (std::size_t i = 0; i < k.rows(); ++i) {
+    EXPECT_NEAR(k.column("stiffness_n_per_m").numbers[i], res.stiffness_secant_n_per_m[i],
+                1e-12 * res.stiffness_secant_n_per_m[i]);
+    EXPECT_NEAR(k.column("ste_m").numbers[i], res.te_m[i], 1e-18);
+    EXPECT_NEAR(k.column("geometric_te_m").numbers[i], res.unloaded_te_m[i], 1e-18);
+  }
+}
+
+// A hypoid pair without an STE file takes, by default, the TE of its virtual cylindrical pair
+// (docs/theory.md §15.6, §15.9). The dynamic model's F_s = T1 / r_b1 with r_b1 = r_m1 cos
+// alpha_t (gear::synthetic_ste) must be the contact analysis's F_bt, or the stiffness F_s /
+// (e - e_g) would not be the contact's: checked to 1e-12 (the same formula evaluated twice),
+// the STE and its unloaded part to 1e-18 m (copied numbers); mesh_force runs on it.
+TEST(ToothContactAnalysis, HypoidPairSteComesFromItsVirtualPairByDefault) {
+  const std::string hypoid = R"(version = 1
+[[gear_pairs]]
+name = "hypoid"
+type = "hypoid"
+teeth1 = 13
+teeth2 = 39
+module = 0.005
+helix_angle_deg = 35
+pinion_spiral_angle_deg = 45
+face_width = 0.03
+torque = 300
+inertia1 = 0.004
+inertia2 = 0.09
+[gear_pairs.ease_off]
+profile_crowning = 15e-6
+length_crowning = 25e-6
+bias = 10e-6
+[gear_pairs.contact]
+positions = 32
+slices = 30
+mounting_h = 5e-5
+[[analyses]]
+name = "ltca"
+type = "tooth_contact"
+[[analyses]]
+name = "pair"
+type = "gear_pair"
+[[analyses]]
+name = "force"
+type = "mesh_force"
+speed_rpm = [1000, 3000]
+)";
+  const model::Model m = load(fresh_dir("ltca_hypoid_default"), hypoid);
+  check_inputs(m, {});
+  const Outcome ltca = run_entry(m, 0), pair = run_entry(m, 1), force = run_entry(m, 2);
+  ASSERT_EQ(ltca.output.status, Status::Ok) << ltca.output.message;
+  ASSERT_EQ(pair.output.status, Status::Ok) << pair.output.message;
+  EXPECT_EQ(force.output.status, Status::Ok) << force.output.message;
+  const auto& res = result(ltca).torques.front();
+  const PairModel pm = build_pair_model(m, 0);
+  EXPECT_TRUE(pm.ste_from_contact);
+  EXPECT_NEAR(pm.static_force_n, res.force_n, 1e-12 * res.force_n);
   const Table& k = table(pair.output, "mesh_stiffness");
   ASSERT_EQ(k.rows(), res.te_m.size());
   for (std::size_t i = 0; i < k.rows(); ++i) {

@@ -152,9 +152,10 @@ namespace {
 // The compliance route of [gear_pairs.contact] compliance (docs/theory.md §15.3, §15.8).
 std::unique_ptr<gear::ContactCompliance> make_compliance(const gear::ToothCompliance& teeth,
                                                          const gear::ToothComplianceOptions& co,
-                                                         const model::ContactModelSpec& c) {
+                                                         const model::ContactModelSpec& c,
+                                                         double coupling_length_m) {
   if (c.compliance == model::ContactComplianceKind::Analytic)
-    return std::make_unique<gear::SliceCompliance>(teeth, c.coupling_length);
+    return std::make_unique<gear::SliceCompliance>(teeth, coupling_length_m);
   gear::FeComplianceOptions fo;
   fo.mesh_size = c.fe_mesh_size;
   fo.profile_points = c.fe_profile_points;
@@ -164,6 +165,20 @@ std::unique_ptr<gear::ContactCompliance> make_compliance(const gear::ToothCompli
   return std::make_unique<gear::FeCompliance>(teeth, fo);
 }
 
+// How the slices of a tooth pair are coupled, for the notes.
+std::string coupling_text(const ToothContactModel& m) {
+  const model::ContactModelSpec& c = m.pair.pair->contact;
+  if (c.compliance == model::ContactComplianceKind::Fe)
+    return "slices coupled through the FE influence coefficients";
+  if (m.coupling_length_m == 0.0)
+    return "slices uncoupled (coupling_length = 0): a point-like contact spreads no load to its "
+           "neighbours, which over-estimates the load peaks at modification edges";
+  return fmt::format(
+      "slices coupled by a shear layer of decay length {:.6g} m ({:.3g} m_n{})",
+      m.coupling_length_m, m.coupling_length_m / m.pair.geometry.normal_module_m,
+      std::isnan(c.coupling_length) ? ", the FE-calibrated default of docs/theory.md §15.8" : "");
+}
+
 // The note saying which compliance route ran, its mesh and its cost.
 std::string compliance_note(const ToothContactModel& m) {
   const model::ContactModelSpec& c = m.pair.pair->contact;
@@ -171,7 +186,7 @@ std::string compliance_note(const ToothContactModel& m) {
   if (fe == nullptr)
     return fmt::format(
         "'{}': analytic compliance route (potential-energy tooth, Sainsot foundation, {}).",
-        m.pair.pair->name, c.coupling_length > 0.0 ? "shear-layer coupling" : "uncoupled slices");
+        m.pair.pair->name, m.coupling_length_m > 0.0 ? "shear-layer coupling" : "uncoupled slices");
   const gear::ToothInfluence& p = fe->pinion();
   const gear::ToothInfluence& w = fe->wheel();
   return fmt::format(
@@ -211,7 +226,10 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   co.pinion = elastic(model, p.material1);
   co.wheel = elastic(model, p.material2);
   tc->teeth = std::make_unique<gear::ToothCompliance>(bevel_contact(p, g, path, tc->options), co);
-  tc->compliance = make_compliance(*tc->teeth, co, c);
+  tc->coupling_length_m = std::isnan(c.coupling_length)
+                             ? kCouplingLengthPerModule * g.normal_module_m
+                             : c.coupling_length;
+  tc->compliance = make_compliance(*tc->teeth, co, c, tc->coupling_length_m);
   // The gear library reports keys as modifications1.<key>; the model calls them flank1.<key>.
   gear::GearPairGeometry keyed = g;
   keyed.spec.key_path = path;
@@ -617,19 +635,13 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
   add_plots(out, r);
   const auto& m = *r.model;
   const auto& g = m.pair.geometry;
-  const model::ContactModelSpec& c = m.pair.pair->contact;
   out.notes.push_back(fmt::format(
       "'{}': slice model, {} mesh positions per cycle x {} slices over b = {:.6g} m, {} mesh "
       "cycle{}; tooth compliance by the potential-energy method with fillet foundation and "
       "Hertzian approach per slice (docs/theory.md §15); {}.",
       m.pair.pair->name, m.options.positions, m.options.slices, g.face_width_m, m.contact->cycles(),
       m.contact->cycles() == 1 ? "" : "s (hunting period)",
-      c.coupling_length > 0.0
-          ? fmt::format("slices coupled by a shear layer of decay length {:.6g} m",
-                        c.coupling_length)
-          : std::string("slices uncoupled (coupling_length = 0): a point-like contact spreads "
-                        "no load to its neighbours, which over-estimates the load peaks at "
-                        "modification edges")));
+      coupling_text(m)));
   out.notes.push_back(compliance_note(m));
   out.notes.push_back(misalignment_note(m));
   if (m.contact->bevel()) out.notes.push_back(bevel_note(m));

@@ -34,6 +34,11 @@ struct ToothContactSettings : model::SettingsOf<ToothContactSettings> {
 };
 
 /// The LTCA problem of a model's pair: the gear library's inputs built from the model keys.
+/// Default slice coupling length per normal module (bevel: mean normal module of the virtual
+/// pair): the decay length of the FE route's face influence line for standard-rack steel teeth,
+/// 2.51 m_n (docs/theory.md §15.8, tests/gear/fe_compliance_slow_test.cpp).
+inline constexpr double kCouplingLengthPerModule = 2.5;
+
 struct ToothContactModel {
   PairModel pair;
   gear::FlankModification pinion, wheel;
@@ -42,6 +47,9 @@ struct ToothContactModel {
   std::unique_ptr<gear::ContactCompliance> compliance;  ///< SliceCompliance or FeCompliance
   std::unique_ptr<gear::ToothContact> contact;
   double misalignment_m = 0.0;       ///< f_ma used at the pair's torque (misalignment.at(T_pair))
+  /// Slice coupling length of the analytic route [m]: contact.coupling_length, or without it
+  /// kCouplingLengthPerModule m_n (the FE calibration, docs/theory.md §15.8).
+  double coupling_length_m = 0.0;
   ContactMisalignment misalignment;  ///< given and from the rotor's deflection
 };
 

@@ -352,8 +352,9 @@ enum class ContactComplianceKind { Analytic, Fe };
 struct ContactModelSpec {
   int positions = 64;  ///< mesh positions per mesh cycle
   int slices = 40;     ///< slices over the face width
-  /// Decay length of the coupling between neighbouring slices of a tooth [m] (0: uncoupled).
-  double coupling_length = 0.0;
+  /// Decay length of the coupling between neighbouring slices of a tooth [m] (0: uncoupled;
+  /// NaN: 2.5 m_n, analyses::kCouplingLengthPerModule).
+  double coupling_length = kNaN;
   double misalignment = 0.0;                ///< f_ma in the plane of action over b [m]
   double axis_inclination_deviation = 0.0;  ///< f_Sigma_delta over b [m]
   double axis_deviation = 0.0;              ///< f_Sigma_beta over b [m]
@@ -370,7 +371,7 @@ struct ContactModelSpec {
   double fe_mesh_size = 0.35;  ///< element size at the loaded tooth / m_n
   int fe_profile_points = 9;   ///< FE grid: roll positions over the active profile
   int fe_face_points = 0;      ///< FE grid: face positions (0: one per m_n / 2, >= 5)
-  int fe_teeth = 7;            ///< teeth of the meshed segment (odd)
+  int fe_teeth = 0;            ///< 0: the whole gear; odd 1 ... 7: a segment
   SourceLocation where;
 };
 

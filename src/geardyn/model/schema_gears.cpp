@@ -426,8 +426,10 @@ Section contact_section() {
           number("coupling_length", kMetre,
                  "Decay length of the elastic coupling between neighbouring slices of a tooth "
                  "(a Pasternak layer: a point load's deflection decays as exp(-|dy| / length)); "
-                 "0: uncoupled slices (Winkler).")
-              .def("0.0")
+                 "0: uncoupled slices (Winkler). The analytic route only (the FE route couples "
+                 "the slices itself).")
+              .note("2.5 m_n, the decay length of the FE route's face influence line (docs/"
+                    "theory.md §15.8)")
               .ge(0)
               .to(&ContactModelSpec::coupling_length),
           number("misalignment", kMetre,
