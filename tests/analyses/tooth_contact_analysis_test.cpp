@@ -24,15 +24,7 @@ namespace {
 using namespace test;
 
 std::string spur(const std::string& torque, const std::string& extra = {}) {
-  return R"(version = 1
-[[gear_pairs]]
-name = "spur"
-teeth1 = 20
-teeth2 = 40
-module = 0.003
-face_width = 0.02
-torque = )" +
-         torque + "\n" + extra;
+  return spur_pair_20_40(torque, extra);
 }
 
 const std::string kAnalysis = R"(
@@ -219,8 +211,8 @@ coupling_length = 0.0
   EXPECT_GT(result(o0).torques.front().face_load_factor, 1.0);
   EXPECT_LT(result(o0).torques.front().face_load_factor, 1.03);
 
-  const model::Model m = load(fresh_dir("ltca_helical"),
-                              helical + "misalignment = 8e-6\n" + kAnalysis);
+  const model::Model m =
+      load(fresh_dir("ltca_helical"), helical + "misalignment = 8e-6\n" + kAnalysis);
   const Outcome o = run_entry(m);
   ASSERT_EQ(o.output.status, Status::Ok) << o.output.message;
   const auto& res = result(o).torques.front();

@@ -22,17 +22,7 @@ namespace {
 using namespace test;
 
 std::string spur(const std::string& torque, const std::string& extra = {}) {
-  return R"(version = 1
-[[gear_pairs]]
-name = "spur"
-teeth1 = 20
-teeth2 = 40
-module = 0.003
-face_width = 0.02
-inertia1 = 0.002
-inertia2 = 0.03
-torque = )" +
-         torque + "\n" + extra;
+  return spur_pair_20_40(torque, "inertia1 = 0.002\ninertia2 = 0.03\n" + extra);
 }
 
 const std::string kTipRelief = R"(

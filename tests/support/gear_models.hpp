@@ -46,4 +46,19 @@ inline std::size_t row_where(const Table& t, const std::string& key, const std::
   throw std::out_of_range("no row " + key + " = " + value);
 }
 
+/// The model-file text of the tooth contact tests' spur pair: 20 / 40 teeth, m = 3 mm, alpha =
+/// 20 deg, b = 20 mm, steel (r1 = 30 mm), `torque` on gear 1 [N m], then `extra` (more keys of
+/// the pair, its sub-tables, analyses).
+inline std::string spur_pair_20_40(const std::string& torque, const std::string& extra = {}) {
+  return R"(version = 1
+[[gear_pairs]]
+name = "spur"
+teeth1 = 20
+teeth2 = 40
+module = 0.003
+face_width = 0.02
+torque = )" +
+         torque + "\n" + extra;
+}
+
 }  // namespace geardyn::analyses::test

@@ -46,7 +46,7 @@ struct ToothContactModel {
   std::unique_ptr<gear::ToothCompliance> teeth;
   std::unique_ptr<gear::ContactCompliance> compliance;  ///< SliceCompliance or FeCompliance
   std::unique_ptr<gear::ToothContact> contact;
-  double misalignment_m = 0.0;       ///< f_ma used at the pair's torque (misalignment.at(T_pair))
+  double misalignment_m = 0.0;  ///< f_ma used at the pair's torque (misalignment.at(T_pair))
   /// Slice coupling length of the analytic route [m]: contact.coupling_length, or without it
   /// kCouplingLengthPerModule m_n (the FE calibration, docs/theory.md §15.8).
   double coupling_length_m = 0.0;

@@ -36,8 +36,7 @@ void finish_gear_pair(GearPair& g, const TableContext& t) {
   // the STE itself, so an explicit ste_source with a file is a contradiction.
   for (const char* file : {"ste_file", "ltca_file"})
     if (t.has("ste_source") && t.has(file))
-      t.fail("ste_source",
-             fmt::format("no ste_source with an {} (the file is the STE)", file),
+      t.fail("ste_source", fmt::format("no ste_source with an {} (the file is the STE)", file),
              fmt::format("ste_source and an {}", file));
   if (g.internal && bevel)
     t.fail("internal", "false for bevel and hypoid gears (internal gears are spur or helical)",
