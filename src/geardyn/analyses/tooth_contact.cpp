@@ -227,8 +227,8 @@ std::shared_ptr<ToothContactModel> build_tooth_contact_model(const model::Model&
   co.wheel = elastic(model, p.material2);
   tc->teeth = std::make_unique<gear::ToothCompliance>(bevel_contact(p, g, path, tc->options), co);
   tc->coupling_length_m = std::isnan(c.coupling_length)
-                             ? kCouplingLengthPerModule * g.normal_module_m
-                             : c.coupling_length;
+                              ? kCouplingLengthPerModule * g.normal_module_m
+                              : c.coupling_length;
   tc->compliance = make_compliance(*tc->teeth, co, c, tc->coupling_length_m);
   // The gear library reports keys as modifications1.<key>; the model calls them flank1.<key>.
   gear::GearPairGeometry keyed = g;
@@ -640,8 +640,7 @@ AnalysisOutput tooth_contact_output(const model::Model& /*model*/,
       "cycle{}; tooth compliance by the potential-energy method with fillet foundation and "
       "Hertzian approach per slice (docs/theory.md §15); {}.",
       m.pair.pair->name, m.options.positions, m.options.slices, g.face_width_m, m.contact->cycles(),
-      m.contact->cycles() == 1 ? "" : "s (hunting period)",
-      coupling_text(m)));
+      m.contact->cycles() == 1 ? "" : "s (hunting period)", coupling_text(m)));
   out.notes.push_back(compliance_note(m));
   out.notes.push_back(misalignment_note(m));
   if (m.contact->bevel()) out.notes.push_back(bevel_note(m));
