@@ -259,8 +259,8 @@ TEST(ContactImpact, HertzSphereOnPlaneMatchesJohnson) {
 // ADAMS IMPACT (MSC ADAMS/Solver function reference: IMPACT, STEP), k = 1e8 N/m^1.5, e = 1.5,
 // d = 1e-4 m (below the undamped maximum penetration, 4e-4 m), m = 1 kg, v0 = 0.5 m/s. Without
 // damping the rebound is elastic (restitution 1: the energy is conserved), within the RK4 error
-// (step t_c / 2000, < 1e-10; tolerance 1e-8). With damping the restitution decreases strictly as
-// c_max grows (each step of c_max changes it by far more than the 1e-8 error).
+// (step t_c / 2000: 1e-10 observed; tolerance 1e-8). With damping the restitution decreases
+// strictly as c_max grows (each step of c_max changes it by far more than the 1e-8 error).
 TEST(ContactImpact, ImpactLawConservesEnergyWithoutDampingAndLosesMoreWithMore) {
   const double m = 1.0, v0 = 0.5;
   std::vector<double> restitution;

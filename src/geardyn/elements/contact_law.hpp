@@ -10,8 +10,9 @@
 //     the force actually returned, including the clipping below.
 //   * Tension: where a damping term pulls the bodies together during separation (delta_dot < 0)
 //     the sum can be negative. `Tension::allowed` returns it as is (the textbook Kelvin-Voigt
-//     oscillator and MSC ADAMS' IMPACT function do); `Tension::clipped` returns max(F, 0) with
-//     zero tangents where F would be negative.
+//     oscillator; IMPACT as the MSC ADAMS/Solver reference writes it, while SolidWorks Motion's
+//     reference for the same function writes max(0, ...)); `Tension::clipped` returns max(F, 0)
+//     with zero tangents where F would be negative.
 //   * Bad parameters throw geardyn::InputError at the caller's location and key path, the key
 //     being `<key_path>.stiffness`, `.exponent`, `.damping`, `.penetration_depth`, ...
 //   * evaluate() is const and keeps no state (thread safe).
@@ -87,7 +88,7 @@ class HertzContactLaw final : public ContactLaw {
 /// MSC ADAMS' IMPACT function: F = k delta^e + STEP(delta, 0, 0, d, c_max) delta_dot.
 struct ImpactLawParameters {
   double stiffness = 0.0;          ///< k [N/m^e] > 0
-  double exponent = 1.5;           ///< e >= 1
+  double exponent = 1.5;           ///< e >= 1 (ADAMS' softening 0 < e < 1: infinite tangent)
   double max_damping = 0.0;        ///< c_max [N s/m] >= 0
   double penetration_depth = 0.0;  ///< d [m] > 0: full damping reached at delta = d
   Tension tension = Tension::allowed;
