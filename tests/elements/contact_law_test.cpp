@@ -256,6 +256,35 @@ TEST(ContactImpact, HertzSphereOnPlaneMatchesJohnson) {
   EXPECT_NEAR(-r.exit_velocity / v0, 1.0, 1e-8);  // undamped: elastic rebound
 }
 
+// Hunt-Crossley damping (K.H. Hunt, F.R.E. Crossley, "Coefficient of restitution interpreted as
+// damping in vibroimpact", 1975): the energy lost on the undamped path,
+// 2 int_0^delta_m chi k delta^n delta_dot d delta with delta_dot = v0 sqrt(1 -
+// (delta/delta_m)^(n+1)), is (4/3) chi v0 of the kinetic energy for any n, so 1 - e = (2/3) chi v0
+// + O((chi v0)^2) -- the chi ~ 3 (1 - e) / (2 v_i) of docs/theory.md §16.2. Checked as an
+// asymptotic statement: the relative deviation r = (1 - e) / ((2/3) chi v0) - 1 is below chi v0 and
+// halves (0.4 ... 0.6) when chi halves. The RK4 error (step t_c / 2000, ~1e-10 on e) is 1e-6 of the
+// smallest 1 - e.
+TEST(ContactImpact, HuntCrossleyRestitutionToFirstOrder) {
+  const double m = 0.05, v0 = 1.0;
+  for (double n : {1.5, 10.0 / 9.0}) {
+    std::vector<double> deviation;
+    for (double chi_v : {4e-3, 2e-3, 1e-3}) {
+      const double k = 1e9;
+      const GapContact stop = GapContact::stop(
+          "hc", 0.0, std::make_shared<HertzContactLaw>(HertzLawParameters{k, n, chi_v / v0}));
+      const double delta_m = std::pow((n + 1.0) * 0.5 * m * v0 * v0 / k, 1.0 / (n + 1.0));
+      const Impact r = Sdof(stop, m).impact(v0, 3.0 * delta_m / v0 / 2000.0);
+      const double e = -r.exit_velocity / v0;
+      deviation.push_back((1.0 - e) / (2.0 / 3.0 * chi_v) - 1.0);
+      EXPECT_LT(std::abs(deviation.back()), chi_v) << "n " << n;
+    }
+    for (std::size_t i = 1; i < deviation.size(); ++i) {
+      EXPECT_GT(deviation[i] / deviation[i - 1], 0.4) << "n " << n;
+      EXPECT_LT(deviation[i] / deviation[i - 1], 0.6) << "n " << n;
+    }
+  }
+}
+
 // ADAMS IMPACT (MSC ADAMS/Solver function reference: IMPACT, STEP), k = 1e8 N/m^1.5, e = 1.5,
 // d = 1e-4 m (below the undamped maximum penetration, 4e-4 m), m = 1 kg, v0 = 0.5 m/s. Without
 // damping the rebound is elastic (restitution 1: the energy is conserved), within the RK4 error
