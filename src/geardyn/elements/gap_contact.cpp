@@ -1,0 +1,87 @@
+#include "geardyn/elements/gap_contact.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace geardyn::elements {
+
+namespace {
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string key(const LawSource& source, const std::string& name) {
+  return source.key_path.empty() ? name : source.key_path + "." + name;
+}
+
+void check_side(const std::optional<GapContact::Side>& side, const LawSource& source) {
+  if (!side) return;
+  if (!std::isfinite(side->position))
+    throw InputError(source.location, key(source, "gap"), "a finite gap [m]",
+                     number(side->position));
+  if (!side->law) throw InputError(source.location, key(source, "law"), "a contact law", "none");
+}
+
+}  // namespace
+
+GapContact::GapContact(std::string name, std::optional<Side> upper, std::optional<Side> lower,
+                       const LawSource& source)
+    : name_(std::move(name)), upper_(std::move(upper)), lower_(std::move(lower)) {
+  if (!upper_ && !lower_)
+    throw InputError(source.location, key(source, "law"), "a contact on at least one side", "none");
+  check_side(upper_, source);
+  check_side(lower_, source);
+  if (upper_ && lower_ && lower_->position > upper_->position)
+    throw InputError(source.location, key(source, "gap"),
+                     "the lower contact position <= the upper one",
+                     number(lower_->position) + " > " + number(upper_->position));
+}
+
+GapContact GapContact::stop(std::string name, double gap, std::shared_ptr<const ContactLaw> law,
+                            const LawSource& source) {
+  return GapContact(std::move(name), Side{gap, std::move(law)}, std::nullopt, source);
+}
+
+GapContact GapContact::end_play(std::string name, double b, std::shared_ptr<const ContactLaw> upper,
+                                std::shared_ptr<const ContactLaw> lower, const LawSource& source) {
+  if (!(std::isfinite(b) && b >= 0.0))
+    throw InputError(source.location, key(source, "backlash"), "a finite half play >= 0 [m]",
+                     number(b));
+  return GapContact(std::move(name), Side{b, std::move(upper)}, Side{-b, std::move(lower)}, source);
+}
+
+void GapContact::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double,
+                          ElementForce& out) const {
+  out.reset(1);
+  if (upper_ && u(0) > upper_->position) {
+    const ContactForce f = upper_->law->evaluate(u(0) - upper_->position, v(0));
+    out.force(0) = f.force;
+    out.stiffness(0, 0) = f.d_penetration;
+    out.damping(0, 0) = f.d_rate;
+  } else if (lower_ && u(0) < lower_->position) {
+    const ContactForce f = lower_->law->evaluate(lower_->position - u(0), -v(0));
+    out.force(0) = -f.force;
+    out.stiffness(0, 0) = f.d_penetration;
+    out.damping(0, 0) = f.d_rate;
+  }
+}
+
+std::string GapContact::describe() const {
+  std::string s = "contact '" + name_ + "' (";
+  if (upper_ && lower_) {
+    s += "two-sided, closes at u > " + number(upper_->position) + " m: " + upper_->law->describe() +
+         "; at u < " + number(lower_->position) + " m: " + lower_->law->describe();
+  } else if (upper_) {
+    s += "stop at u > " + number(upper_->position) + " m: " + upper_->law->describe();
+  } else {
+    s += "stop at u < " + number(lower_->position) + " m: " + lower_->law->describe();
+  }
+  return s + ")";
+}
+
+}  // namespace geardyn::elements
