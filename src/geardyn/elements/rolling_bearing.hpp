@@ -2,7 +2,8 @@
 // A rolling-element bearing as a nonlinear force element (docs/theory.md §16.5): Z balls or
 // rollers at their current angular positions between the inner ring (end j, on the shaft) and
 // the outer ring (end i, the housing or ground), each a Hertz contact with load-deflection law
-// Q = K_n delta^n (n = 3/2 point contact, 10/9 line contact; Palmgren 1959, Harris 2001) that
+// Q = K_n delta^n (n = 3/2 point contact, 10/9 line contact; A. Palmgren, "Ball and Roller
+// Bearing Engineering", 1959; T.A. Harris, "Rolling Bearing Analysis", 4th ed., 2001) that
 // carries load only while compressed beyond the clearance. The contacts are summed as vectors
 // at the cage position psi_0(t) = psi_00 + omega_c t, so the stiffness varies at the ball-pass
 // frequency Z (f_c - f_o) ("varying compliance").
@@ -58,8 +59,8 @@ struct RollingBearingParams {
 ///   ball pass, outer ring     BPFO = Z |f_c - f_o|
 ///   ball pass, inner ring     BPFI = Z |f_i - f_c|
 ///   element spin (vs cage)    BSF  = (d_m / (2 D)) (1 - gamma^2) |f_i - f_o|
-/// The stiffness of a RollingBearing varies at BPFO for a fixed outer ring (at Z f_c in the
-/// frame of the load).
+/// A RollingBearing's stiffness varies at Z f_c, the ball-pass frequency BPFO for a fixed outer
+/// ring.
 struct BearingKinematics {
   int elements = 0;               ///< Z
   double pitch_diameter = 0.0;    ///< d_m [m]
