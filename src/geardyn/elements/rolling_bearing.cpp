@@ -1,0 +1,134 @@
+#include "geardyn/elements/rolling_bearing.hpp"
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <cmath>
+#include <utility>
+
+#include "geardyn/core/units.hpp"
+
+namespace geardyn::elements {
+
+namespace {
+
+class Checker {
+ public:
+  Checker(const std::string& key_path, const SourceLocation& where)
+      : key_path_(key_path), where_(where) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& expected, double found,
+                         const std::string& hint = {}) const {
+    throw InputError(where_, key_path_ + "." + key, expected, fmt::format("{:.6g}", found), hint);
+  }
+  void finite(const std::string& key, double value) const {
+    if (!std::isfinite(value)) fail(key, "a finite number", value);
+  }
+  void positive(const std::string& key, double value, const std::string& hint = {}) const {
+    if (!(std::isfinite(value) && value > 0.0)) fail(key, "a finite number > 0", value, hint);
+  }
+  void non_negative(const std::string& key, double value) const {
+    if (!(std::isfinite(value) && value >= 0.0)) fail(key, "a finite number >= 0", value);
+  }
+
+ private:
+  const std::string& key_path_;
+  const SourceLocation& where_;
+};
+
+void check(const RollingBearingParams& p, const std::string& key_path,
+           const SourceLocation& where) {
+  const Checker c(key_path, where);
+  if (p.elements < 1)
+    c.fail("elements", "a number of balls or rollers >= 1", static_cast<double>(p.elements));
+  c.positive("stiffness_constant", p.stiffness_constant,
+             "the load-deflection constant K_n of one element in N/m^n (Q = K_n delta^n)");
+  if (!(std::isfinite(p.exponent) && p.exponent >= 1.0 && p.exponent <= 2.0))
+    c.fail("exponent", "a load-deflection exponent in [1, 2]", p.exponent,
+           "3/2 for balls (point contact), 10/9 for rollers (line contact)");
+  c.finite("radial_clearance", p.radial_clearance);
+  c.finite("axial_clearance", p.axial_clearance);
+  if (!(std::isfinite(p.contact_angle) && std::abs(p.contact_angle) <= 0.5 * units::kPi))
+    c.fail("contact_angle", "a contact angle in [-pi/2, pi/2] rad", p.contact_angle);
+  c.positive("pitch_diameter", p.pitch_diameter);
+  c.positive("element_diameter", p.element_diameter);
+  if (p.element_diameter >= p.pitch_diameter)
+    c.fail("element_diameter",
+           fmt::format("a ball or roller diameter < pitch_diameter = {:.6g} m", p.pitch_diameter),
+           p.element_diameter);
+  c.finite("cage_angle", p.cage_angle);
+  c.finite("cage_speed", p.cage_speed);
+  c.non_negative("radial_damping", p.radial_damping);
+  c.non_negative("axial_damping", p.axial_damping);
+}
+
+}  // namespace
+
+double BearingKinematics::gamma() const {
+  return element_diameter * std::cos(contact_angle) / pitch_diameter;
+}
+
+double BearingKinematics::cage(double inner, double outer) const {
+  const double g = gamma();
+  return 0.5 * (inner * (1.0 - g) + outer * (1.0 + g));
+}
+
+double BearingKinematics::ball_pass_outer(double inner, double outer) const {
+  return elements * std::abs(cage(inner, outer) - outer);
+}
+
+double BearingKinematics::ball_pass_inner(double inner, double outer) const {
+  return elements * std::abs(inner - cage(inner, outer));
+}
+
+double BearingKinematics::ball_spin(double inner, double outer) const {
+  const double g = gamma();
+  return pitch_diameter / (2.0 * element_diameter) * (1.0 - g * g) * std::abs(inner - outer);
+}
+
+RollingBearing::RollingBearing(RollingBearingParams params, const std::string& key_path,
+                               SourceLocation where)
+    : p_(std::move(params)) {
+  check(p_, key_path, where);
+  gap_ = 0.5 * (p_.radial_clearance * std::cos(p_.contact_angle) +
+                p_.axial_clearance * std::sin(p_.contact_angle));
+}
+
+double RollingBearing::deflection(const Eigen::VectorXd& u, double t, int k) const {
+  const double psi = cage_angle(t) + 2.0 * units::kPi * k / p_.elements;
+  const double ca = std::cos(p_.contact_angle), sa = std::sin(p_.contact_angle);
+  return ca * (u(0) * std::cos(psi) + u(1) * std::sin(psi)) + sa * u(2) - gap_;
+}
+
+void RollingBearing::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
+                              ElementForce& out) const {
+  assert(u.size() == 3 && v.size() == 3);
+  out.reset(3);
+  const double psi0 = cage_angle(t);
+  const double ca = std::cos(p_.contact_angle), sa = std::sin(p_.contact_angle);
+  const double kn = p_.stiffness_constant, n = p_.exponent;
+  for (int k = 0; k < p_.elements; ++k) {
+    const double psi = psi0 + 2.0 * units::kPi * k / p_.elements;
+    const Eigen::Vector3d e(ca * std::cos(psi), ca * std::sin(psi), sa);
+    const double delta = e.dot(u.head<3>()) - gap_;
+    if (delta <= 0.0) continue;  // not in contact: no load, no stiffness
+    const double pow_nm1 = std::pow(delta, n - 1.0);
+    out.force += (kn * pow_nm1 * delta) * e;                  // Q_k e_k, Q_k = K_n delta^n
+    out.stiffness += (n * kn * pow_nm1) * e * e.transpose();  // dQ_k/d delta e_k e_k^T
+  }
+  out.damping(0, 0) = p_.radial_damping;
+  out.damping(1, 1) = p_.radial_damping;
+  out.damping(2, 2) = p_.axial_damping;
+  out.force += out.damping * v;
+}
+
+std::string RollingBearing::describe() const {
+  return fmt::format("rolling bearing '{}' (Z = {}, n = {:.4g})", p_.name, p_.elements,
+                     p_.exponent);
+}
+
+BearingKinematics RollingBearing::kinematics() const {
+  return {p_.elements, p_.pitch_diameter, p_.element_diameter, p_.contact_angle};
+}
+
+}  // namespace geardyn::elements
