@@ -57,8 +57,9 @@ BoltedJoint::BoltedJoint(BoltedJointParams params, const std::string& key_path,
           "a preload ramp duration >= 0 [s]", p_.preload_ramp);
   require(finite_nonnegative(p_.inactive_stiffness), where, k, "inactive_stiffness",
           "a stiffness before activation >= 0 [N/m]", p_.inactive_stiffness);
-  // VDI 2230 Part 1 (2015), 5.3.2: the clamped parts' compliance delta_P splits into n delta_P
-  // between the load introduction planes and (1 - n) delta_P in series with the bolt.
+  // VDI 2230 Part 1 (2015), load introduction factor n: the clamped parts' compliance delta_P
+  // splits into n delta_P between the load introduction planes and (1 - n) delta_P in series with
+  // the bolt.
   const double delta_s = 1.0 / p_.bolt_stiffness, delta_p = 1.0 / p_.clamp_stiffness;
   const double n = p_.load_introduction;
   k1_ = 1.0 / (delta_s + (1.0 - n) * delta_p);

@@ -9,7 +9,7 @@
 // (preloaded) geometry; with `shear` also u(1), u(2), the two shear displacements across the
 // axis. With a load introduction factor n = 1 u_a is the separation of the bolt head and nut
 // bearing faces; with n < 1 it is the separation of the two load introduction planes inside the
-// clamped parts (VDI 2230 Part 1 (2015), section 5.3.2).
+// clamped parts (VDI 2230 Part 1 (2015), the load introduction factor).
 #include <Eigen/Core>
 #include <limits>
 #include <string>
