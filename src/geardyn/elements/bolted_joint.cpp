@@ -1,25 +1,13 @@
 #include "geardyn/elements/bolted_joint.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <utility>
+
+#include "geardyn/elements/parameter_check.hpp"
 
 namespace geardyn::elements {
 
 namespace {
-
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
-
-// Throws InputError for parameter `key` unless `ok`.
-void require(bool ok, const SourceLocation& where, const std::string& key_path,
-             const std::string& key, const std::string& expected, double found,
-             const std::string& hint = {}) {
-  if (!ok) throw InputError(where, key_path + "." + key, expected, number(found), hint);
-}
 
 bool finite_positive(double x) { return std::isfinite(x) && x > 0.0; }
 bool finite_nonnegative(double x) { return std::isfinite(x) && x >= 0.0; }
@@ -29,34 +17,33 @@ bool finite_nonnegative(double x) { return std::isfinite(x) && x >= 0.0; }
 BoltedJoint::BoltedJoint(BoltedJointParams params, const std::string& key_path,
                          const SourceLocation& where)
     : p_(std::move(params)) {
-  const auto& k = key_path;
-  require(finite_positive(p_.bolt_stiffness), where, k, "bolt_stiffness",
-          "a bolt stiffness k_S > 0 [N/m]", p_.bolt_stiffness);
-  require(finite_positive(p_.clamp_stiffness), where, k, "clamp_stiffness",
-          "a clamped-part stiffness k_P > 0 [N/m]", p_.clamp_stiffness);
-  require(finite_nonnegative(p_.preload), where, k, "preload", "a preload F_V >= 0 [N]",
-          p_.preload);
-  require(std::isfinite(p_.load_introduction) && p_.load_introduction > 0.0 &&
-              p_.load_introduction <= 1.0,
-          where, k, "load_introduction", "a load introduction factor 0 < n <= 1",
-          p_.load_introduction, "n = 1 introduces the load under the head and the nut");
-  require(finite_nonnegative(p_.axial_damping), where, k, "axial_damping",
-          "an axial damping >= 0 [N s/m]", p_.axial_damping);
-  require(finite_nonnegative(p_.shear_stiffness), where, k, "shear_stiffness",
-          "a shear stiffness >= 0 [N/m]", p_.shear_stiffness);
-  require(!p_.shear || p_.shear_stiffness > 0.0, where, k, "shear_stiffness",
-          "a shear stiffness > 0 [N/m] when the bolt has shear coordinates", p_.shear_stiffness,
-          "or model the bolt without shear coordinates");
-  require(finite_nonnegative(p_.shear_damping), where, k, "shear_damping",
-          "a shear damping >= 0 [N s/m]", p_.shear_damping);
-  require(!std::isnan(p_.activation_time) &&
-              p_.activation_time < std::numeric_limits<double>::infinity(),
-          where, k, "activation_time", "an activation time [s] (or none: active from the start)",
-          p_.activation_time);
-  require(finite_nonnegative(p_.preload_ramp), where, k, "preload_ramp",
-          "a preload ramp duration >= 0 [s]", p_.preload_ramp);
-  require(finite_nonnegative(p_.inactive_stiffness), where, k, "inactive_stiffness",
-          "a stiffness before activation >= 0 [N/m]", p_.inactive_stiffness);
+  const detail::ParameterCheck c(where, key_path);
+  c.require(finite_positive(p_.bolt_stiffness), "bolt_stiffness", "a bolt stiffness k_S > 0 [N/m]",
+            p_.bolt_stiffness);
+  c.require(finite_positive(p_.clamp_stiffness), "clamp_stiffness",
+            "a clamped-part stiffness k_P > 0 [N/m]", p_.clamp_stiffness);
+  c.require(finite_nonnegative(p_.preload), "preload", "a preload F_V >= 0 [N]", p_.preload);
+  c.require(std::isfinite(p_.load_introduction) && p_.load_introduction > 0.0 &&
+                p_.load_introduction <= 1.0,
+            "load_introduction", "a load introduction factor 0 < n <= 1", p_.load_introduction,
+            "n = 1 introduces the load under the head and the nut");
+  c.require(finite_nonnegative(p_.axial_damping), "axial_damping", "an axial damping >= 0 [N s/m]",
+            p_.axial_damping);
+  c.require(finite_nonnegative(p_.shear_stiffness), "shear_stiffness",
+            "a shear stiffness >= 0 [N/m]", p_.shear_stiffness);
+  c.require(!p_.shear || p_.shear_stiffness > 0.0, "shear_stiffness",
+            "a shear stiffness > 0 [N/m] when the bolt has shear coordinates", p_.shear_stiffness,
+            "or model the bolt without shear coordinates");
+  c.require(finite_nonnegative(p_.shear_damping), "shear_damping", "a shear damping >= 0 [N s/m]",
+            p_.shear_damping);
+  c.require(!std::isnan(p_.activation_time) &&
+                p_.activation_time < std::numeric_limits<double>::infinity(),
+            "activation_time", "an activation time [s] (or none: active from the start)",
+            p_.activation_time);
+  c.require(finite_nonnegative(p_.preload_ramp), "preload_ramp", "a preload ramp duration >= 0 [s]",
+            p_.preload_ramp);
+  c.require(finite_nonnegative(p_.inactive_stiffness), "inactive_stiffness",
+            "a stiffness before activation >= 0 [N/m]", p_.inactive_stiffness);
   // VDI 2230 Part 1 (2015), load introduction factor n: the clamped parts' compliance delta_P
   // splits into n delta_P between the load introduction planes and (1 - n) delta_P in series with
   // the bolt.

@@ -3,19 +3,16 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iterator>
 #include <utility>
+
+#include "geardyn/elements/parameter_check.hpp"
 
 namespace geardyn::elements {
 
 namespace {
 
-std::string number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", x);
-  return buf;
-}
+using detail::format_number;
 
 // Fritsch & Carlson, "Monotone piecewise cubic interpolation", SIAM J. Numer. Anal. 17 (1980)
 // 238-246: node slopes from the averaged secants (0 at a local extremum or a flat segment),
@@ -53,8 +50,9 @@ void check_matrix(const Eigen::Matrix<double, 6, 6>& m, const Eigen::Matrix<doub
   const double scale = m.cwiseAbs().maxCoeff();
   const double asym = (m - m.transpose()).cwiseAbs().maxCoeff();
   if (asym > 1e-12 * scale)
-    throw InputError(where, key, "a symmetric 6 x 6 " + what + " matrix",
-                     "|M - M^T| up to " + number(asym) + " (largest entry " + number(scale) + ")");
+    throw InputError(
+        where, key, "a symmetric 6 x 6 " + what + " matrix",
+        "|M - M^T| up to " + format_number(asym) + " (largest entry " + format_number(scale) + ")");
   if (scale == 0.0) return;
   const double lowest =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>>(tangent, Eigen::EigenvaluesOnly)
@@ -62,7 +60,8 @@ void check_matrix(const Eigen::Matrix<double, 6, 6>& m, const Eigen::Matrix<doub
           .minCoeff();
   if (lowest < -1e-12 * scale)
     throw InputError(where, key, "a positive semi-definite " + what + " matrix",
-                     "an eigenvalue " + number(lowest), "a negative " + what + " creates energy");
+                     "an eigenvalue " + format_number(lowest),
+                     "a negative " + what + " creates energy");
 }
 
 }  // namespace
@@ -78,14 +77,15 @@ ForceDeflectionTable::ForceDeflectionTable(std::vector<double> deflection,
     throw InputError(where, kf, "as many forces as deflections (" + std::to_string(x_.size()) + ")",
                      std::to_string(f_.size()));
   for (std::size_t k = 0; k < x_.size(); ++k) {
-    if (!std::isfinite(x_[k])) throw InputError(where, kx, "finite deflections", number(x_[k]));
-    if (!std::isfinite(f_[k])) throw InputError(where, kf, "finite forces", number(f_[k]));
+    if (!std::isfinite(x_[k]))
+      throw InputError(where, kx, "finite deflections", format_number(x_[k]));
+    if (!std::isfinite(f_[k])) throw InputError(where, kf, "finite forces", format_number(f_[k]));
     if (k > 0 && !(x_[k] > x_[k - 1]))
       throw InputError(where, kx, "strictly increasing deflections",
-                       number(x_[k - 1]) + " then " + number(x_[k]));
+                       format_number(x_[k - 1]) + " then " + format_number(x_[k]));
     if (k > 0 && f_[k] < f_[k - 1])
       throw InputError(where, kf, "a force non-decreasing with the deflection (stiffness >= 0)",
-                       number(f_[k - 1]) + " then " + number(f_[k]));
+                       format_number(f_[k - 1]) + " then " + format_number(f_[k]));
   }
   const auto zero = std::find(x_.begin(), x_.end(), 0.0);
   if (zero == x_.end() || f_[static_cast<std::size_t>(std::distance(x_.begin(), zero))] != 0.0)
@@ -152,7 +152,7 @@ Bushing::Bushing(BushingParams params, const std::string& key_path, const Source
     if (!std::isfinite(p_.preload(i)))
       throw InputError(where, key_path + ".preload", "a finite preload",
                        std::string(direction_names()[static_cast<std::size_t>(i)]) + " = " +
-                           number(p_.preload(i)));
+                           format_number(p_.preload(i)));
 }
 
 void Bushing::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double,

@@ -1,40 +1,18 @@
 #include "geardyn/elements/contact_law.hpp"
 
 #include <cmath>
-#include <sstream>
+
+#include "geardyn/elements/parameter_check.hpp"
 
 namespace geardyn::elements {
 
 namespace {
 
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
+using detail::format_number;
 
-std::string key(const LawSource& source, const std::string& name) {
-  return source.key_path.empty() ? name : source.key_path + "." + name;
-}
-
-// Throws unless `ok`; `expected` says what the key must be.
-void require(bool ok, const LawSource& source, const std::string& name, const std::string& expected,
-             double found) {
-  if (!ok) throw InputError(source.location, key(source, name), expected, number(found));
-}
-
-void require_positive(double x, const LawSource& source, const std::string& name) {
-  require(std::isfinite(x) && x > 0.0, source, name, "a finite number > 0", x);
-}
-
-void require_non_negative(double x, const LawSource& source, const std::string& name) {
-  require(std::isfinite(x) && x >= 0.0, source, name, "a finite number >= 0", x);
-}
-
-void require_exponent_from_one(double x, const LawSource& source, const std::string& name) {
-  require(std::isfinite(x) && x >= 1.0, source, name,
-          "an exponent >= 1 (3/2 point contact, 10/9 line contact)", x);
+void require_exponent_from_one(const detail::ParameterCheck& c, double x) {
+  c.require(std::isfinite(x) && x >= 1.0, "exponent",
+            "an exponent >= 1 (3/2 point contact, 10/9 line contact)", x);
 }
 
 // Clipping of a tensile force: max(F, 0) with zero tangents where F < 0.
@@ -81,8 +59,9 @@ double cubic_step_derivative(double x, double x0, double h0, double x1, double h
 // ---- Kelvin-Voigt -------------------------------------------------------------------------
 
 LinearContactLaw::LinearContactLaw(const LinearLawParameters& p, const LawSource& source) : p_(p) {
-  require_positive(p.stiffness, source, "stiffness");
-  require_non_negative(p.damping, source, "damping");
+  const detail::ParameterCheck c(source.location, source.key_path);
+  c.positive("stiffness", p.stiffness);
+  c.non_negative("damping", p.damping);
 }
 
 ContactForce LinearContactLaw::evaluate(double delta, double delta_dot) const {
@@ -92,16 +71,17 @@ ContactForce LinearContactLaw::evaluate(double delta, double delta_dot) const {
 }
 
 std::string LinearContactLaw::describe() const {
-  return "linear k = " + number(p_.stiffness) + " N/m, c = " + number(p_.damping) + " N s/m" +
-         tension_note(p_.tension);
+  return "linear k = " + format_number(p_.stiffness) + " N/m, c = " + format_number(p_.damping) +
+         " N s/m" + tension_note(p_.tension);
 }
 
 // ---- Hertz / Hunt-Crossley ----------------------------------------------------------------
 
 HertzContactLaw::HertzContactLaw(const HertzLawParameters& p, const LawSource& source) : p_(p) {
-  require_positive(p.stiffness, source, "stiffness");
-  require_exponent_from_one(p.exponent, source, "exponent");
-  require_non_negative(p.damping, source, "damping");
+  const detail::ParameterCheck c(source.location, source.key_path);
+  c.positive("stiffness", p.stiffness);
+  require_exponent_from_one(c, p.exponent);
+  c.non_negative("damping", p.damping);
 }
 
 ContactForce HertzContactLaw::evaluate(double delta, double delta_dot) const {
@@ -116,17 +96,18 @@ ContactForce HertzContactLaw::evaluate(double delta, double delta_dot) const {
 }
 
 std::string HertzContactLaw::describe() const {
-  return "Hertz k = " + number(p_.stiffness) + ", n = " + number(p_.exponent) +
-         ", Hunt-Crossley chi = " + number(p_.damping) + " s/m" + tension_note(p_.tension);
+  return "Hertz k = " + format_number(p_.stiffness) + ", n = " + format_number(p_.exponent) +
+         ", Hunt-Crossley chi = " + format_number(p_.damping) + " s/m" + tension_note(p_.tension);
 }
 
 // ---- ADAMS IMPACT -------------------------------------------------------------------------
 
 ImpactContactLaw::ImpactContactLaw(const ImpactLawParameters& p, const LawSource& source) : p_(p) {
-  require_positive(p.stiffness, source, "stiffness");
-  require_exponent_from_one(p.exponent, source, "exponent");
-  require_non_negative(p.max_damping, source, "damping");
-  require_positive(p.penetration_depth, source, "penetration_depth");
+  const detail::ParameterCheck c(source.location, source.key_path);
+  c.positive("stiffness", p.stiffness);
+  require_exponent_from_one(c, p.exponent);
+  c.non_negative("damping", p.max_damping);
+  c.positive("penetration_depth", p.penetration_depth);
 }
 
 ContactForce ImpactContactLaw::evaluate(double delta, double delta_dot) const {
@@ -142,22 +123,23 @@ ContactForce ImpactContactLaw::evaluate(double delta, double delta_dot) const {
 }
 
 std::string ImpactContactLaw::describe() const {
-  return "IMPACT k = " + number(p_.stiffness) + ", e = " + number(p_.exponent) +
-         ", c_max = " + number(p_.max_damping) + " N s/m, d = " + number(p_.penetration_depth) +
-         " m" + tension_note(p_.tension);
+  return "IMPACT k = " + format_number(p_.stiffness) + ", e = " + format_number(p_.exponent) +
+         ", c_max = " + format_number(p_.max_damping) +
+         " N s/m, d = " + format_number(p_.penetration_depth) + " m" + tension_note(p_.tension);
 }
 
 // ---- penalty law --------------------------------------------------------------------------
 
 PenaltyContactLaw::PenaltyContactLaw(const PenaltyLawParameters& p, const LawSource& source)
     : p_(p) {
-  require_positive(p.stiffness, source, "stiffness");
-  require_non_negative(p.stiffness_exponent, source, "stiffness_exponent");
-  require_non_negative(p.damping, source, "damping");
-  require_non_negative(p.rate_exponent, source, "rate_exponent");
-  require_non_negative(p.damping_exponent, source, "damping_exponent");
-  require_positive(p.penetration_regularisation, source, "penetration_regularisation");
-  require_positive(p.rate_regularisation, source, "rate_regularisation");
+  const detail::ParameterCheck c(source.location, source.key_path);
+  c.positive("stiffness", p.stiffness);
+  c.non_negative("stiffness_exponent", p.stiffness_exponent);
+  c.non_negative("damping", p.damping);
+  c.non_negative("rate_exponent", p.rate_exponent);
+  c.non_negative("damping_exponent", p.damping_exponent);
+  c.positive("penetration_regularisation", p.penetration_regularisation);
+  c.positive("rate_regularisation", p.rate_regularisation);
 }
 
 ContactForce PenaltyContactLaw::evaluate(double delta, double delta_dot) const {
@@ -177,9 +159,10 @@ ContactForce PenaltyContactLaw::evaluate(double delta, double delta_dot) const {
 }
 
 std::string PenaltyContactLaw::describe() const {
-  return "penalty k = " + number(p_.stiffness) + ", m1 = " + number(p_.stiffness_exponent) +
-         ", c = " + number(p_.damping) + ", m2 = " + number(p_.rate_exponent) +
-         ", m3 = " + number(p_.damping_exponent) + tension_note(p_.tension);
+  return "penalty k = " + format_number(p_.stiffness) +
+         ", m1 = " + format_number(p_.stiffness_exponent) + ", c = " + format_number(p_.damping) +
+         ", m2 = " + format_number(p_.rate_exponent) +
+         ", m3 = " + format_number(p_.damping_exponent) + tension_note(p_.tension);
 }
 
 }  // namespace geardyn::elements

@@ -1,30 +1,20 @@
 #include "geardyn/elements/gap_contact.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <utility>
+
+#include "geardyn/elements/parameter_check.hpp"
 
 namespace geardyn::elements {
 
 namespace {
 
-std::string number(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
+using detail::format_number;
 
-std::string key(const LawSource& source, const std::string& name) {
-  return source.key_path.empty() ? name : source.key_path + "." + name;
-}
-
-void check_side(const std::optional<GapContact::Side>& side, const LawSource& source) {
+void check_side(const std::optional<GapContact::Side>& side, const detail::ParameterCheck& c) {
   if (!side) return;
-  if (!std::isfinite(side->position))
-    throw InputError(source.location, key(source, "gap"), "a finite gap [m]",
-                     number(side->position));
-  if (!side->law) throw InputError(source.location, key(source, "law"), "a contact law", "none");
+  c.require(std::isfinite(side->position), "gap", "a finite gap [m]", side->position);
+  if (!side->law) c.fail("law", "a contact law", "none");
 }
 
 }  // namespace
@@ -32,14 +22,13 @@ void check_side(const std::optional<GapContact::Side>& side, const LawSource& so
 GapContact::GapContact(std::string name, std::optional<Side> upper, std::optional<Side> lower,
                        const LawSource& source)
     : name_(std::move(name)), upper_(std::move(upper)), lower_(std::move(lower)) {
-  if (!upper_ && !lower_)
-    throw InputError(source.location, key(source, "law"), "a contact on at least one side", "none");
-  check_side(upper_, source);
-  check_side(lower_, source);
+  const detail::ParameterCheck c(source.location, source.key_path);
+  if (!upper_ && !lower_) c.fail("law", "a contact on at least one side", "none");
+  check_side(upper_, c);
+  check_side(lower_, c);
   if (upper_ && lower_ && lower_->position > upper_->position)
-    throw InputError(source.location, key(source, "gap"),
-                     "the lower contact position <= the upper one",
-                     number(lower_->position) + " > " + number(upper_->position));
+    c.fail("gap", "the lower contact position <= the upper one",
+           format_number(lower_->position) + " > " + format_number(upper_->position));
 }
 
 GapContact GapContact::stop(std::string name, double gap, std::shared_ptr<const ContactLaw> law,
@@ -50,8 +39,8 @@ GapContact GapContact::stop(std::string name, double gap, std::shared_ptr<const 
 GapContact GapContact::end_play(std::string name, double b, std::shared_ptr<const ContactLaw> upper,
                                 std::shared_ptr<const ContactLaw> lower, const LawSource& source) {
   if (!(std::isfinite(b) && b >= 0.0))
-    throw InputError(source.location, key(source, "backlash"), "a finite half play >= 0 [m]",
-                     number(b));
+    detail::ParameterCheck(source.location, source.key_path)
+        .fail("backlash", "a finite half play >= 0 [m]", b);
   return GapContact(std::move(name), Side{b, std::move(upper)}, Side{-b, std::move(lower)}, source);
 }
 
@@ -74,12 +63,13 @@ void GapContact::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, do
 std::string GapContact::describe() const {
   std::string s = "contact '" + name_ + "' (";
   if (upper_ && lower_) {
-    s += "two-sided, closes at u > " + number(upper_->position) + " m: " + upper_->law->describe() +
-         "; at u < " + number(lower_->position) + " m: " + lower_->law->describe();
+    s += "two-sided, closes at u > " + format_number(upper_->position) +
+         " m: " + upper_->law->describe() + "; at u < " + format_number(lower_->position) +
+         " m: " + lower_->law->describe();
   } else if (upper_) {
-    s += "stop at u > " + number(upper_->position) + " m: " + upper_->law->describe();
+    s += "stop at u > " + format_number(upper_->position) + " m: " + upper_->law->describe();
   } else {
-    s += "stop at u < " + number(lower_->position) + " m: " + lower_->law->describe();
+    s += "stop at u < " + format_number(lower_->position) + " m: " + lower_->law->describe();
   }
   return s + ")";
 }

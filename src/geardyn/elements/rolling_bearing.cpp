@@ -7,38 +7,15 @@
 #include <utility>
 
 #include "geardyn/core/units.hpp"
+#include "geardyn/elements/parameter_check.hpp"
 
 namespace geardyn::elements {
 
 namespace {
 
-class Checker {
- public:
-  Checker(const std::string& key_path, const SourceLocation& where)
-      : key_path_(key_path), where_(where) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& expected, double found,
-                         const std::string& hint = {}) const {
-    throw InputError(where_, key_path_ + "." + key, expected, fmt::format("{:.6g}", found), hint);
-  }
-  void finite(const std::string& key, double value) const {
-    if (!std::isfinite(value)) fail(key, "a finite number", value);
-  }
-  void positive(const std::string& key, double value, const std::string& hint = {}) const {
-    if (!(std::isfinite(value) && value > 0.0)) fail(key, "a finite number > 0", value, hint);
-  }
-  void non_negative(const std::string& key, double value) const {
-    if (!(std::isfinite(value) && value >= 0.0)) fail(key, "a finite number >= 0", value);
-  }
-
- private:
-  const std::string& key_path_;
-  const SourceLocation& where_;
-};
-
 void check(const RollingBearingParams& p, const std::string& key_path,
            const SourceLocation& where) {
-  const Checker c(key_path, where);
+  const detail::ParameterCheck c(where, key_path);
   if (p.elements < 1)
     c.fail("elements", "a number of balls or rollers >= 1", static_cast<double>(p.elements));
   c.positive("stiffness_constant", p.stiffness_constant,
