@@ -31,15 +31,7 @@ using namespace test;
 // A spur pair 20/40, m = 3 mm, alpha = 20 deg, with tip relief (so that the TE harmonics vary
 // with the load), and a tooth_contact analysis at `torques`.
 std::string spur(const std::string& torques, const std::string& extra = {}) {
-  return R"(version = 1
-[[gear_pairs]]
-name = "spur"
-teeth1 = 20
-teeth2 = 40
-module = 0.003
-face_width = 0.02
-torque = 100
-
+  return spur_pair_20_40("100", R"(
 [gear_pairs.flank1]
 tip_relief = 8e-6
 tip_relief_start_diameter = 0.0625
@@ -48,8 +40,7 @@ tip_relief_start_diameter = 0.0625
 name = "ltca"
 type = "tooth_contact"
 orders = 3
-torques = )" +
-         torques + "\n" + extra;
+torques = )" + torques + "\n" + extra);
 }
 
 Outcome run_entry(const model::Model& m) {
