@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/model/drivetrain_spec.hpp"
 
 namespace geardyn::model {
 
@@ -169,6 +170,9 @@ struct GearMesh {
   double damping = 0.0;                ///< [N s/m]
   std::optional<Vec3> mesh_direction;  ///< from gear1's centre towards the pitch point; default
                                        ///< from the node positions
+  /// The tooth contact of the drivetrain transient (absent: a contact with the constant
+  /// `stiffness`, no back flank, the linear law).
+  std::optional<MeshContactSpec> contact;
   SourceLocation where;
 };
 
@@ -518,6 +522,15 @@ struct Model {
   Damping damping;
   std::vector<Solid> solids;
   std::vector<GearPair> gear_pairs;
+  // The nonlinear drivetrain (drivetrain_spec.hpp; used by drivetrain_transient only).
+  std::vector<ContactSpec> contacts;
+  std::vector<BoltSpec> bolts;
+  std::vector<BushingSpec> bushings;
+  std::vector<RollingBearingSpec> rolling_bearings;
+  std::vector<DriverSpec> drivers;
+  std::vector<LoadTorqueSpec> loads;
+  std::vector<ClutchSpec> clutches;
+  std::vector<VirtualSensorSpec> virtual_sensors;
   std::vector<Analysis> analyses;
 
   const Material* find_material(const std::string& name) const;

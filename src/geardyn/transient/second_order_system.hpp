@@ -6,6 +6,7 @@
 // else about them.
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <string>
 
 namespace geardyn::transient {
 
@@ -48,6 +49,24 @@ class SecondOrderSystem {
   /// residual calls of the next step see them.
   virtual void commit_step(double /*t*/, const Eigen::VectorXd& /*q*/, const Eigen::VectorXd& /*v*/,
                            const Eigen::VectorXd& /*a*/) {}
+
+  /// Number of event functions: switching functions g_k(t, q, v) whose sign changes mark a
+  /// discontinuity of the equations (a contact closing or opening, a clutch locking). An
+  /// adaptive integrator locates them in time and restarts its step there.
+  virtual int num_events() const { return 0; }
+  /// g_k(t, q, v), k < num_events(); g is resized to num_events().
+  virtual void event_functions(double /*t*/, const Eigen::VectorXd& /*q*/,
+                               const Eigen::VectorXd& /*v*/, Eigen::VectorXd& g) const {
+    g.resize(0);
+  }
+  /// What event function k is, for reports: e.g. "contact 'stop' closes / opens".
+  virtual std::string describe_event(int k) const { return "event " + std::to_string(k); }
+  /// A diagnosis of the state for a failure message (the element with the largest force or
+  /// penetration, ...); empty when the system has none.
+  virtual std::string describe_state(double /*t*/, const Eigen::VectorXd& /*q*/,
+                                     const Eigen::VectorXd& /*v*/) const {
+    return {};
+  }
 };
 
 }  // namespace geardyn::transient
