@@ -123,4 +123,14 @@ void BoltedJoint::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, d
   }
 }
 
+void BoltedJoint::switches(const Eigen::VectorXd& u, double t, double* g) const {
+  const double preload = active(t) ? preload_at(t) : 0.0;
+  g[0] = preload - k2_ * u(0);
+  g[1] = preload + k1_ * u(0);
+}
+
+std::string BoltedJoint::describe_switch(int k) const {
+  return describe() + (k == 0 ? " joint opening" : " bolt slack");
+}
+
 }  // namespace geardyn::elements

@@ -62,6 +62,11 @@ class BoltedJoint final : public ForceElement {
   void evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                 ElementForce& out) const override;
   std::string describe() const override { return "bolt '" + p_.name + "'"; }
+  /// Two switches: the clamp force F_K (> 0: clamped parts in contact) and the bolt branch
+  /// tension (> 0: the bolt is not slack), both with the preload in effect at t.
+  int num_switches() const override { return 2; }
+  void switches(const Eigen::VectorXd& u, double t, double* g) const override;
+  std::string describe_switch(int k) const override;
 
   /// Bolt force, clamp force and state at axial opening `u_a` [m] and time `t` [s].
   BoltForces forces(double u_a, double t) const;

@@ -49,6 +49,15 @@ class ForceElement {
                         ElementForce& out) const = 0;
   /// What the element is, for messages and tables: e.g. "bolt 'B3'", "contact 'stop'".
   virtual std::string describe() const = 0;
+
+  /// Number of switching functions: g_k(u, t) whose sign changes mark the kinks of the law (a
+  /// contact closing or opening, a bolted joint separating). An adaptive integrator locates
+  /// them in time. Default: none (a smooth element).
+  virtual int num_switches() const { return 0; }
+  /// g_k(u, t) for k < num_switches(), written to g[0 .. num_switches() - 1].
+  virtual void switches(const Eigen::VectorXd& /*u*/, double /*t*/, double* /*g*/) const {}
+  /// What switch k is: e.g. "upper side" (for event reports).
+  virtual std::string describe_switch(int k) const { return "switch " + std::to_string(k); }
 };
 
 /// Largest deviation of an element's analytic tangents from central differences of its force,

@@ -74,4 +74,18 @@ std::string GapContact::describe() const {
   return s + ")";
 }
 
+int GapContact::num_switches() const {
+  return (upper_ ? 1 : 0) + (lower_ ? 1 : 0);
+}
+
+void GapContact::switches(const Eigen::VectorXd& u, double, double* g) const {
+  int k = 0;
+  if (upper_) g[k++] = u(0) - upper_->position;
+  if (lower_) g[k] = lower_->position - u(0);
+}
+
+std::string GapContact::describe_switch(int k) const {
+  return describe() + (upper_ && k == 0 ? " upper side" : " lower side");
+}
+
 }  // namespace geardyn::elements

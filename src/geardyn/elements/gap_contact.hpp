@@ -42,6 +42,10 @@ class GapContact final : public ForceElement {
   void evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                 ElementForce& out) const override;
   std::string describe() const override;
+  /// One switch per side: u - upper (upper side), lower - u (lower side); > 0 closed.
+  int num_switches() const override;
+  void switches(const Eigen::VectorXd& u, double t, double* g) const override;
+  std::string describe_switch(int k) const override;
 
  private:
   std::string name_;
