@@ -23,7 +23,8 @@ namespace geardyn::analyses {
   X(correlation)                  \
   X(cyclic_forced_response)       \
   X(gear_forced_response)         \
-  X(damper_ring_response)
+  X(damper_ring_response)         \
+  X(drivetrain_transient)
 
 #define GEARDYN_DECLARE_ANALYSIS(type) AnalysisType type##_analysis();
 GEARDYN_ANALYSIS_TYPES(GEARDYN_DECLARE_ANALYSIS)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geardyn/analyses/plot_envelope.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/signal/spectrum.hpp"
@@ -401,37 +402,6 @@ TransientResult run_transient(const model::Model& model, const TransientSettings
     steady_orbits(system, selected, result, steady_rows);
   return result;
 }
-
-namespace {
-
-// At most about max_points points that keep the envelope: per bucket its minimum and maximum,
-// in time order (a plot of a long record must not hide its peaks).
-void envelope(const std::vector<double>& x, const Eigen::Ref<const Eigen::VectorXd>& y,
-              std::vector<double>& xo, std::vector<double>& yo) {
-  const std::size_t n = x.size();
-  xo.clear();
-  yo.clear();
-  if (n <= kMaxPlotPoints) {
-    xo = x;
-    yo.assign(y.data(), y.data() + n);
-    return;
-  }
-  const std::size_t buckets = kMaxPlotPoints / 2;
-  for (std::size_t b = 0; b < buckets; ++b) {
-    const std::size_t lo = b * n / buckets, hi = (b + 1) * n / buckets;
-    std::size_t imin = lo, imax = lo;
-    for (std::size_t i = lo; i < hi; ++i) {
-      if (y[static_cast<Eigen::Index>(i)] < y[static_cast<Eigen::Index>(imin)]) imin = i;
-      if (y[static_cast<Eigen::Index>(i)] > y[static_cast<Eigen::Index>(imax)]) imax = i;
-    }
-    for (std::size_t i : {std::min(imin, imax), std::max(imin, imax)}) {
-      xo.push_back(x[i]);
-      yo.push_back(y[static_cast<Eigen::Index>(i)]);
-    }
-  }
-}
-
-}  // namespace
 
 namespace {
 

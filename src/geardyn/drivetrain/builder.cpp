@@ -53,24 +53,27 @@ std::shared_ptr<const elements::ContactLaw> make_law(const model::ContactLawSpec
   throw std::logic_error("make_law: unknown law");
 }
 
-/// Every row must see at least one equation, and every node of the element must carry mass.
+/// The element must see at least one free equation (a coordinate whose ends are both fixed, e.g.
+/// a bushing's translations on a torsional model, stays zero), and every DOF it acts on must
+/// belong to a body: carry mass or be held by the linear model's stiffness.
 void check_placed(const PlacementBuilder& b, int rows, const PlacedElement& p,
                   const fe::LinearSystem& system, const SourceLocation& where,
                   const std::string& key) {
-  for (int r = 0; r < rows; ++r)
-    if (b.row_empty(r))
-      throw InputError(where, key,
-                       "ends that can move along the element's coordinates (a node on a body)",
-                       fmt::format("both ends fixed along coordinate {} of {}", r,
-                                   p.element->describe()),
-                       "check node1 / node2 and the [[constraints]] of those nodes");
+  bool any = false;
+  for (int r = 0; r < rows; ++r) any = any || !b.row_empty(r);
+  if (!any)
+    throw InputError(where, key,
+                     "ends that can move along the element's coordinates (a node on a body)",
+                     fmt::format("{} has both ends fixed along every coordinate",
+                                 p.element->describe()),
+                     "check node1 / node2, the [[constraints]] of those nodes and the model's dofs");
   for (int e : p.equations)
-    if (!(system.M.coeff(e, e) > 0.0)) {
+    if (!(system.M.coeff(e, e) > 0.0) && system.K.coeff(e, e) == 0.0) {
       const int node = system.dofs.dof_node(e);
       throw InputError(
-          where, key, "ends on bodies with mass (a shaft station, a disk, a reduced body's node)",
-          fmt::format("{} acts on node '{}', which carries no mass: it is connected to nothing "
-                      "else",
+          where, key, "ends on bodies (a shaft station, a disk, a reduced body's node)",
+          fmt::format("{} acts on node '{}', which has neither mass nor stiffness: it belongs to "
+                      "no body (the element joins unconnected bodies)",
                       p.element->describe(),
                       node >= 0 ? system.dofs.node(node).name : std::string("?")),
           "attach the node to a body (a shaft, a [[solids.spiders]] point, a point mass)");

@@ -1,0 +1,352 @@
+#include "geardyn/analyses/drivetrain_transient.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+
+#include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/core/units.hpp"
+#include "geardyn/drivetrain/builder.hpp"
+#include "geardyn/elements/bolted_joint.hpp"
+#include "geardyn/transient/adaptive_integrator.hpp"
+#include "geardyn/transient/ida_integrator.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
+/// Largest record kept in memory: samples x channels doubles.
+constexpr double kMaxRecordValues = 2.5e8;
+
+using Evaluator = std::function<double(double t, const Eigen::VectorXd& q,
+                                       const Eigen::VectorXd& v, const Eigen::VectorXd& a)>;
+
+/// Channels and how to compute each from a sample.
+struct Recorder {
+  std::vector<DrivetrainChannel> channels;
+  std::vector<Evaluator> evaluate;
+  void add(std::string name, std::string unit, std::string group, Evaluator e) {
+    channels.push_back({std::move(name), std::move(unit), std::move(group)});
+    evaluate.push_back(std::move(e));
+  }
+};
+
+/// The projection of a virtual sensor on the equations: value = sum c_k x[e_k].
+struct Projection {
+  std::vector<int> equations;
+  std::vector<double> coefficients;
+  double of(const Eigen::VectorXd& x) const {
+    double s = 0.0;
+    for (std::size_t k = 0; k < equations.size(); ++k) s += coefficients[k] * x[equations[k]];
+    return s;
+  }
+};
+
+Projection sensor_projection(const model::VirtualSensorSpec& s, const fe::DofMap& dofs,
+                             bool& rotation) {
+  Projection p;
+  const int node = dofs.find_node(s.node);
+  if (s.component >= 0) {
+    rotation = s.component >= 3;
+    const int e = dofs.dof(node, static_cast<model::Component>(s.component));
+    if (e >= 0) {
+      p.equations.push_back(e);
+      p.coefficients.push_back(1.0);
+    }
+    return p;
+  }
+  rotation = s.rotation;
+  const Eigen::Vector3d d = Eigen::Vector3d((*s.direction)[0], (*s.direction)[1],
+                                            (*s.direction)[2])
+                                .normalized();
+  const Eigen::Vector3d c = dofs.node(node).frame.transpose() * d;
+  for (int i = 0; i < 3; ++i) {
+    const int e = dofs.dof(node, static_cast<model::Component>((rotation ? 3 : 0) + i));
+    if (e >= 0 && c[i] != 0.0) {
+      p.equations.push_back(e);
+      p.coefficients.push_back(c[i]);
+    }
+  }
+  return p;
+}
+
+void add_sensor_channels(const model::Model& model, const DrivetrainTransientSettings& s,
+                         const fe::DofMap& dofs, Recorder& rec) {
+  for (const model::VirtualSensorSpec& vs : model.virtual_sensors) {
+    if (!s.sensors.empty() && std::find(s.sensors.begin(), s.sensors.end(), vs.name) == s.sensors.end())
+      continue;
+    bool rot = false;
+    const Projection p = sensor_projection(vs, dofs, rot);
+    const std::string u = rot ? "rad" : "m";
+    rec.add(vs.name + "_" + u, u, "displacement",
+            [p](double, const Eigen::VectorXd& q, const Eigen::VectorXd&, const Eigen::VectorXd&) {
+              return p.of(q);
+            });
+    rec.add(vs.name + "_" + u + "_per_s", u + "/s", "velocity",
+            [p](double, const Eigen::VectorXd&, const Eigen::VectorXd& v, const Eigen::VectorXd&) {
+              return p.of(v);
+            });
+    rec.add(vs.name + "_" + u + "_per_s2", u + "/s^2", "acceleration",
+            [p](double, const Eigen::VectorXd&, const Eigen::VectorXd&, const Eigen::VectorXd& a) {
+              return p.of(a);
+            });
+  }
+}
+
+/// Force channels of element k (names by kind), and the mesh's transmission error.
+void add_element_channels(const model::Model& model, const fe::LinearSystem& sys,
+                          const drivetrain::DrivetrainSystem& system, Recorder& rec) {
+  const auto& elements = system.parts().elements;
+  std::size_t mesh_index = 0;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const drivetrain::PlacedElement& e = elements[k];
+    const drivetrain::DrivetrainSystem* sp = &system;
+    auto force = [sp, k](int i) {
+      return [sp, k, i](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                        const Eigen::VectorXd&) { return sp->element_force(k, t, q, v)[i]; };
+    };
+    if (e.kind == "bolt") {
+      const auto* bolt = dynamic_cast<const elements::BoltedJoint*>(e.element.get());
+      const drivetrain::PlacedElement* pe = &e;
+      auto bolt_value = [bolt, pe](bool clamp) {
+        return [bolt, pe, clamp](double t, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                                 const Eigen::VectorXd&) {
+          Eigen::VectorXd u;
+          pe->gather(q, u);
+          const elements::BoltForces f = bolt->forces(u[0], t);
+          return clamp ? f.clamp_force : f.bolt_force;
+        };
+      };
+      rec.add(e.name + "_bolt_force_n", "N", "force", bolt_value(false));
+      rec.add(e.name + "_clamp_force_n", "N", "force", bolt_value(true));
+    } else if (e.kind == "bushing") {
+      static const char* names[6] = {"fx_n", "fy_n", "fz_n", "mx_nm", "my_nm", "mz_nm"};
+      for (int i = 0; i < 6; ++i)
+        rec.add(e.name + "_" + names[i], i < 3 ? "N" : "N m", i < 3 ? "force" : "torque", force(i));
+    } else if (e.kind == "rolling_bearing") {
+      static const char* names[3] = {"fx_n", "fy_n", "fz_n"};
+      for (int i = 0; i < 3; ++i) rec.add(e.name + "_" + names[i], "N", "force", force(i));
+    } else if (e.kind == "clutch") {
+      rec.add(e.name + "_torque_nm", "N m", "torque", force(0));
+    } else if (e.kind == "gear_mesh") {
+      rec.add(e.name + "_mesh_force_n", "N", "force", force(0));
+      const drivetrain::MeshRows rows = drivetrain::mesh_rows(model, sys, mesh_index++);
+      const double rb1 = rows.base_radius1;
+      auto delta = [rows](const Eigen::VectorXd& q) {
+        double s = 0.0;
+        for (std::size_t i = 0; i < rows.equations.size(); ++i)
+          s += rows.coefficients[i] * q[rows.equations[i]];
+        return s;
+      };
+      rec.add(e.name + "_dte_m", "m", "dte",
+              [delta](double, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                      const Eigen::VectorXd&) { return delta(q); });
+      rec.add(e.name + "_dte_rad", "rad", "dte",
+              [delta, rb1](double, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                           const Eigen::VectorXd&) { return delta(q) / rb1; });
+    } else {
+      const bool rotation = model.contacts.size() > 0 && std::any_of(
+          model.contacts.begin(), model.contacts.end(), [&](const model::ContactSpec& c) {
+            return c.name == e.name && c.motion == model::ContactMotion::Rotation;
+          });
+      rec.add(e.name + (rotation ? "_torque_nm" : "_force_n"), rotation ? "N m" : "N",
+              rotation ? "torque" : "force", force(0));
+    }
+  }
+}
+
+void add_drive_channels(drivetrain::DrivetrainSystem& system, Recorder& rec) {
+  const auto& p = system.parts();
+  auto speed = [](int e) {
+    return [e](double, const Eigen::VectorXd&, const Eigen::VectorXd& v, const Eigen::VectorXd&) {
+      return v[e] * kRadPerSToRpm;
+    };
+  };
+  drivetrain::DrivetrainSystem* sp = &system;
+  for (const drivetrain::SpeedDriver& d : p.speed_drivers) {
+    const int e = d.equation;
+    rec.add(d.name + "_speed_rpm", "rpm", "speed", speed(e));
+    rec.add(d.name + "_torque_nm", "N m", "torque",
+            [sp, e](double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                    const Eigen::VectorXd& a) {
+              Eigen::VectorXd r;
+              sp->free_residual(t, q, v, a, r);
+              return r[e];
+            });
+  }
+  for (const drivetrain::Motor& m : p.motors) {
+    const int e = m.equation;
+    const drivetrain::Motor* mp = &m;
+    rec.add(m.name + "_speed_rpm", "rpm", "speed", speed(e));
+    rec.add(m.name + "_torque_nm", "N m", "torque",
+            [mp, e](double, const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                    const Eigen::VectorXd&) { return mp->torque.value(v[e]); });
+  }
+  for (const drivetrain::LoadTorque& l : p.loads) {
+    const int e = l.equation;
+    const drivetrain::LoadTorque* lp = &l;
+    rec.add(l.name + "_speed_rpm", "rpm", "speed", speed(e));
+    rec.add(l.name + "_torque_nm", "N m", "torque",
+            [lp, e](double t, const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                    const Eigen::VectorXd&) { return lp->value(t, v[e], nullptr); });
+  }
+}
+
+void validate(const model::Model& model, const DrivetrainTransientSettings& s,
+              const Context& context) {
+  auto fail = [&](const std::string& key, const std::string& expected, const std::string& found) {
+    throw context.error(key, expected, found);
+  };
+  if (!(s.duration > 0.0) || !std::isfinite(s.duration))
+    fail("duration", "a positive duration [s]", fmt::format("{}", s.duration));
+  if (!(s.sample_rate > 0.0) || !std::isfinite(s.sample_rate))
+    fail("sample_rate_hz", "a positive sample rate [Hz]", fmt::format("{}", s.sample_rate));
+  if (s.sample_rate * s.duration < 1.0)
+    fail("sample_rate_hz", "at least one sample after t = 0 (sample_rate_hz x duration >= 1)",
+         fmt::format("{} Hz x {} s", s.sample_rate, s.duration));
+  if (!(s.spectrum_start >= 0.0 && s.spectrum_start < s.duration))
+    fail("spectrum_start", fmt::format("a time in [0, duration = {} s)", s.duration),
+         fmt::format("{}", s.spectrum_start));
+  for (const auto& name : s.sensors)
+    if (std::none_of(model.virtual_sensors.begin(), model.virtual_sensors.end(),
+                     [&](const model::VirtualSensorSpec& x) { return x.name == name; }))
+      fail("sensors", "names of [[virtual_sensors]] of the model", "'" + name + "'");
+  if (model.drivers.empty())
+    fail("type", "a model with at least one [[drivers]] entry (what turns the drivetrain)",
+         "no drivers");
+}
+
+transient::AdaptiveOptions integrator_options(const DrivetrainTransientSettings& s) {
+  transient::AdaptiveOptions o;
+  o.start_time = 0.0;
+  o.end_time = s.duration;
+  o.sample_rate = s.sample_rate;
+  o.relative_tolerance = s.relative_tolerance;
+  o.absolute_tolerance = s.absolute_tolerance;
+  o.max_step = std::isnan(s.max_step) ? 1.0 / s.sample_rate : s.max_step;
+  o.rho_infinity = s.rho_infinity;
+  return o;
+}
+
+/// Initial reference speed: the first speed driver's speed at t = 0 over its node's ratio.
+double initial_speed(const model::Model& model, const fe::LinearSystem& sys) {
+  for (const model::DriverSpec& d : model.drivers) {
+    if (d.kind != model::DriverKind::Speed || d.speeds.empty()) continue;
+    const double ratio = sys.dofs.node(sys.dofs.node_index(d.node)).speed_ratio;
+    if (ratio != 0.0) return d.speeds.front() / ratio;
+  }
+  return 0.0;
+}
+
+void static_rows(const drivetrain::DrivetrainSystem& system, const Eigen::VectorXd& v0,
+                 DrivetrainTransientResult& r) {
+  const auto& p = system.parts();
+  for (std::size_t k = 0; k < p.elements.size(); ++k) {
+    const Eigen::VectorXd f = system.element_force(k, 0.0, r.equilibrium.q, v0);
+    for (Eigen::Index i = 0; i < f.size(); ++i) {
+      r.static_rows_element.push_back(p.elements[k].element->describe());
+      r.static_rows_quantity.push_back(fmt::format("force on coordinate {}", i));
+      r.static_rows_unit.push_back("N or N m");
+      r.static_rows_value.push_back(f[i]);
+    }
+  }
+  for (std::size_t k = 0; k < r.equilibrium.held_torques.size(); ++k) {
+    r.static_rows_element.push_back(r.held_names[k]);
+    r.static_rows_quantity.push_back("holding torque");
+    r.static_rows_unit.push_back("N m");
+    r.static_rows_value.push_back(r.equilibrium.held_torques[k]);
+  }
+}
+
+}  // namespace
+
+DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
+                                                   const DrivetrainTransientSettings& s,
+                                                   const Context& context) {
+  const auto started = std::chrono::steady_clock::now();
+  validate(model, s, context);
+  DrivetrainTransientResult r;
+  const model::Model linear_part = drivetrain::without_mesh_springs(model);
+  const fe::LinearSystem sys =
+      assembly::build_system(linear_part, context.solids(), context.progress());
+  drivetrain::BuildOptions bo;
+  bo.initial_reference_speed = initial_speed(model, sys);
+  drivetrain::DrivetrainSystem system(drivetrain::build_drivetrain(model, sys, bo));
+  for (const auto& d : system.parts().speed_drivers) r.held_names.push_back("driver '" + d.name + "'");
+  for (const auto& m : system.parts().motors) r.held_names.push_back("motor '" + m.name + "' (held)");
+
+  Recorder rec;
+  add_sensor_channels(model, s, sys.dofs, rec);
+  add_element_channels(model, sys, system, rec);
+  add_drive_channels(system, rec);
+  r.channels = rec.channels;
+  const double n_samples = std::floor(s.duration * s.sample_rate + 1e-9) + 2.0;
+  if (n_samples * static_cast<double>(rec.channels.size()) > kMaxRecordValues)
+    throw context.error("sample_rate_hz",
+                        fmt::format("a record of at most {:.3g} values (samples x channels)",
+                                    kMaxRecordValues),
+                        fmt::format("{:.4g} samples x {} channels", n_samples, rec.channels.size()),
+                        "lower sample_rate_hz, shorten duration or record fewer sensors");
+
+  // Static equilibrium from the rigid spin at the starting speed.
+  const Eigen::VectorXd v0 = drivetrain::rigid_spin(sys, bo.initial_reference_speed);
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size());
+  if (s.static_start) {
+    r.equilibrium = drivetrain::solve_static(system, 0.0, q, v0);
+    static_rows(system, v0, r);
+    if (r.equilibrium.status != Status::Ok) {
+      r.status = r.equilibrium.status;
+      r.message = r.equilibrium.message;
+      return r;
+    }
+    q = r.equilibrium.q;
+  }
+  if (s.modes > 0) {
+    r.linearisation = drivetrain::linearise(system, 0.0, q, v0, s.modes);
+    r.linearised = true;
+  }
+
+  // Integration with output at the fixed sample rate.
+  r.values.resize(static_cast<Eigen::Index>(n_samples), static_cast<Eigen::Index>(rec.channels.size()));
+  const int n_events = system.num_events();
+  std::vector<long long> closed(static_cast<std::size_t>(n_events), 0);
+  Eigen::VectorXd g;
+  auto observer = [&](long long, double t, const Eigen::VectorXd& qq, const Eigen::VectorXd& vv,
+                      const Eigen::VectorXd& aa) {
+    const auto row = static_cast<Eigen::Index>(r.time.size());
+    if (row >= r.values.rows()) r.values.conservativeResize(row + 64, r.values.cols());
+    for (std::size_t c = 0; c < rec.evaluate.size(); ++c)
+      r.values(row, static_cast<Eigen::Index>(c)) = rec.evaluate[c](t, qq, vv, aa);
+    r.time.push_back(t);
+    if (n_events > 0) {
+      system.event_functions(t, qq, vv, g);
+      for (int k = 0; k < n_events; ++k)
+        if (g[k] > 0.0) ++closed[static_cast<std::size_t>(k)];
+    }
+  };
+  Eigen::VectorXd v = v0;
+  const transient::AdaptiveOptions o = integrator_options(s);
+  r.integration = s.integrator == DrivetrainIntegrator::Ida
+                      ? transient::integrate_ida(system, o, q, v, observer, context.progress())
+                      : transient::integrate_adaptive(system, o, q, v, observer, context.progress());
+  r.values.conservativeResize(static_cast<Eigen::Index>(r.time.size()), r.values.cols());
+  for (int k = 0; k < n_events; ++k) {
+    r.switch_names.push_back(system.describe_event(k));
+    r.closed_fraction.push_back(r.time.empty() ? 0.0
+                                               : static_cast<double>(closed[static_cast<std::size_t>(k)]) /
+                                                     static_cast<double>(r.time.size()));
+  }
+  if (r.integration.status != Status::Ok) {
+    r.status = r.integration.status;
+    r.message = r.integration.message;
+  } else if (r.linearised && r.linearisation.status != Status::Ok) {
+    r.status = r.linearisation.status == Status::Unstable ? Status::Unstable : Status::Ok;
+  }
+  r.run_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return r;
+}
+
+}  // namespace geardyn::analyses

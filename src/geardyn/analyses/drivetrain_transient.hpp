@@ -1,0 +1,93 @@
+#pragma once
+// The drivetrain_transient analysis (docs/theory.md §16): the nonlinear flexible drivetrain in
+// the time domain.
+//
+//   model (shafts, housings and reduced bodies, [[contacts]], [[bolts]], [[bushings]],
+//   [[rolling_bearings]], [[gear_meshes]] with their tooth contact, [[drivers]], [[loads]],
+//   [[clutches]], [[virtual_sensors]])
+//     -> assembled linear part (without the meshes' linear springs) + placed elements
+//        (drivetrain::build_drivetrain)
+//     -> static equilibrium under load and preloads (drivetrain::solve_static), reported
+//     -> linearisation there: the modal table in the ADAMS layout (drivetrain::linearise)
+//     -> adaptive integration from the equilibrium (generalised-alpha or SUNDIALS IDA) with
+//        output at the fixed sample rate
+//     -> channels: virtual sensors (displacement, velocity, acceleration), element forces,
+//        mesh force and dynamic transmission error, driver and load speeds and torques;
+//        peaks, RMS and spectra.
+#include <Eigen/Dense>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/context.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/drivetrain/linearisation.hpp"
+#include "geardyn/drivetrain/static_equilibrium.hpp"
+#include "geardyn/model/model.hpp"
+#include "geardyn/transient/adaptive.hpp"
+
+namespace geardyn::analyses {
+
+enum class DrivetrainIntegrator { GeneralizedAlpha, Ida };
+
+struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettings> {
+  double duration = model::kNaN;     ///< [s]
+  double sample_rate = model::kNaN;  ///< output samples per second [Hz]
+  DrivetrainIntegrator integrator = DrivetrainIntegrator::GeneralizedAlpha;
+  double relative_tolerance = 1e-4;
+  double absolute_tolerance = 1e-9;  ///< [m, rad]
+  double max_step = model::kNaN;     ///< [s] (NaN: 1 / sample_rate)
+  double rho_infinity = 0.8;
+  bool static_start = true;  ///< start from the static equilibrium (else from q = 0)
+  int modes = 20;            ///< linearised modes tabulated (0: no linearisation)
+  std::vector<std::string> sensors;  ///< virtual sensors recorded (empty: all)
+  double spectrum_start = 0.0;       ///< spectra over [spectrum_start, duration] [s]
+};
+
+/// One recorded quantity.
+struct DrivetrainChannel {
+  std::string name;  ///< column name with its unit suffix, e.g. "hub_x_acc_m_per_s2"
+  std::string unit;  ///< "m/s^2"
+  std::string group;  ///< for plots: "displacement", "velocity", "acceleration", "force",
+                      ///< "torque", "speed", "dte"
+};
+
+struct DrivetrainTransientResult {
+  Status status = Status::Ok;
+  std::string message;
+  drivetrain::StaticResult equilibrium;
+  std::vector<std::string> held_names;  ///< drivers / motors held in the static solution
+  drivetrain::Linearisation linearisation;
+  bool linearised = false;
+  std::vector<DrivetrainChannel> channels;
+  std::vector<double> time;
+  Eigen::MatrixXd values;  ///< samples x channels (rows filled up to time.size())
+  transient::AdaptiveSummary integration;
+  /// Per event function of the system: its description and the fraction of samples it was
+  /// positive (closed / in contact).
+  std::vector<std::string> switch_names;
+  std::vector<double> closed_fraction;
+  std::vector<std::string> static_rows_element, static_rows_quantity, static_rows_unit;
+  std::vector<double> static_rows_value;
+  double run_time_s = 0.0;
+};
+
+/// Validates the settings against the model (InputError at the analysis keys), builds the
+/// drivetrain, solves the static equilibrium, linearises and integrates. A numerical failure
+/// (static equilibrium not found, a step that cannot converge) comes back as a non-Ok status
+/// with the samples up to the failure and a message naming the time and the element.
+DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
+                                                   const DrivetrainTransientSettings& settings,
+                                                   const Context& context);
+
+/// Tables "static_equilibrium", "eigen" (mode, undamped_natural_frequency_hz, damping_ratio,
+/// real_hz, imaginary_hz), "time_history", "summary" (peak and RMS per channel), "spectrum",
+/// "contacts" (closed fraction per switch) and "integration"; plots of the time histories by
+/// group and the spectra; notes on the integration and trust.
+AnalysisOutput drivetrain_transient_output(const model::Model& model,
+                                           const DrivetrainTransientSettings& settings,
+                                           const DrivetrainTransientResult& result,
+                                           const Context& context);
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,105 @@
+// The `type = "drivetrain_transient"` analysis in the registry: its model-file keys and their
+// rules, its checks, how it runs and what it offers to sweeps.
+#include <algorithm>
+
+#include "geardyn/analyses/drivetrain_transient.hpp"
+#include "geardyn/analyses/registry.hpp"
+#include "geardyn/model/schema_builder.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using namespace model::keys;  // NOLINT: the declaration table reads as a table
+using model::Analysis;
+
+/// Output sample rates are written in Hz and kept in Hz (not converted to rad/s).
+constexpr model::Unit kSamplesPerSecond{"Hz", 1.0};
+
+void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
+  const auto& t = a.settings_of<DrivetrainTransientSettings>();
+  const auto& m = check.model();
+  check.check_named(path + ".sensors", t.sensors, model::names_of(m.virtual_sensors),
+                    "virtual sensor", "virtual_sensors");
+  if (m.drivers.empty())
+    check.fail(path + ".type", "a model with at least one [[drivers]] entry", "no [[drivers]]",
+               "add a speed driver or a motor on the input shaft's node");
+}
+
+std::vector<model::Field> keys() {
+  return {
+      number("duration", kSecond, "Simulated time from t = 0.")
+          .required()
+          .gt(0)
+          .to_settings(&DrivetrainTransientSettings::duration),
+      number("sample_rate_hz", kSamplesPerSecond,
+             "Output samples per second, independent of the integrator's steps (interpolated "
+             "within a step); spectra reach sample_rate_hz / 2.")
+          .required()
+          .gt(0)
+          .to_settings(&DrivetrainTransientSettings::sample_rate),
+      choice("integrator", {"generalized_alpha", "ida"},
+             "Adaptive integrator: geardyn's generalised-alpha with local error control and "
+             "contact event location, or SUNDIALS IDA (variable-order BDF).")
+          .def("\"generalized_alpha\"")
+          .to_settings_enum(&DrivetrainTransientSettings::integrator,
+                            {DrivetrainIntegrator::GeneralizedAlpha, DrivetrainIntegrator::Ida}),
+      number("relative_tolerance", kNoUnit, "Local error tolerance, relative to the state.")
+          .def("1e-4")
+          .gt(0)
+          .lt(1)
+          .to_settings(&DrivetrainTransientSettings::relative_tolerance),
+      number("absolute_tolerance", kMetre, "Local error tolerance, absolute (m or rad).")
+          .def("1e-9")
+          .gt(0)
+          .to_settings(&DrivetrainTransientSettings::absolute_tolerance),
+      number("max_step", kSecond, "Largest time step.")
+          .gt(0)
+          .note("1 / sample_rate_hz")
+          .to_settings(&DrivetrainTransientSettings::max_step),
+      number("rho_infinity", kNoUnit,
+             "Spectral radius at infinite frequency of generalised-alpha (1: no numerical "
+             "damping).")
+          .def("0.8")
+          .ge(0)
+          .le(1)
+          .to_settings(&DrivetrainTransientSettings::rho_infinity),
+      boolean("static_start",
+              "Start from the static equilibrium under the loads and preloads at t = 0 (drivers "
+              "and motors held); false: from the undeformed state.")
+          .def("true")
+          .to_settings(&DrivetrainTransientSettings::static_start),
+      integer("modes", "Modes of the linearisation at the operating point tabulated (0: none).")
+          .def("20")
+          .ge(0)
+          .le(1000)
+          .to_settings(&DrivetrainTransientSettings::modes),
+      names("sensors", model::Ref::None, "[[virtual_sensors]] recorded.")
+          .note("all virtual sensors")
+          .to_settings(&DrivetrainTransientSettings::sensors),
+      number("spectrum_start", kSecond, "Spectra are taken over [spectrum_start, duration].")
+          .def("0.0")
+          .ge(0)
+          .to_settings(&DrivetrainTransientSettings::spectrum_start),
+  };
+}
+
+}  // namespace
+
+AnalysisType drivetrain_transient_analysis() {
+  AnalysisType type;
+  type.name = "drivetrain_transient";
+  type.declare = [] {
+    auto d = declaration<DrivetrainTransientSettings>(
+        "drivetrain_transient",
+        "Nonlinear drivetrain in the time domain: drivers and loads on the shafts' spins, tooth "
+        "contact with backlash, rolling bearings, bushings, preloaded bolts and contacts; static "
+        "equilibrium, linearisation (modal table) and an adaptive run with virtual sensors.");
+    d.fields = keys();
+    d.check = check;
+    return d;
+  };
+  type.run = runner(run_drivetrain_transient, drivetrain_transient_output);
+  return type;
+}
+
+}  // namespace geardyn::analyses
