@@ -62,9 +62,9 @@ struct AdaptiveSummary {
   std::string message;     ///< empty when Ok; else what failed, when (t), and the system's state
   std::string integrator;  ///< "generalized_alpha" or "ida"
   std::string solver;      ///< the linear solver used for the iteration matrix
-  long long steps = 0;                ///< accepted steps
-  long long rejected_error = 0;       ///< steps rejected by the error test
-  long long rejected_newton = 0;      ///< steps rejected because Newton did not converge
+  long long steps = 0;     ///< accepted steps
+  long long rejected_error = 0;   ///< steps rejected by the error test
+  long long rejected_newton = 0;  ///< steps rejected because Newton did not converge
   long long newton_iterations = 0;
   long long factorizations = 0;
   long long residual_evaluations = 0;

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "geardyn/linalg/submatrix.hpp"
+#include "geardyn/transient/generalized_alpha_step.hpp"
 #include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
@@ -78,23 +78,8 @@ bool all_finite(const Eigen::VectorXd& q, const Eigen::VectorXd& v, const Eigen:
   return q.allFinite() && v.allFinite() && a.allFinite();
 }
 
-// Factorises c_m M + c_c C_t + c_k K_t (+ low-rank part) at the given point.
-bool factor_tangent(SecondOrderSystem& system, TangentSolver& solver, double t,
-                    const Eigen::VectorXd& q, const Eigen::VectorXd& v, double c_m, double c_c,
-                    double c_k) {
-  SparseMatrix S;
-  system.tangent(t, q, v, c_m, c_c, c_k, S);
-  Eigen::MatrixXd U;
-  Eigen::VectorXd d;
-  if (system.tangent_low_rank(t, q, v, c_m, c_c, c_k, U, d) && U.cols() > 0 &&
-      d.cwiseAbs().maxCoeff() > 0.0)
-    return solver.factorize(S, U, d);
-  return solver.factorize(S);
-}
-
-}  // namespace
-
-namespace {
+using detail::Failure;
+using detail::StepWork;
 
 void check_input(SecondOrderSystem& system, const IntegratorOptions& options,
                  const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
@@ -113,118 +98,19 @@ void check_input(SecondOrderSystem& system, const IntegratorOptions& options,
                                             options.initial_acceleration->size(), n));
 }
 
-struct Failure {
-  Status status;
-  std::string message;
-};
-
-// Equations whose row of M is zero (massless DOFs: the nodes of a massless shaft away from its
-// disks), in increasing order.
-std::vector<int> massless_equations(const SparseMatrix& M) {
-  std::vector<bool> has_mass(static_cast<std::size_t>(M.rows()), false);
-  for (int k = 0; k < M.outerSize(); ++k)
-    for (SparseMatrix::InnerIterator it(M, k); it; ++it)
-      if (it.value() != 0.0) {
-        has_mass[static_cast<std::size_t>(it.row())] = true;
-        has_mass[static_cast<std::size_t>(it.col())] = true;
-      }
-  std::vector<int> out;
-  for (std::size_t i = 0; i < has_mass.size(); ++i)
-    if (!has_mass[i]) out.push_back(static_cast<int>(i));
-  return out;
-}
-
-// The initial acceleration of a system with massless DOFs s (zero rows and columns of M) and
-// massed DOFs p: M_pp a_p = -r_p(t_0, q_0, v_0, 0), and the massless DOFs follow the massed ones
-// statically (Guyan condensation, differentiated twice in time): K_ss a_s = -K_sp a_p. This is
-// exact when the massless DOFs carry no damping and no time-varying load (a massless shaft
-// between disks and rigid supports); otherwise a_s is the quasi-static estimate, and it does not
-// enter the residual (M a has no a_s term), so the first steps correct it.
-std::optional<Failure> partitioned_initial_acceleration(
-    SecondOrderSystem& system, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
-    const SparseMatrix& M, const std::vector<int>& massless, const Eigen::VectorXd& r,
-    Eigen::VectorXd& a) {
-  const int n = system.size();
-  std::vector<int> massed;
-  for (int i = 0, j = 0; i < n; ++i) {
-    if (j < static_cast<int>(massless.size()) && massless[static_cast<std::size_t>(j)] == i)
-      ++j;
-    else
-      massed.push_back(i);
-  }
-  a.setZero(n);
-  if (massed.empty())
-    return Failure{Status::Singular,
-                   fmt::format("initial acceleration at t = {} s: the mass matrix is zero, no DOF "
-                               "has mass (give a material a density > 0, or add disks or point "
-                               "masses)",
-                               t)};
-  TangentSolver mass_solver;
-  if (!mass_solver.factorize(linalg::submatrix(M, massed, massed)))
-    return Failure{Status::Singular,
-                   fmt::format("initial acceleration at t = {} s: the mass matrix of the {} DOFs "
-                               "that have mass could not be factorised ({}); check for a mass "
-                               "or inertia that is zero or negative on a DOF that has some",
-                               t, massed.size(), mass_solver.failure())};
-  Eigen::VectorXd r_p(static_cast<Eigen::Index>(massed.size())), a_p;
-  for (std::size_t i = 0; i < massed.size(); ++i) r_p[static_cast<Eigen::Index>(i)] = r[massed[i]];
-  mass_solver.solve(-r_p, a_p);
-  SparseMatrix K;
-  system.tangent(t, q, v, 0.0, 0.0, 1.0, K);
-  TangentSolver stiffness_solver;
-  if (!stiffness_solver.factorize(linalg::submatrix(K, massless, massless)))
-    return Failure{Status::Singular,
-                   fmt::format("initial acceleration at t = {} s: {} DOFs have no mass and their "
-                               "stiffness matrix is singular ({}): a massless part of the model "
-                               "can move freely (a mechanism without mass or stiffness). Give "
-                               "it mass (a density > 0, a disk or point mass), support it "
-                               "(bearings, constraints) or leave those DOFs out (`dofs`)",
-                               t, massless.size(), stiffness_solver.failure())};
-  const Eigen::VectorXd rhs = -(linalg::submatrix(K, massless, massed) * a_p);
-  Eigen::VectorXd a_s;
-  stiffness_solver.solve(rhs, a_s);
-  for (std::size_t i = 0; i < massed.size(); ++i) a[massed[i]] = a_p[static_cast<Eigen::Index>(i)];
-  for (std::size_t i = 0; i < massless.size(); ++i)
-    a[massless[i]] = a_s[static_cast<Eigen::Index>(i)];
-  return std::nullopt;
-}
-
 // The initial acceleration: given, or from M a_0 = -r(t_0, q_0, v_0, 0) (partitioned when some
 // DOFs have no mass).
 std::optional<Failure> initial_acceleration(SecondOrderSystem& system,
                                             const IntegratorOptions& options, double t,
                                             const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                             Eigen::VectorXd& a, IntegrationSummary& summary) {
-  const int n = system.size();
-  Eigen::VectorXd r(n);
   if (options.initial_acceleration) {
     a = *options.initial_acceleration;
     summary.consistent_initial_acceleration = false;
     return std::nullopt;
   }
-  system.residual(t, q, v, Eigen::VectorXd::Zero(n), r);
-  ++summary.residual_evaluations;
-  // M a_0 = -r(t_0, q_0, v_0, 0): the tangent with c_m = 1, c_c = c_k = 0 is M.
-  SparseMatrix M;
-  system.tangent(t, q, v, 1.0, 0.0, 0.0, M);
-  const std::vector<int> massless = massless_equations(M);
-  if (!massless.empty())
-    return partitioned_initial_acceleration(system, t, q, v, M, massless, r, a);
-  TangentSolver mass_solver;
-  if (!factor_tangent(system, mass_solver, t, q, v, 1.0, 0.0, 0.0))
-    return Failure{Status::Singular,
-                   fmt::format("initial acceleration at t = {} s: the mass matrix could not be "
-                               "factorised ({}); every unconstrained DOF needs mass (add rotary "
-                               "inertia or a small point mass, or constrain the DOF)",
-                               t, mass_solver.failure())};
-  mass_solver.solve(-r, a);
-  return std::nullopt;
+  return detail::consistent_acceleration(system, t, q, v, a, summary.residual_evaluations);
 }
-
-// Work vectors of a step: the state at t_{n+1-af}, the residual and the correction.
-struct StepWork {
-  Eigen::VectorXd qa, va, aa, r, dq;
-};
 
 // Newton iterations of one step on (q1, v1, a1) from the predictor.
 struct Iterations {
@@ -234,7 +120,8 @@ struct Iterations {
 };
 
 // Newton (modified: the factor is kept while the corrections shrink fast enough) on the step
-// from (q, v, a) at t_n to (q1, v1, a1) at t1.
+// from (q, v, a) at t_n to (q1, v1, a1) at t1 (detail::solve_step), with this integrator's
+// convergence test and messages.
 std::optional<Failure> newton_iterations(SecondOrderSystem& system,
                                          const IntegratorOptions& options,
                                          const SchemeParameters& p, int step, double t1,
@@ -244,55 +131,35 @@ std::optional<Failure> newton_iterations(SecondOrderSystem& system,
                                          TangentSolver& solver, bool& need_factor, double q_scale,
                                          IntegrationSummary& summary, Iterations& it) {
   const double h = options.time_step;
-  const double ta = t1 - p.alpha_f * h;  // t_{n+1-af} = (1 - af) t_{n+1} + af t_n
-  const double c_m = (1.0 - p.alpha_m) / (p.beta * h * h);
-  const double c_c = (1.0 - p.alpha_f) * p.gamma / (p.beta * h);
-  const double c_k = 1.0 - p.alpha_f;
-  const double dv_dq = p.gamma / (p.beta * h);
-  const double da_dq = 1.0 / (p.beta * h * h);
-  while (it.iteration < options.max_newton_iterations) {
-    w.qa = (1.0 - p.alpha_f) * q1 + p.alpha_f * q;
-    w.va = (1.0 - p.alpha_f) * v1 + p.alpha_f * v;
-    w.aa = (1.0 - p.alpha_m) * a1 + p.alpha_m * a;
-    system.residual(ta, w.qa, w.va, w.aa, w.r);
-    ++summary.residual_evaluations;
-    if (!w.r.allFinite())
-      return Failure{Status::Diverged,
-                     fmt::format("non-finite residual at step {} (t = {:.6g} s, h = {:.3g} s); "
-                                 "usually the time step is too large for the nonlinearity",
-                                 step, t1, h)};
-    if (need_factor) {
-      if (!factor_tangent(system, solver, ta, w.qa, w.va, c_m, c_c, c_k))
-        return Failure{Status::Singular,
-                       fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
-                                   "unconstrained rigid-body motion without mass (a massless "
-                                   "shaft needs stiffness on every DOF it keeps: bearings, "
-                                   "constraints, or `dofs` to leave DOFs out)",
-                                   step, t1, solver.failure())};
-      ++summary.factorizations;
-      summary.solver = solver.description();
-      need_factor = false;
-    }
-    solver.solve(-w.r, w.dq);
-    q1 += w.dq;
-    v1 += dv_dq * w.dq;
-    a1 += da_dq * w.dq;
-    ++it.iteration;
-    if (summary.linear_time_invariant) {  // exact tangent, linear equations: one correction
-      it.converged = true;
-      break;
-    }
-    const double correction = w.dq.lpNorm<Eigen::Infinity>();
-    const double scale = std::max(q_scale, q1.lpNorm<Eigen::Infinity>());
-    if (correction <= options.newton_tolerance * scale || correction == 0.0) {
-      it.converged = true;
-      break;
-    }
-    // Modified Newton: keep the factor while the corrections shrink fast enough.
-    if (it.iteration > 1 && correction > options.refactor_ratio * it.previous_correction)
-      need_factor = true;
-    it.previous_correction = correction;
-  }
+  detail::NewtonControl control;
+  control.max_iterations = options.max_newton_iterations;
+  control.refactor_ratio = options.refactor_ratio;
+  control.linear = summary.linear_time_invariant;
+  control.converged = [&](const Eigen::VectorXd& dq, const Eigen::VectorXd& q_new) {
+    const double scale = std::max(q_scale, q_new.lpNorm<Eigen::Infinity>());
+    return dq.lpNorm<Eigen::Infinity>() <= options.newton_tolerance * scale;
+  };
+  detail::NewtonCounters counters;
+  const auto result = detail::solve_step(system, p, detail::StepCoefficients(p, h), t1, q, v, a, q1,
+                                         v1, a1, w, solver, need_factor, control, counters);
+  summary.residual_evaluations += counters.residual_evaluations;
+  summary.factorizations += static_cast<int>(counters.factorizations);
+  if (!counters.solver.empty()) summary.solver = counters.solver;
+  it.iteration = result.iterations;
+  it.previous_correction = result.last_correction;
+  it.converged = result.outcome == detail::StepOutcome::Converged;
+  if (result.outcome == detail::StepOutcome::NonFiniteResidual)
+    return Failure{Status::Diverged,
+                   fmt::format("non-finite residual at step {} (t = {:.6g} s, h = {:.3g} s); "
+                               "usually the time step is too large for the nonlinearity",
+                               step, t1, h)};
+  if (result.outcome == detail::StepOutcome::Singular)
+    return Failure{Status::Singular,
+                   fmt::format("iteration matrix at step {} (t = {:.6g} s): {}; check for "
+                               "unconstrained rigid-body motion without mass (a massless "
+                               "shaft needs stiffness on every DOF it keeps: bearings, "
+                               "constraints, or `dofs` to leave DOFs out)",
+                               step, t1, result.solver_failure)};
   return std::nullopt;
 }
 
@@ -338,14 +205,10 @@ IntegrationSummary integrate(SecondOrderSystem& system, const IntegratorOptions&
   double largest_state = state_size(q, v, a, h);
 
   Eigen::VectorXd q1(n), v1(n), a1(n);
-  StepWork w{Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n), Eigen::VectorXd(n),
-             Eigen::VectorXd(n)};
+  StepWork w(n);
   for (int step = 1; step <= options.num_steps; ++step) {
     const double t1 = options.start_time + step * h;
-    // Predictor: constant acceleration.
-    a1 = a;
-    q1 = q + h * v + (h * h * (0.5 - p.beta)) * a + (h * h * p.beta) * a1;
-    v1 = v + (h * (1.0 - p.gamma)) * a + (h * p.gamma) * a1;
+    detail::predict(p, h, q, v, a, q1, v1, a1);  // constant acceleration
 
     Iterations it;
     if (auto failure = newton_iterations(system, options, p, step, t1, q, v, a, q1, v1, a1, w,
