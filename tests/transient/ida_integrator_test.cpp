@@ -20,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "geardyn/core/progress.hpp"
@@ -326,6 +327,46 @@ TEST(IdaIntegrator, NonFiniteResidualFailsWithTheTimeAndKeepsEarlierSamples) {
   EXPECT_EQ(delivered, expected);
   EXPECT_EQ(s.samples, expected);
   EXPECT_TRUE(q.allFinite() && v.allFinite());
+}
+
+// A residual that throws after t_bad: the exception is caught in IDA's callback (never thrown
+// through C) and reported with its text and time.
+class ThrowsAfter final : public MatrixSystem {
+ public:
+  explicit ThrowsAfter(double t_bad)
+      : MatrixSystem(mass(), Eigen::MatrixXd::Zero(2, 2), stiffness()), t_bad_(t_bad) {}
+  void residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                const Eigen::VectorXd& a, Eigen::VectorXd& r) override {
+    if (t > t_bad_) throw std::runtime_error("element 'e1' left its table");
+    MatrixSystem::residual(t, q, v, a, r);
+  }
+
+ private:
+  double t_bad_;
+};
+
+TEST(IdaIntegrator, ExceptionInTheSystemFailsTheRunWithItsText) {
+  ThrowsAfter system(0.02);
+  const IdaRun run = run_ida(system, options(0.1, 1000.0, 1e-6, 1e-11), kQ0, kV0);
+  EXPECT_EQ(run.summary.status, Status::Failed);
+  EXPECT_NE(run.summary.message.find("element 'e1' left its table"), std::string::npos)
+      << run.summary.message;
+  EXPECT_LE(run.summary.end_time, 0.02);
+  ASSERT_FALSE(run.samples.empty());
+  EXPECT_LE(run.samples.back().t, 0.02);
+}
+
+TEST(IdaIntegrator, InvalidOptionsAndSizesThrow) {
+  MatrixSystem system(mass(), Eigen::MatrixXd::Zero(2, 2), stiffness());
+  Eigen::VectorXd q = kQ0, v = kV0;
+  AdaptiveOptions o = options(1.0, 100.0, 1e-6, 1e-11);
+  o.end_time = 0.0;  // not after start_time
+  EXPECT_THROW(integrate_ida(system, o, q, v, {}, null_progress()), std::invalid_argument);
+  o = options(1.0, 0.0, 1e-6, 1e-11);  // no sample rate
+  EXPECT_THROW(integrate_ida(system, o, q, v, {}, null_progress()), std::invalid_argument);
+  o = options(1.0, 100.0, 1e-6, 1e-11);
+  Eigen::VectorXd wrong = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(integrate_ida(system, o, wrong, v, {}, null_progress()), std::invalid_argument);
 }
 
 }  // namespace
