@@ -375,9 +375,9 @@ bool IdaRun::create(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
   view(atol.get(), n_, n_).setConstant(options_.absolute_tolerance / h_max_);
 
   void* mem = ida_.get();
-  if (!ok(IDAInit(mem, residual_callback, options_.start_time, y_.get(), yp_.get()), "IDAInit") ||
+  if (!ok(IDASetErrHandlerFn(mem, error_callback, &problem_), "IDASetErrHandlerFn") ||
       !ok(IDASetUserData(mem, &problem_), "IDASetUserData") ||
-      !ok(IDASetErrHandlerFn(mem, error_callback, &problem_), "IDASetErrHandlerFn") ||
+      !ok(IDAInit(mem, residual_callback, options_.start_time, y_.get(), yp_.get()), "IDAInit") ||
       !ok(IDASVtolerances(mem, options_.relative_tolerance, atol.get()), "IDASVtolerances") ||
       !ok(IDASetLinearSolver(mem, solver_.get(), matrix_.get()), "IDASetLinearSolver") ||
       !ok(IDASetJacFn(mem, jacobian_callback), "IDASetJacFn") ||
@@ -400,8 +400,7 @@ bool IdaRun::create(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
 // Consistent v' at t with q, v fixed (IDA_YA_YDP_INIT with every unknown differential).
 bool IdaRun::consistent_start(double t) {
   if (!ok(IDACalcIC(ida_.get(), IDA_YA_YDP_INIT, t + h_max_),
-          "IDACalcIC (consistent initial "
-          "acceleration)"))
+          "IDACalcIC (the consistent acceleration)"))
     return false;
   if (!ok(IDAGetConsistentIC(ida_.get(), y_.get(), yp_.get()), "IDAGetConsistentIC")) return false;
   accept(t);
