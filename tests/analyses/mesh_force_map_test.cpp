@@ -14,11 +14,13 @@
 // Pair: spur z1 = 20, z2 = 40, m = 3 mm, b = 20 mm (tests/support/gear_models.hpp).
 #include "geardyn/analyses/mesh_force_map.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -233,6 +235,67 @@ TEST(MeshForceMap, LtcaTableTorques) {
       const double eg = file == "te.csv" ? 0.0 : te100[i] - map.forces_n[0] / k100[i];
       EXPECT_NEAR(map.unloaded_te_m[i], eg, 1e-15 * 1e-5) << file;
     }
+  }
+}
+
+// A [[gear_meshes]] entry: without [gear_meshes.contact] gear_pair, its constant `stiffness` (a
+// linear mesh with one angle and no unloaded TE, period 2 pi / teeth1); with it, the named pair's
+// map; with neither, an error at its stiffness.
+TEST(MeshForceMap, GearMeshesEntryUsesItsPairOrItsStiffness) {
+  const double rb1 = 0.03, rb2 = 0.06, alpha = 20.0 * kPi / 180.0;
+  const std::string rotor = fmt::format(R"(
+[[nodes]]
+name = "g1"
+position = [0.0, 0.0, 0.0]
+[[nodes]]
+name = "g2"
+position = [{:.17g}, 0.0, 0.0]
+[[disks]]
+node = "g1"
+mass = 1.0
+diametral_inertia = 1.0
+polar_inertia = 0.002
+[[disks]]
+node = "g2"
+mass = 1.0
+diametral_inertia = 1.0
+polar_inertia = 0.03
+[[gear_meshes]]
+name = "mesh"
+gear1 = "g1"
+gear2 = "g2"
+type = "spur"
+teeth1 = 20
+teeth2 = 40
+base_radius1 = {}
+base_radius2 = {}
+pressure_angle_deg = 20
+stiffness = 3e8
+)",
+                                        (rb1 + rb2) / std::cos(alpha), rb1, rb2);
+  model::Model m =
+      load(fresh_dir("map_gear_meshes"), spur_pair_20_40("120", "ste_source = \"iso\"\n") + rotor);
+  const elements::MeshForceMap constant = mesh_force_map(m, 0);
+  ASSERT_EQ(constant.angles(), 1);
+  EXPECT_NEAR(constant.period_rad, 2.0 * kPi / 20, 1e-15);
+  EXPECT_NEAR(constant.mean_stiffness() / 3e8, 1.0, 1e-12);
+  EXPECT_EQ(constant.unloaded_te_m[0], 0.0);
+
+  model::MeshContactSpec contact;
+  contact.gear_pair = "spur";
+  m.gear_meshes[0].contact = contact;
+  const elements::MeshForceMap from_pair = mesh_force_map(m, 0);
+  const elements::MeshForceMap direct = mesh_force_map(m, build_pair_model(m, 0));
+  EXPECT_EQ(from_pair.approach_m, direct.approach_m);
+  EXPECT_EQ(from_pair.forces_n, direct.forces_n);
+
+  m.gear_meshes[0].contact.reset();
+  m.gear_meshes[0].stiffness = std::numeric_limits<double>::quiet_NaN();
+  try {
+    (void)mesh_force_map(m, 0);
+    ADD_FAILURE() << "no error without stiffness and gear pair";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key_path(), "gear_meshes[0].stiffness");
   }
 }
 
