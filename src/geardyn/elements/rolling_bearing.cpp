@@ -69,19 +69,25 @@ RollingBearing::RollingBearing(RollingBearingParams params, const std::string& k
   check(p_, key_path, where);
   gap_ = 0.5 * (p_.radial_clearance * std::cos(p_.contact_angle) +
                 p_.axial_clearance * std::sin(p_.contact_angle));
+  kappa_ = 0.5 * (1.0 - kinematics().gamma());
+}
+
+double RollingBearing::cage_angle(const Eigen::VectorXd& u, double t) const {
+  return p_.spin_angle ? cage_angle(t) + kappa_ * u(3) : cage_angle(t);
 }
 
 double RollingBearing::deflection(const Eigen::VectorXd& u, double t, int k) const {
-  const double psi = cage_angle(t) + 2.0 * units::kPi * k / p_.elements;
+  const double psi = cage_angle(u, t) + 2.0 * units::kPi * k / p_.elements;
   const double ca = std::cos(p_.contact_angle), sa = std::sin(p_.contact_angle);
   return ca * (u(0) * std::cos(psi) + u(1) * std::sin(psi)) + sa * u(2) - gap_;
 }
 
 void RollingBearing::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                               ElementForce& out) const {
-  assert(u.size() == 3 && v.size() == 3);
-  out.reset(3);
-  const double psi0 = cage_angle(t);
+  const Eigen::Index n_u = size();
+  assert(u.size() == n_u && v.size() == n_u);
+  out.reset(n_u);
+  const double psi0 = cage_angle(u, t);
   const double ca = std::cos(p_.contact_angle), sa = std::sin(p_.contact_angle);
   const double kn = p_.stiffness_constant, n = p_.exponent;
   for (int k = 0; k < p_.elements; ++k) {
@@ -90,18 +96,23 @@ void RollingBearing::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v
     const double delta = e.dot(u.head<3>()) - gap_;
     if (delta <= 0.0) continue;  // not in contact: no load, no stiffness
     const double pow_nm1 = std::pow(delta, n - 1.0);
-    out.force += (kn * pow_nm1 * delta) * e;                  // Q_k e_k, Q_k = K_n delta^n
-    out.stiffness += (n * kn * pow_nm1) * e * e.transpose();  // dQ_k/d delta e_k e_k^T
+    const double q = kn * pow_nm1 * delta, dq = n * kn * pow_nm1;
+    out.force.head<3>() += q * e;                                   // Q_k e_k, Q_k = K_n delta^n
+    out.stiffness.topLeftCorner<3, 3>() += dq * e * e.transpose();  // dQ_k/d delta e_k e_k^T
+    if (p_.spin_angle) {  // d (Q_k e_k) / d theta = kappa d (Q_k e_k) / d psi
+      const Eigen::Vector3d de(-ca * std::sin(psi), ca * std::cos(psi), 0.0);
+      out.stiffness.block<3, 1>(0, 3) += kappa_ * (dq * de.dot(u.head<3>()) * e + q * de);
+    }
   }
   out.damping(0, 0) = p_.radial_damping;
   out.damping(1, 1) = p_.radial_damping;
   out.damping(2, 2) = p_.axial_damping;
-  out.force += out.damping * v;
+  out.force.head<3>() += out.damping.topLeftCorner<3, 3>() * v.head<3>();
 }
 
 std::string RollingBearing::describe() const {
-  return fmt::format("rolling bearing '{}' (Z = {}, n = {:.4g})", p_.name, p_.elements,
-                     p_.exponent);
+  return fmt::format("rolling bearing '{}' (Z = {}, n = {:.4g}{})", p_.name, p_.elements,
+                     p_.exponent, p_.spin_angle ? ", cage driven by the spin angle" : "");
 }
 
 BearingKinematics RollingBearing::kinematics() const {

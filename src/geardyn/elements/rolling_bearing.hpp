@@ -9,7 +9,14 @@
 // frequency Z (f_c - f_o) ("varying compliance").
 //
 // Coordinates (n = 3): radial x, y and axial z of the inner ring relative to the outer ring,
-// u = (x, y, z) = (inner) - (outer), in the bearing frame whose z axis is the bearing axis. Ring
+// u = (x, y, z) = (inner) - (outer), in the bearing frame whose z axis is the bearing axis.
+// With `spin_angle` a fourth coordinate is the inner ring's rotation angle theta relative to the
+// outer ring (the shaft's spin angle, n = 4), and the cage follows it:
+// psi_0 = psi_00 + omega_c t + kappa theta with kappa = (1 - gamma) / 2, the cage speed ratio of
+// a fixed outer ring (BearingKinematics), so the ball-pass modulation follows the actual shaft
+// speed during a run-up (omega_c is then normally 0). The element exerts no torque on theta
+// (frictionless rolling), but its force depends on it: the tangent's column 3 is
+// d f / d theta = kappa sum_k [Q_k'(delta_k) (e_k' . u) e_k + Q_k e_k'], e_k' = d e_k / d psi. Ring
 // tilts (a 5-coordinate bearing with moment stiffness) are not modelled yet: the shaft's tilt at
 // the bearing is free, as with a single-row radial bearing seated on one node.
 //
@@ -45,9 +52,12 @@ struct RollingBearingParams {
   double pitch_diameter = 0.0;      ///< d_m, diameter of the element centres' circle [m]
   double element_diameter = 0.0;    ///< D, ball or roller diameter [m] (< d_m)
   double cage_angle = 0.0;          ///< psi_00, cage position at t = 0 [rad]
-  double cage_speed = 0.0;       ///< omega_c [rad/s], set by the caller (BearingKinematics::cage)
-  double radial_damping = 0.0;   ///< c_radial [N s/m] on x and y
-  double axial_damping = 0.0;    ///< c_axial [N s/m] on z
+  double cage_speed = 0.0;      ///< omega_c [rad/s], set by the caller (BearingKinematics::cage)
+  double radial_damping = 0.0;  ///< c_radial [N s/m] on x and y
+  double axial_damping = 0.0;   ///< c_axial [N s/m] on z
+  /// A fourth coordinate: the inner ring's rotation angle theta relative to the outer ring
+  /// [rad], which turns the cage by kappa theta (see above).
+  bool spin_angle = false;
   std::string name = "bearing";  ///< for describe()
 };
 
@@ -81,14 +91,18 @@ class RollingBearing final : public ForceElement {
   RollingBearing(RollingBearingParams params, const std::string& key_path,
                  SourceLocation where = {});
 
-  Eigen::Index size() const override { return 3; }
+  Eigen::Index size() const override { return p_.spin_angle ? 4 : 3; }
   void evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                 ElementForce& out) const override;
   std::string describe() const override;
 
   const RollingBearingParams& params() const { return p_; }
-  /// The cage angle psi_0(t) = psi_00 + omega_c t [rad].
+  /// The cage angle psi_0(t) = psi_00 + omega_c t [rad] (without the spin angle's part).
   double cage_angle(double t) const { return p_.cage_angle + p_.cage_speed * t; }
+  /// The cage angle at u and t: psi_00 + omega_c t (+ kappa theta with spin_angle) [rad].
+  double cage_angle(const Eigen::VectorXd& u, double t) const;
+  /// kappa = (1 - gamma) / 2: cage turn per inner-ring turn with a fixed outer ring.
+  double cage_ratio() const { return kappa_; }
   /// The gap g along each contact line [m] (negative: interference).
   double gap() const { return gap_; }
   /// Deflection delta_k of element k at u and t [m] (negative: not in contact).
@@ -99,6 +113,7 @@ class RollingBearing final : public ForceElement {
  private:
   RollingBearingParams p_;
   double gap_ = 0.0;
+  double kappa_ = 0.0;
 };
 
 }  // namespace geardyn::elements
