@@ -238,6 +238,7 @@ std::vector<std::string> variants_with_key(const Section& s, std::string_view ke
 [[noreturn]] void unknown_key(const Section& s, std::string_view variant, std::string_view key,
                               const std::string& path, const SourceLocation& where) {
   std::string hint;
+  std::string expected = fmt::format("a key of {}", variant_phrase(s, variant));
   const auto others = variants_with_key(s, key);
   if (!variant.empty() && !others.empty()) {
     std::string list;
@@ -245,12 +246,13 @@ std::vector<std::string> variants_with_key(const Section& s, std::string_view ke
       list +=
           fmt::format("{}\"{}\"", i ? (i + 1 == others.size() ? " and " : ", ") : "", others[i]);
     hint = fmt::format("'{}' is a key of {} = {} only", key, s.discriminator, list);
+    // A key of another variant (a law parameter of another law type): the keys this one takes.
+    expected += fmt::format(": {}", quoted_list(s.key_names(variant)));
   } else {
     hint = did_you_mean(key, s.key_names(variant));
     if (hint.empty()) hint = fmt::format("allowed keys: {}", quoted_list(s.key_names(variant)));
   }
-  throw InputError(where, path, fmt::format("a key of {}", variant_phrase(s, variant)),
-                   fmt::format("the unknown key '{}'", key), hint);
+  throw InputError(where, path, expected, fmt::format("the unknown key '{}'", key), hint);
 }
 
 /// Reads the variant (discriminator value) of the table at `parent`, through the overrides.
@@ -887,6 +889,8 @@ void Reader::read_section(const Section& sub, const Entry* entry, const std::str
                          describe_found(*entry->node));
       where = entry->value_where;
     }
+    // An optional table that is neither written nor given by an override makes no object.
+    if (!entry && sub.optional && !doc_.has_overrides_below(path)) return;
     // Read even when absent, so that the declared defaults are what the model gets.
     read_table(sub, t, path, where, sub.child(parent));
     return;
@@ -967,6 +971,13 @@ class Resolver final : public ModelCheck {
   void check_connections();
   void check_damping();
   void check_analyses();
+  // The nonlinear drivetrain (drivetrain_spec.hpp): its nodes, DOFs and gear pairs.
+  void check_drivetrain();
+  void check_element_ends(const std::string& path, const std::string& node1,
+                          const std::string& node2, const char* key1, const char* key2) const;
+  void check_bolt_bodies() const;
+  void check_rz_free(const std::string& path, const std::string& node, const char* what) const;
+  void check_drivers_and_loads() const;
   void check_analysis_overrides(const std::string& base, const Analysis& analysis) const;
 
   Model& m_;
@@ -1262,6 +1273,147 @@ void Resolver::check_damping() {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// The nonlinear drivetrain
+
+// An element between end i (`key1`, empty: ground) and end j (`key2`): both nodes exist and
+// differ. End j is a required key, so an element with both ends on ground cannot be written.
+void Resolver::check_element_ends(const std::string& path, const std::string& node1,
+                                  const std::string& node2, const char* key1,
+                                  const char* key2) const {
+  if (!node1.empty()) check_node(fmt::format("{}.{}", path, key1), node1);
+  check_node(fmt::format("{}.{}", path, key2), node2);
+  if (node1 == node2)
+    fail(fmt::format("{}.{}", path, key2), fmt::format("a node other than `{}`", key1),
+         fmt::format("\"{}\" again", node2),
+         fmt::format("leave {} out for an element to ground", key1));
+}
+
+// A bolt clamps two bodies: each node it joins must belong to one (a shaft station, a node with
+// mass, a node joined to a solid), or the bolt acts on a massless point that nothing else holds.
+void Resolver::check_bolt_bodies() const {
+  std::set<std::string> on_body;
+  for (const Disk& d : m_.disks) on_body.insert(d.node);
+  for (const PointMass& p : m_.point_masses) on_body.insert(p.node);
+  for (const Solid& solid : m_.solids)
+    for (const Spider& spider : solid.spiders) on_body.insert(spider.node);
+  for (const Coupling& c : m_.couplings) {
+    if (c.mass.empty()) continue;
+    on_body.insert(c.node1);
+    if (!c.node2.empty()) on_body.insert(c.node2);
+  }
+  for (std::size_t i = 0; i < m_.bolts.size(); ++i) {
+    const BoltSpec& b = m_.bolts[i];
+    for (const auto& [key, node] : {std::pair{"node1", &b.node1}, std::pair{"node2", &b.node2}}) {
+      if (node->empty() || on_body.count(*node) ||
+          node_info(fmt::format("bolts[{}].{}", i, key), *node).shaft >= 0)
+        continue;
+      fail(fmt::format("bolts[{}].{}", i, key),
+           "a node on a body: a shaft station, a [[nodes]] node with a disk or point mass, or "
+           "a node joined to a solid by [[solids.spiders]]",
+           fmt::format("\"{}\", a node without mass that no body holds", *node),
+           fmt::format("a bolt joins two bodies: join \"{}\" to its part with [[solids.spiders]], "
+                       "or give it a [[disks]] or [[point_masses]] entry",
+                       *node));
+    }
+  }
+}
+
+// A driver, load or clutch acts on the rotation about the node's spin axis (rz of the node
+// frame): it must be a DOF, kept by the node's DOF set and not fixed by [[constraints]].
+void Resolver::check_rz_free(const std::string& path, const std::string& node,
+                             const char* what) const {
+  const NodeInfo info = node_info(path, node);
+  const Shaft* shaft = info.shaft >= 0 ? &m_.shafts[static_cast<std::size_t>(info.shaft)] : nullptr;
+  const DofSet set = shaft != nullptr && shaft->dofs ? *shaft->dofs : m_.dofs;
+  if (!dof_set_components(set)[5])
+    fail(path, fmt::format("a node whose rotation about its spin axis (rz) is a DOF, for {}", what),
+         fmt::format("\"{}\", whose DOFs are \"{}\" (no torsion)", node,
+                     kDofSetNames[static_cast<std::size_t>(set)]),
+         shaft != nullptr && shaft->dofs
+             ? fmt::format("set the `dofs` of shaft \"{}\" to a set with torsion, e.g. \"all\"",
+                           shaft->name)
+             : std::string("set the model's `dofs` to a set with torsion, e.g. \"all\""));
+  for (std::size_t k = 0; k < m_.constraints.size(); ++k) {
+    const Constraint& c = m_.constraints[k];
+    if (c.node == node && std::find(c.dofs.begin(), c.dofs.end(), Component::Rz) != c.dofs.end())
+      fail(path,
+           fmt::format("a node whose rz is free (not fixed by [[constraints]]), for {}", what),
+           fmt::format("\"{}\", whose rz constraints[{}] fixes: {} on a constrained DOF", node, k,
+                       what),
+           fmt::format("remove \"rz\" from constraints[{}].dofs, or drive another node", k));
+  }
+}
+
+void Resolver::check_drivers_and_loads() const {
+  std::map<std::string, std::size_t> driven;
+  for (std::size_t i = 0; i < m_.drivers.size(); ++i) {
+    const DriverSpec& d = m_.drivers[i];
+    const std::string path = fmt::format("drivers[{}].node", i);
+    check_rz_free(path, d.node, "a driver");
+    auto [it, inserted] = driven.emplace(d.node, i);
+    if (!inserted)
+      fail(path, "a node that no other driver drives",
+           fmt::format("\"{}\", already driven by drivers[{}] (\"{}\")", d.node, it->second,
+                       m_.drivers[it->second].name),
+           "one node takes one driver; combine them into one speed table or motor curve");
+  }
+  for (std::size_t i = 0; i < m_.loads.size(); ++i)
+    check_rz_free(fmt::format("loads[{}].node", i), m_.loads[i].node, "a load torque");
+  for (std::size_t i = 0; i < m_.clutches.size(); ++i) {
+    const ClutchSpec& c = m_.clutches[i];
+    const std::string path = fmt::format("clutches[{}]", i);
+    check_element_ends(path, c.node1, c.node2, "node1", "node2");
+    if (!c.node1.empty()) check_rz_free(path + ".node1", c.node1, "a clutch");
+    check_rz_free(path + ".node2", c.node2, c.node1.empty() ? "a brake" : "a clutch");
+  }
+}
+
+void Resolver::check_drivetrain() {
+  check_unique(m_.contacts, "contacts");
+  check_unique(m_.bolts, "bolts");
+  check_unique(m_.bushings, "bushings");
+  check_unique(m_.rolling_bearings, "rolling_bearings");
+  check_unique(m_.drivers, "drivers");
+  check_unique(m_.loads, "loads");
+  check_unique(m_.clutches, "clutches");
+  check_unique(m_.virtual_sensors, "virtual_sensors");
+  for (std::size_t i = 0; i < m_.contacts.size(); ++i)
+    check_element_ends(fmt::format("contacts[{}]", i), m_.contacts[i].node1, m_.contacts[i].node2,
+                       "node1", "node2");
+  for (std::size_t i = 0; i < m_.bolts.size(); ++i)
+    check_element_ends(fmt::format("bolts[{}]", i), m_.bolts[i].node1, m_.bolts[i].node2, "node1",
+                       "node2");
+  check_bolt_bodies();
+  for (std::size_t i = 0; i < m_.bushings.size(); ++i)
+    check_element_ends(fmt::format("bushings[{}]", i), m_.bushings[i].node1, m_.bushings[i].node2,
+                       "node1", "node2");
+  for (std::size_t i = 0; i < m_.rolling_bearings.size(); ++i) {
+    const RollingBearingSpec& b = m_.rolling_bearings[i];
+    const std::string path = fmt::format("rolling_bearings[{}]", i);
+    check_element_ends(path, b.housing, b.node, "housing", "node");
+    const bool spins = node_info(path + ".node", b.node).shaft >= 0 ||
+                       std::any_of(m_.nodes.begin(), m_.nodes.end(), [&](const Node& n) {
+                         return n.name == b.node && !n.spin_of.empty();
+                       });
+    if (!spins)
+      fail(path + ".node",
+           "a node with a spin axis: a shaft station, or a [[nodes]] entry with spin_of",
+           fmt::format("\"{}\", a [[nodes]] entry that does not spin", b.node),
+           "the inner ring sits on a shaft: give the node's spin_of, or use a shaft station");
+  }
+  check_drivers_and_loads();
+  for (std::size_t i = 0; i < m_.virtual_sensors.size(); ++i)
+    check_node(fmt::format("virtual_sensors[{}].node", i), m_.virtual_sensors[i].node);
+  const std::set<std::string> pairs = names_of(m_.gear_pairs);
+  for (std::size_t i = 0; i < m_.gear_meshes.size(); ++i) {
+    const GearMesh& g = m_.gear_meshes[i];
+    if (g.contact && !g.contact->gear_pair.empty())
+      check_name(fmt::format("gear_meshes[{}].contact.gear_pair", i), g.contact->gear_pair, pairs,
+                 "gear pair", "gear_pairs");
+  }
+}
+
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
 // analyses are not checked again (that would recurse).
@@ -1350,6 +1502,7 @@ void Resolver::run() {
   }
   resolve_disks();
   check_connections();
+  check_drivetrain();
   check_damping();
   check_analyses();
 }

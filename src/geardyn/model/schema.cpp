@@ -419,6 +419,7 @@ void section_markdown(std::string& out, const Section& s, int level) {
     for (const auto& v : s.only_in) out += fmt::format(" `{} = \"{}\"`", "type", v);
     out += ".\n\n";
   }
+  if (s.kind == SectionKind::Table && s.optional) out += "Optional table.\n\n";
   if (s.kind == SectionKind::ArrayOfTables && s.min_count > 0)
     out += fmt::format("At least {} entr{} {}.\n\n", s.min_count, s.min_count == 1 ? "y" : "ies",
                        s.required ? "required" : "when present");

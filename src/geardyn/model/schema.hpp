@@ -164,6 +164,9 @@ struct Section {
   SectionKind kind = SectionKind::ArrayOfTables;
   std::string help;
   bool required = false;
+  /// Table: absent means no object (the parent's std::optional stays empty, `child` is not
+  /// called); otherwise an absent table is read with its defaults.
+  bool optional = false;
   std::size_t min_count = 0;  ///< ArrayOfTables: minimum entries when present
   std::vector<Field> fields;
   std::vector<Choice> choices;

@@ -356,6 +356,23 @@ class S {
     s_.required = true;
     return *this;
   }
+  /// An optional table: absent, its object is not made (see Section::optional).
+  S& optional() {
+    s_.optional = true;
+    return *this;
+  }
+  /// Optional table stored in `parent.*member` (a std::optional), made when the table is written.
+  template <class P, class T>
+  S& in_optional(std::optional<T> P::*member) {
+    s_.object_type = typeid(T);
+    s_.optional = true;
+    s_.child = [member](void* parent) -> void* {
+      auto& slot = static_cast<P*>(parent)->*member;
+      if (!slot) slot.emplace();
+      return &*slot;
+    };
+    return *this;
+  }
   S& min_count(std::size_t n) {
     s_.min_count = n;
     return *this;

@@ -131,11 +131,30 @@ Section make_model_schema(const std::vector<AnalysisDeclaration>& analyses) {
                     m.dofs = static_cast<DofSet>(v.choice);
                   }),
           })
-          .sections({materials_section(), shafts_section(), nodes_section(), disks_section(),
-                     point_masses_section(), bearings_section(), couplings_section(),
-                     gear_meshes_section(), constraints_section(), unbalances_section(),
-                     forces_section(), sensors_section(), damping_section(), solids_section(),
-                     gear_pairs_section(), analyses_section(analyses)});
+          .sections({materials_section(),
+                     shafts_section(),
+                     nodes_section(),
+                     disks_section(),
+                     point_masses_section(),
+                     bearings_section(),
+                     couplings_section(),
+                     gear_meshes_section(),
+                     constraints_section(),
+                     unbalances_section(),
+                     forces_section(),
+                     sensors_section(),
+                     damping_section(),
+                     solids_section(),
+                     gear_pairs_section(),
+                     contacts_section(),
+                     bolts_section(),
+                     bushings_section(),
+                     rolling_bearings_section(),
+                     drivers_section(),
+                     loads_section(),
+                     clutches_section(),
+                     virtual_sensors_section(),
+                     analyses_section(analyses)});
   root.object_type = typeid(Model);  // the root has no parent to append it to
   check_schema(root);
   return root;

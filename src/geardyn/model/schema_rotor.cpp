@@ -595,6 +595,7 @@ Section gear_meshes_section() {
               variant<GearMesh>("spiral_bevel", "Spiral bevel gears."),
               variant<GearMesh>("hypoid", "Hypoid gears (equivalent spiral bevel at mid face)."),
           })
+      .sections({mesh_contact_section()})
       .finish<GearMesh>(finish_gear_mesh);
 }
 

@@ -39,5 +39,15 @@ Section sensors_section();
 Section damping_section();
 Section solids_section();
 Section gear_pairs_section();
+// The nonlinear drivetrain (schema_drivetrain.cpp).
+Section contacts_section();
+Section bolts_section();
+Section bushings_section();
+Section rolling_bearings_section();
+Section drivers_section();
+Section loads_section();
+Section clutches_section();
+Section virtual_sensors_section();
+Section mesh_contact_section();  ///< [gear_meshes.contact], a sub-table of [[gear_meshes]]
 
 }  // namespace geardyn::model
