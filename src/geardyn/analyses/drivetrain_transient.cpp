@@ -7,10 +7,12 @@
 #include <cmath>
 #include <functional>
 
+#include "geardyn/analyses/mesh_force_map.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/drivetrain/builder.hpp"
 #include "geardyn/elements/bolted_joint.hpp"
+#include "geardyn/elements/gear_mesh_contact.hpp"
 #include "geardyn/transient/adaptive_integrator.hpp"
 #include "geardyn/transient/ida_integrator.hpp"
 
@@ -241,6 +243,32 @@ double initial_speed(const model::Model& model, const fe::LinearSystem& sys) {
   return 0.0;
 }
 
+/// The tooth-contact element of every [[gear_meshes]] entry: its pair's force map (or the
+/// constant stiffness), backlash, law and the mesh damping.
+std::vector<std::shared_ptr<const elements::ForceElement>> mesh_elements(const model::Model& m) {
+  std::vector<std::shared_ptr<const elements::ForceElement>> out;
+  for (std::size_t i = 0; i < m.gear_meshes.size(); ++i) {
+    const model::GearMesh& g = m.gear_meshes[i];
+    const std::string key = fmt::format("gear_meshes[{}]", i);
+    auto map = std::make_shared<const elements::MeshForceMap>(mesh_force_map(m, i));
+    elements::GearMeshContactOptions o;
+    o.damping = g.damping;
+    SourceLocation where = g.where;
+    if (g.contact) {
+      where = g.contact->where.line > 0 ? g.contact->where : g.where;
+      o.backlash = g.contact->backlash;
+      o.vary_stiffness = g.contact->vary_stiffness;
+      if (g.contact->law)
+        o.law = drivetrain::make_contact_law(
+            *g.contact->law,
+            {g.contact->law->where.line > 0 ? g.contact->law->where : where, key + ".contact.law"});
+    }
+    out.push_back(std::make_shared<elements::GearMeshContact>(
+        g.name, std::move(map), o, elements::LawSource{where, key + ".contact"}));
+  }
+  return out;
+}
+
 void static_rows(const drivetrain::DrivetrainSystem& system, const Eigen::VectorXd& v0,
                  DrivetrainTransientResult& r) {
   const auto& p = system.parts();
@@ -274,6 +302,7 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
       assembly::build_system(linear_part, context.solids(), context.progress());
   drivetrain::BuildOptions bo;
   bo.initial_reference_speed = initial_speed(model, sys);
+  bo.mesh_elements = mesh_elements(model);
   drivetrain::DrivetrainSystem system(drivetrain::build_drivetrain(model, sys, bo));
   for (const auto& d : system.parts().speed_drivers) r.held_names.push_back("driver '" + d.name + "'");
   for (const auto& m : system.parts().motors) r.held_names.push_back("motor '" + m.name + "' (held)");

@@ -2,6 +2,7 @@
 // rules, its checks, how it runs and what it offers to sweeps.
 #include <algorithm>
 
+#include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/drivetrain_transient.hpp"
 #include "geardyn/analyses/registry.hpp"
 #include "geardyn/model/schema_builder.hpp"

@@ -27,8 +27,10 @@ int node_of(const fe::DofMap& dofs, const std::string& name, const SourceLocatio
   return k;
 }
 
-std::shared_ptr<const elements::ContactLaw> make_law(const model::ContactLawSpec& s,
-                                                     const LawSource& src) {
+}  // namespace
+
+std::shared_ptr<const elements::ContactLaw> make_contact_law(const model::ContactLawSpec& s,
+                                                             const elements::LawSource& src) {
   const auto tension = s.clip_tension ? elements::Tension::clipped : elements::Tension::allowed;
   switch (s.type) {
     case model::ContactLawKind::Linear:
@@ -50,8 +52,10 @@ std::shared_ptr<const elements::ContactLaw> make_law(const model::ContactLawSpec
                                          tension},
           src);
   }
-  throw std::logic_error("make_law: unknown law");
+  throw std::logic_error("make_contact_law: unknown law");
 }
+
+namespace {
 
 /// The element must see at least one free equation (a coordinate whose ends are both fixed, e.g.
 /// a bushing's translations on a torsional model, stays zero), and every DOF it acts on must
@@ -85,7 +89,7 @@ void place_contacts(const model::Model& m, const fe::LinearSystem& s, Drivetrain
     const model::ContactSpec& c = m.contacts[i];
     const std::string key = fmt::format("contacts[{}]", i);
     const LawSource src{c.law.where.line > 0 ? c.law.where : c.where, key + ".law"};
-    auto law = make_law(c.law, src);
+    auto law = make_contact_law(c.law, src);
     auto element = std::make_shared<elements::GapContact>(
         c.kind == model::ContactKind::Stop
             ? elements::GapContact::stop(c.name, c.gap, law, {c.where, key})
@@ -194,18 +198,28 @@ void place_rolling_bearings(const model::Model& m, const fe::LinearSystem& s,
     const double inner_speed = o.initial_reference_speed * s.dofs.node(inner).speed_ratio;
     const double outer_speed =
         outer >= 0 ? o.initial_reference_speed * s.dofs.node(outer).speed_ratio : 0.0;
-    bp.cage_speed = elements::BearingKinematics{c.elements, c.pitch_diameter, c.element_diameter,
-                                                c.contact_angle}
-                        .cage(inner_speed, outer_speed);
+    // With the inner ring's spin a DOF the cage follows the actual spin angle (4 coordinates);
+    // otherwise it turns at the kinematic cage speed of the starting speed.
+    const int inner_spin = s.dofs.dof(inner, Component::Rz);
+    bp.spin_angle = inner_spin >= 0;
+    if (!bp.spin_angle)
+      bp.cage_speed = elements::BearingKinematics{c.elements, c.pitch_diameter,
+                                                  c.element_diameter, c.contact_angle}
+                          .cage(inner_speed, outer_speed);
     auto element = std::make_shared<elements::RollingBearing>(bp, key, c.where);
     const Eigen::Matrix3d& f = s.dofs.node(inner).frame;
-    PlacementBuilder b(s.dofs, 3);
+    const int rows = bp.spin_angle ? 4 : 3;
+    PlacementBuilder b(s.dofs, rows);
     for (int r = 0; r < 3; ++r) {
       b.add_projection(r, outer, false, f.col(r), -1.0);
       b.add_projection(r, inner, false, f.col(r), 1.0);
     }
+    if (bp.spin_angle) {
+      b.add(3, inner_spin, 1.0);
+      if (outer >= 0) b.add(3, s.dofs.dof(outer, Component::Rz), -1.0);
+    }
     PlacedElement p = b.finish(element, "rolling_bearing", c.name);
-    check_placed(b, 3, p, s, c.where, key);
+    check_placed(b, rows, p, s, c.where, key);
     parts.elements.push_back(std::move(p));
   }
 }

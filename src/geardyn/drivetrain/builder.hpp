@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geardyn/drivetrain/drivetrain_system.hpp"
+#include "geardyn/elements/contact_law.hpp"
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/model/model.hpp"
 
@@ -21,6 +22,11 @@ struct BuildOptions {
   /// Reference speed for the rolling bearings' cage [rad/s] (the initial spin of the drivers).
   double initial_reference_speed = 0.0;
 };
+
+/// The contact law of a model's [contacts.law] / [gear_meshes.contact.law] table; InputError at
+/// `source` for bad parameters.
+std::shared_ptr<const elements::ContactLaw> make_contact_law(const model::ContactLawSpec& spec,
+                                                             const elements::LawSource& source);
 
 /// The model without its gear meshes' linear springs (stiffness and damping 0): the linear part
 /// of a drivetrain, to be assembled by the caller (assembly::build_system).

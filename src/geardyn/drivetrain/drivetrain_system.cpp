@@ -248,7 +248,8 @@ void DrivetrainSystem::event_functions(double t, const Eigen::VectorXd& q, const
 
 std::string DrivetrainSystem::describe_event(int k) const {
   const auto [element, sw] = event_owner_.at(static_cast<std::size_t>(k));
-  return p_.elements[static_cast<std::size_t>(element)].element->describe_switch(sw);
+  const PlacedElement& e = p_.elements[static_cast<std::size_t>(element)];
+  return fmt::format("{} '{}' {}", e.kind, e.name, e.element->describe_switch(sw));
 }
 
 std::string DrivetrainSystem::describe_state(double t, const Eigen::VectorXd& q,

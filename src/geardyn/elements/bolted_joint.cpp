@@ -130,7 +130,7 @@ void BoltedJoint::switches(const Eigen::VectorXd& u, double t, double* g) const 
 }
 
 std::string BoltedJoint::describe_switch(int k) const {
-  return describe() + (k == 0 ? " joint opening" : " bolt slack");
+  return k == 0 ? "joint opening" : "bolt slack";
 }
 
 }  // namespace geardyn::elements

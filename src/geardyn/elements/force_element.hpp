@@ -56,7 +56,8 @@ class ForceElement {
   virtual int num_switches() const { return 0; }
   /// g_k(u, t) for k < num_switches(), written to g[0 .. num_switches() - 1].
   virtual void switches(const Eigen::VectorXd& /*u*/, double /*t*/, double* /*g*/) const {}
-  /// What switch k is: e.g. "upper side" (for event reports).
+  /// What switch k is, short, without the element: e.g. "upper side" (event reports prefix the
+  /// element).
   virtual std::string describe_switch(int k) const { return "switch " + std::to_string(k); }
 };
 

@@ -85,7 +85,7 @@ void GapContact::switches(const Eigen::VectorXd& u, double, double* g) const {
 }
 
 std::string GapContact::describe_switch(int k) const {
-  return describe() + (upper_ && k == 0 ? " upper side" : " lower side");
+  return upper_ && k == 0 ? "upper side" : "lower side";
 }
 
 }  // namespace geardyn::elements

@@ -251,4 +251,13 @@ std::string GearMeshContact::describe() const {
       law);
 }
 
+void GearMeshContact::switches(const Eigen::VectorXd& u, double, double* g) const {
+  g[0] = penetration(u);
+  if (has_backlash()) g[1] = back_penetration(u);
+}
+
+std::string GearMeshContact::describe_switch(int k) const {
+  return k == 0 ? "drive flank" : "back flank";
+}
+
 }  // namespace geardyn::elements

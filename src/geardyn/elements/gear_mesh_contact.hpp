@@ -95,6 +95,11 @@ class GearMeshContact final : public ForceElement {
   void evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                 ElementForce& out) const override;
   std::string describe() const override;
+  /// Switches: the drive-flank penetration p and, with backlash, the back flank's p_b (> 0: in
+  /// contact).
+  int num_switches() const override { return has_backlash() ? 2 : 1; }
+  void switches(const Eigen::VectorXd& u, double t, double* g) const override;
+  std::string describe_switch(int k) const override;
 
   const MeshForceMap& map() const { return *map_; }
   const GearMeshContactOptions& options() const { return options_; }
