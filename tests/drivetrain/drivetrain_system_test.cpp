@@ -34,8 +34,8 @@ model::Model two_inertias(double J_a, double J_b, double k_t) {
     d.polar_inertia = std::string(name) == "a" ? J_a : J_b;
     d.diametral_inertia = 0.5 * d.polar_inertia;
     m.disks.push_back(d);
-    m.constraints.push_back(
-        test::fix(name, {Component::Ux, Component::Uy, Component::Uz, Component::Rx, Component::Ry}));
+    m.constraints.push_back(test::fix(
+        name, {Component::Ux, Component::Uy, Component::Uz, Component::Rx, Component::Ry}));
   }
   model::Coupling c;
   c.name = "shaft";
@@ -91,44 +91,44 @@ TEST(DrivetrainStatic, HeldInputAndLoadTorqueTwistTheShaftByTorqueOverStiffness)
 // differs from theta(t_{n+1-af}) by af (1 - af) alpha h^2 / 2: its O(h^2) tracking offset.
 TEST(DrivetrainRunUp, SpeedDriverFollowsTheRampAndTheShaftTwistsByInertiaTimesAcceleration) {
   for (const auto scheme : {transient::Scheme::Newmark, transient::Scheme::GeneralizedAlpha}) {
-  const double J_b = 0.05, k_t = 2.0e4, alpha = 1000.0, T_end = 0.3;
-  model::Model m = two_inertias(0.01, J_b, k_t);
-  m.drivers.push_back(speed_driver("a", {0.0, T_end}, {0.0, alpha * T_end}));
-  const fe::LinearSystem sys = assembly::build_system(m);
-  DrivetrainSystem system(build_drivetrain(m, sys, {}));
-  const int a = sys.dofs.dof(sys.dofs.node_index("a"), Component::Rz);
-  const int b = sys.dofs.dof(sys.dofs.node_index("b"), Component::Rz);
-  transient::IntegratorOptions o;
-  o.scheme = scheme;
-  o.time_step = 1e-4;
-  o.num_steps = 2500;
-  o.rho_infinity = 0.9;
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size()), v = q;
-  double max_track = 0.0, twist_sum = 0.0;
-  int twist_n = 0;
-  NullProgress progress;
-  const double omega_b = std::sqrt(k_t / J_b);
-  const auto summary = transient::integrate(
-      system, o, q, v,
-      [&](int, double t, const Eigen::VectorXd& qq, const Eigen::VectorXd&,
-          const Eigen::VectorXd&) {
-        max_track = std::max(max_track, std::abs(qq[a] - 0.5 * alpha * t * t));
-        // Average the twist over whole periods of the free oscillation (t > 0.02 s).
-        if (t > 0.02 && t <= 0.02 + 20.0 * 2.0 * std::numbers::pi / omega_b) {
-          twist_sum += qq[a] - qq[b];
-          ++twist_n;
-        }
-      },
-      progress);
-  ASSERT_EQ(summary.status, Status::Ok) << summary.message;
-  const double af = scheme == transient::Scheme::Newmark ? 0.0 : o.parameters().alpha_f;
-  const double offset = af * (1.0 - af) * alpha * o.time_step * o.time_step / 2.0;
-  // Newton tolerance 1e-10 relative to the angle (<= 32 rad here) on top of the offset.
-  EXPECT_LT(max_track, offset * 1.01 + 1e-8) << to_string(scheme);
-  // Mean twist over 20 periods of the free oscillation, from ~2000 samples: the window's
-  // fractional sample ~ 1 / 2000 and the period error (h omega_b)^2 / 12 ~ 3e-4 per period.
-  EXPECT_NEAR(twist_sum / twist_n, J_b * alpha / k_t, 1.5e-3 * J_b * alpha / k_t)
-      << to_string(scheme);
+    const double J_b = 0.05, k_t = 2.0e4, alpha = 1000.0, T_end = 0.3;
+    model::Model m = two_inertias(0.01, J_b, k_t);
+    m.drivers.push_back(speed_driver("a", {0.0, T_end}, {0.0, alpha * T_end}));
+    const fe::LinearSystem sys = assembly::build_system(m);
+    DrivetrainSystem system(build_drivetrain(m, sys, {}));
+    const int a = sys.dofs.dof(sys.dofs.node_index("a"), Component::Rz);
+    const int b = sys.dofs.dof(sys.dofs.node_index("b"), Component::Rz);
+    transient::IntegratorOptions o;
+    o.scheme = scheme;
+    o.time_step = 1e-4;
+    o.num_steps = 2500;
+    o.rho_infinity = 0.9;
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size()), v = q;
+    double max_track = 0.0, twist_sum = 0.0;
+    int twist_n = 0;
+    NullProgress progress;
+    const double omega_b = std::sqrt(k_t / J_b);
+    const auto summary = transient::integrate(
+        system, o, q, v,
+        [&](int, double t, const Eigen::VectorXd& qq, const Eigen::VectorXd&,
+            const Eigen::VectorXd&) {
+          max_track = std::max(max_track, std::abs(qq[a] - 0.5 * alpha * t * t));
+          // Average the twist over whole periods of the free oscillation (t > 0.02 s).
+          if (t > 0.02 && t <= 0.02 + 20.0 * 2.0 * std::numbers::pi / omega_b) {
+            twist_sum += qq[a] - qq[b];
+            ++twist_n;
+          }
+        },
+        progress);
+    ASSERT_EQ(summary.status, Status::Ok) << summary.message;
+    const double af = scheme == transient::Scheme::Newmark ? 0.0 : o.parameters().alpha_f;
+    const double offset = af * (1.0 - af) * alpha * o.time_step * o.time_step / 2.0;
+    // Newton tolerance 1e-10 relative to the angle (<= 32 rad here) on top of the offset.
+    EXPECT_LT(max_track, offset * 1.01 + 1e-8) << to_string(scheme);
+    // Mean twist over 20 periods of the free oscillation, from ~2000 samples: the window's
+    // fractional sample ~ 1 / 2000 and the period error (h omega_b)^2 / 12 ~ 3e-4 per period.
+    EXPECT_NEAR(twist_sum / twist_n, J_b * alpha / k_t, 1.5e-3 * J_b * alpha / k_t)
+        << to_string(scheme);
   }
 }
 

@@ -23,8 +23,8 @@ constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
 /// Largest record kept in memory: samples x channels doubles.
 constexpr double kMaxRecordValues = 2.5e8;
 
-using Evaluator = std::function<double(double t, const Eigen::VectorXd& q,
-                                       const Eigen::VectorXd& v, const Eigen::VectorXd& a)>;
+using Evaluator = std::function<double(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                       const Eigen::VectorXd& a)>;
 
 /// Channels and how to compute each from a sample.
 struct Recorder {
@@ -61,9 +61,8 @@ Projection sensor_projection(const model::VirtualSensorSpec& s, const fe::DofMap
     return p;
   }
   rotation = s.rotation;
-  const Eigen::Vector3d d = Eigen::Vector3d((*s.direction)[0], (*s.direction)[1],
-                                            (*s.direction)[2])
-                                .normalized();
+  const Eigen::Vector3d d =
+      Eigen::Vector3d((*s.direction)[0], (*s.direction)[1], (*s.direction)[2]).normalized();
   const Eigen::Vector3d c = dofs.node(node).frame.transpose() * d;
   for (int i = 0; i < 3; ++i) {
     const int e = dofs.dof(node, static_cast<model::Component>((rotation ? 3 : 0) + i));
@@ -78,7 +77,8 @@ Projection sensor_projection(const model::VirtualSensorSpec& s, const fe::DofMap
 void add_sensor_channels(const model::Model& model, const DrivetrainTransientSettings& s,
                          const fe::DofMap& dofs, Recorder& rec) {
   for (const model::VirtualSensorSpec& vs : model.virtual_sensors) {
-    if (!s.sensors.empty() && std::find(s.sensors.begin(), s.sensors.end(), vs.name) == s.sensors.end())
+    if (!s.sensors.empty() &&
+        std::find(s.sensors.begin(), s.sensors.end(), vs.name) == s.sensors.end())
       continue;
     bool rot = false;
     const Projection p = sensor_projection(vs, dofs, rot);
@@ -150,10 +150,12 @@ void add_element_channels(const model::Model& model, const fe::LinearSystem& sys
               [delta, rb1](double, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                            const Eigen::VectorXd&) { return delta(q) / rb1; });
     } else {
-      const bool rotation = model.contacts.size() > 0 && std::any_of(
-          model.contacts.begin(), model.contacts.end(), [&](const model::ContactSpec& c) {
-            return c.name == e.name && c.motion == model::ContactMotion::Rotation;
-          });
+      const bool rotation =
+          model.contacts.size() > 0 &&
+          std::any_of(model.contacts.begin(), model.contacts.end(),
+                      [&](const model::ContactSpec& c) {
+                        return c.name == e.name && c.motion == model::ContactMotion::Rotation;
+                      });
       rec.add(e.name + (rotation ? "_torque_nm" : "_force_n"), rotation ? "N m" : "N",
               rotation ? "torque" : "force", force(0));
     }
@@ -304,8 +306,10 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   bo.initial_reference_speed = initial_speed(model, sys);
   bo.mesh_elements = mesh_elements(model);
   drivetrain::DrivetrainSystem system(drivetrain::build_drivetrain(model, sys, bo));
-  for (const auto& d : system.parts().speed_drivers) r.held_names.push_back("driver '" + d.name + "'");
-  for (const auto& m : system.parts().motors) r.held_names.push_back("motor '" + m.name + "' (held)");
+  for (const auto& d : system.parts().speed_drivers)
+    r.held_names.push_back("driver '" + d.name + "'");
+  for (const auto& m : system.parts().motors)
+    r.held_names.push_back("motor '" + m.name + "' (held)");
 
   Recorder rec;
   add_sensor_channels(model, s, sys.dofs, rec);
@@ -314,11 +318,11 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   r.channels = rec.channels;
   const double n_samples = std::floor(s.duration * s.sample_rate + 1e-9) + 2.0;
   if (n_samples * static_cast<double>(rec.channels.size()) > kMaxRecordValues)
-    throw context.error("sample_rate_hz",
-                        fmt::format("a record of at most {:.3g} values (samples x channels)",
-                                    kMaxRecordValues),
-                        fmt::format("{:.4g} samples x {} channels", n_samples, rec.channels.size()),
-                        "lower sample_rate_hz, shorten duration or record fewer sensors");
+    throw context.error(
+        "sample_rate_hz",
+        fmt::format("a record of at most {:.3g} values (samples x channels)", kMaxRecordValues),
+        fmt::format("{:.4g} samples x {} channels", n_samples, rec.channels.size()),
+        "lower sample_rate_hz, shorten duration or record fewer sensors");
 
   // Static equilibrium from the rigid spin at the starting speed.
   const Eigen::VectorXd v0 = drivetrain::rigid_spin(sys, bo.initial_reference_speed);
@@ -339,7 +343,8 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   }
 
   // Integration with output at the fixed sample rate.
-  r.values.resize(static_cast<Eigen::Index>(n_samples), static_cast<Eigen::Index>(rec.channels.size()));
+  r.values.resize(static_cast<Eigen::Index>(n_samples),
+                  static_cast<Eigen::Index>(rec.channels.size()));
   const int n_events = system.num_events();
   std::vector<long long> closed(static_cast<std::size_t>(n_events), 0);
   Eigen::VectorXd g;
@@ -358,15 +363,17 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   };
   Eigen::VectorXd v = v0;
   const transient::AdaptiveOptions o = integrator_options(s);
-  r.integration = s.integrator == DrivetrainIntegrator::Ida
-                      ? transient::integrate_ida(system, o, q, v, observer, context.progress())
-                      : transient::integrate_adaptive(system, o, q, v, observer, context.progress());
+  r.integration =
+      s.integrator == DrivetrainIntegrator::Ida
+          ? transient::integrate_ida(system, o, q, v, observer, context.progress())
+          : transient::integrate_adaptive(system, o, q, v, observer, context.progress());
   r.values.conservativeResize(static_cast<Eigen::Index>(r.time.size()), r.values.cols());
   for (int k = 0; k < n_events; ++k) {
     r.switch_names.push_back(system.describe_event(k));
-    r.closed_fraction.push_back(r.time.empty() ? 0.0
-                                               : static_cast<double>(closed[static_cast<std::size_t>(k)]) /
-                                                     static_cast<double>(r.time.size()));
+    r.closed_fraction.push_back(r.time.empty()
+                                    ? 0.0
+                                    : static_cast<double>(closed[static_cast<std::size_t>(k)]) /
+                                          static_cast<double>(r.time.size()));
   }
   if (r.integration.status != Status::Ok) {
     r.status = r.integration.status;

@@ -39,16 +39,16 @@ struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettin
   double absolute_tolerance = 1e-9;  ///< [m, rad]
   double max_step = model::kNaN;     ///< [s] (NaN: 1 / sample_rate)
   double rho_infinity = 0.8;
-  bool static_start = true;  ///< start from the static equilibrium (else from q = 0)
-  int modes = 20;            ///< linearised modes tabulated (0: no linearisation)
+  bool static_start = true;          ///< start from the static equilibrium (else from q = 0)
+  int modes = 20;                    ///< linearised modes tabulated (0: no linearisation)
   std::vector<std::string> sensors;  ///< virtual sensors recorded (empty: all)
   double spectrum_start = 0.0;       ///< spectra over [spectrum_start, duration] [s]
 };
 
 /// One recorded quantity.
 struct DrivetrainChannel {
-  std::string name;  ///< column name with its unit suffix, e.g. "hub_x_acc_m_per_s2"
-  std::string unit;  ///< "m/s^2"
+  std::string name;   ///< column name with its unit suffix, e.g. "hub_x_acc_m_per_s2"
+  std::string unit;   ///< "m/s^2"
   std::string group;  ///< for plots: "displacement", "velocity", "acceleration", "force",
                       ///< "torque", "speed", "dte"
 };

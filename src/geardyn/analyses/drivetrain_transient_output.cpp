@@ -22,8 +22,9 @@ void add_static(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   if (r.static_rows_element.empty()) return;
   Table t;
   t.name = "static_equilibrium";
-  t.title = fmt::format("Static equilibrium under load and preloads ({} iterations, |r| = {:.3g} N)",
-                        r.equilibrium.iterations, r.equilibrium.residual);
+  t.title =
+      fmt::format("Static equilibrium under load and preloads ({} iterations, |r| = {:.3g} N)",
+                  r.equilibrium.iterations, r.equilibrium.residual);
   t.add_text("element", r.static_rows_element);
   t.add_text("quantity", r.static_rows_quantity);
   t.add("value", "", r.static_rows_value);
@@ -63,7 +64,8 @@ void add_history(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   out.tables.push_back(std::move(t));
   std::vector<std::string> groups;
   for (const auto& ch : r.channels)
-    if (std::find(groups.begin(), groups.end(), ch.group) == groups.end()) groups.push_back(ch.group);
+    if (std::find(groups.begin(), groups.end(), ch.group) == groups.end())
+      groups.push_back(ch.group);
   for (const std::string& g : groups) {
     Plot plot;
     plot.name = "time_" + g;
@@ -114,8 +116,8 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
       std::lower_bound(r.time.begin(), r.time.end(), s.spectrum_start - 1e-12) - r.time.begin());
   const Eigen::Index n = static_cast<Eigen::Index>(r.time.size()) - first;
   if (n < kMinSpectrumSamples) {
-    out.notes.push_back(fmt::format("fewer than {} samples after spectrum_start: no spectra",
-                                    kMinSpectrumSamples));
+    out.notes.push_back(
+        fmt::format("fewer than {} samples after spectrum_start: no spectra", kMinSpectrumSamples));
     return;
   }
   Table t;
@@ -130,13 +132,16 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
   for (std::size_t c = 0; c < r.channels.size(); ++c) {
     const Eigen::VectorXd x = r.values.col(static_cast<Eigen::Index>(c)).segment(first, n);
     const signal::AmplitudeSpectrum sp = signal::amplitude_spectrum(x, s.sample_rate);
-    if (c == 0) t.add("frequency_hz", "Hz", {sp.frequency_hz.data(), sp.frequency_hz.data() + sp.frequency_hz.size()});
+    if (c == 0)
+      t.add("frequency_hz", "Hz",
+            {sp.frequency_hz.data(), sp.frequency_hz.data() + sp.frequency_hz.size()});
     t.add(r.channels[c].name, r.channels[c].unit,
           {sp.amplitude.data(), sp.amplitude.data() + sp.amplitude.size()});
     if (r.channels[c].group == "dte" || r.channels[c].group == "acceleration") {
       Trace tr;
       tr.name = r.channels[c].name;
-      const std::vector<double> f(sp.frequency_hz.data(), sp.frequency_hz.data() + sp.frequency_hz.size());
+      const std::vector<double> f(sp.frequency_hz.data(),
+                                  sp.frequency_hz.data() + sp.frequency_hz.size());
       envelope(f, sp.amplitude, tr.x, tr.y);
       plot.traces.push_back(std::move(tr));
     }
@@ -171,10 +176,10 @@ void add_integration(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   Table t;
   t.name = "integration";
   t.title = "Integrator work";
-  t.add_text("quantity", {"integrator", "linear solver", "steps", "rejected (error)",
-                          "rejected (Newton)", "Newton iterations", "factorisations",
-                          "residual evaluations", "events located", "smallest step [s]",
-                          "largest step [s]", "samples", "status"});
+  t.add_text("quantity",
+             {"integrator", "linear solver", "steps", "rejected (error)", "rejected (Newton)",
+              "Newton iterations", "factorisations", "residual evaluations", "events located",
+              "smallest step [s]", "largest step [s]", "samples", "status"});
   t.add_text("value",
              {i.integrator, i.solver, std::to_string(i.steps), std::to_string(i.rejected_error),
               std::to_string(i.rejected_newton), std::to_string(i.newton_iterations),
@@ -219,9 +224,9 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
         "linearisation at the static equilibrium: {} modes, {} rigid-body, largest backward "
         "error {:.2g}{}",
         L.modes.size(), L.rigid_body_modes, L.max_residual,
-        L.unstable_modes > 0 ? fmt::format("; UNSTABLE: {} mode(s) with negative damping",
-                                           L.unstable_modes)
-                             : std::string()));
+        L.unstable_modes > 0
+            ? fmt::format("; UNSTABLE: {} mode(s) with negative damping", L.unstable_modes)
+            : std::string()));
   }
   return out;
 }

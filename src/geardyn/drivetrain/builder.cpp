@@ -41,15 +41,14 @@ std::shared_ptr<const elements::ContactLaw> make_contact_law(const model::Contac
           elements::HertzLawParameters{s.stiffness, s.exponent, s.damping, tension}, src);
     case model::ContactLawKind::Impact:
       return std::make_shared<elements::ImpactContactLaw>(
-          elements::ImpactLawParameters{s.stiffness, s.exponent, s.max_damping,
-                                        s.penetration_depth, tension},
+          elements::ImpactLawParameters{s.stiffness, s.exponent, s.max_damping, s.penetration_depth,
+                                        tension},
           src);
     case model::ContactLawKind::Penalty:
       return std::make_shared<elements::PenaltyContactLaw>(
-          elements::PenaltyLawParameters{s.stiffness, s.stiffness_exponent, s.damping,
-                                         s.rate_exponent, s.damping_exponent,
-                                         s.penetration_regularisation, s.rate_regularisation,
-                                         tension},
+          elements::PenaltyLawParameters{
+              s.stiffness, s.stiffness_exponent, s.damping, s.rate_exponent, s.damping_exponent,
+              s.penetration_regularisation, s.rate_regularisation, tension},
           src);
   }
   throw std::logic_error("make_contact_law: unknown law");
@@ -66,11 +65,10 @@ void check_placed(const PlacementBuilder& b, int rows, const PlacedElement& p,
   bool any = false;
   for (int r = 0; r < rows; ++r) any = any || !b.row_empty(r);
   if (!any)
-    throw InputError(where, key,
-                     "ends that can move along the element's coordinates (a node on a body)",
-                     fmt::format("{} has both ends fixed along every coordinate",
-                                 p.element->describe()),
-                     "check node1 / node2, the [[constraints]] of those nodes and the model's dofs");
+    throw InputError(
+        where, key, "ends that can move along the element's coordinates (a node on a body)",
+        fmt::format("{} has both ends fixed along every coordinate", p.element->describe()),
+        "check node1 / node2, the [[constraints]] of those nodes and the model's dofs");
   for (int e : p.equations)
     if (!(system.M.coeff(e, e) > 0.0) && system.K.coeff(e, e) == 0.0) {
       const int node = system.dofs.dof_node(e);
@@ -175,8 +173,8 @@ void place_bushings(const model::Model& m, const fe::LinearSystem& s, Drivetrain
   }
 }
 
-void place_rolling_bearings(const model::Model& m, const fe::LinearSystem& s,
-                            const BuildOptions& o, DrivetrainParts& parts) {
+void place_rolling_bearings(const model::Model& m, const fe::LinearSystem& s, const BuildOptions& o,
+                            DrivetrainParts& parts) {
   for (std::size_t i = 0; i < m.rolling_bearings.size(); ++i) {
     const model::RollingBearingSpec& c = m.rolling_bearings[i];
     const std::string key = fmt::format("rolling_bearings[{}]", i);
@@ -203,8 +201,8 @@ void place_rolling_bearings(const model::Model& m, const fe::LinearSystem& s,
     const int inner_spin = s.dofs.dof(inner, Component::Rz);
     bp.spin_angle = inner_spin >= 0;
     if (!bp.spin_angle)
-      bp.cage_speed = elements::BearingKinematics{c.elements, c.pitch_diameter,
-                                                  c.element_diameter, c.contact_angle}
+      bp.cage_speed = elements::BearingKinematics{c.elements, c.pitch_diameter, c.element_diameter,
+                                                  c.contact_angle}
                           .cage(inner_speed, outer_speed);
     auto element = std::make_shared<elements::RollingBearing>(bp, key, c.where);
     const Eigen::Matrix3d& f = s.dofs.node(inner).frame;
@@ -229,9 +227,10 @@ int spin_equation(const fe::LinearSystem& s, const std::string& node, const Sour
   const int k = node_of(s.dofs, node, where, key + ".node");
   const int e = s.dofs.dof(k, Component::Rz);
   if (e < 0)
-    throw InputError(where, key + ".node", "a node whose spin (rz) is free",
-                     fmt::format("{} on node '{}', whose rz is constrained or not a DOF", what, node),
-                     "remove rz from the node's [[constraints]] or give its shaft torsion (dofs)");
+    throw InputError(
+        where, key + ".node", "a node whose spin (rz) is free",
+        fmt::format("{} on node '{}', whose rz is constrained or not a DOF", what, node),
+        "remove rz from the node's [[constraints]] or give its shaft torsion (dofs)");
   return e;
 }
 

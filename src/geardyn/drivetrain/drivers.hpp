@@ -36,7 +36,7 @@ class PiecewiseLinear {
 /// A prescribed spin: angle, speed and acceleration at time t.
 struct SpeedDriver {
   std::string name;
-  int equation = -1;   ///< the node's rz equation
+  int equation = -1;      ///< the node's rz equation
   PiecewiseLinear speed;  ///< over time [rad/s]
   double angle0 = 0.0;    ///< theta at t = 0 [rad]
   double angle(double t) const { return angle0 + speed.integral(t); }

@@ -11,7 +11,8 @@ namespace {
 
 void check_equation(int e, int n, const std::string& what) {
   if (e < 0 || e >= n)
-    throw std::invalid_argument(fmt::format("DrivetrainSystem: {} has equation {} of {}", what, e, n));
+    throw std::invalid_argument(
+        fmt::format("DrivetrainSystem: {} has equation {} of {}", what, e, n));
 }
 
 }  // namespace
@@ -22,8 +23,8 @@ DrivetrainSystem::DrivetrainSystem(DrivetrainParts parts) : p_(std::move(parts))
       p_.C.cols() != n)
     throw std::invalid_argument("DrivetrainSystem: M, C, K must be square of one size");
   if (p_.G.size() == 0) p_.G.resize(n, n);
-  if (p_.modal_basis.size() > 0 && (p_.modal_basis.rows() != n ||
-                                    p_.modal_basis.cols() != p_.modal_coefficients.size()))
+  if (p_.modal_basis.size() > 0 &&
+      (p_.modal_basis.rows() != n || p_.modal_basis.cols() != p_.modal_coefficients.size()))
     throw std::invalid_argument("DrivetrainSystem: modal basis size");
   held_row_.assign(static_cast<std::size_t>(n), 0);
   held_static_row_.assign(static_cast<std::size_t>(n), 0);
@@ -171,7 +172,8 @@ void DrivetrainSystem::tangent(double t, const Eigen::VectorXd& q, const Eigen::
     const double psi = q[ub.spin] + ub.phase, ws = v[ub.spin];
     const double c = std::cos(psi), s = std::sin(psi), me = ub.mass_eccentricity;
     if (ub.e1 >= 0)
-      trip.emplace_back(ub.e1, ub.spin, -me * (c_k * (-ws * ws * s) + c_c * 2.0 * ws * c + c_m * s));
+      trip.emplace_back(ub.e1, ub.spin,
+                        -me * (c_k * (-ws * ws * s) + c_c * 2.0 * ws * c + c_m * s));
     if (ub.e2 >= 0)
       trip.emplace_back(ub.e2, ub.spin, -me * (c_k * (ws * ws * c) + c_c * 2.0 * ws * s - c_m * c));
   }

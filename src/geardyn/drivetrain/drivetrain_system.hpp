@@ -51,8 +51,8 @@ struct SpinUnbalance {
 
 /// Everything a DrivetrainSystem is made of, in equation space.
 struct DrivetrainParts {
-  SparseMatrix M, C, K, G;         ///< G per unit reference speed (may be empty: none)
-  Eigen::MatrixXd modal_basis;     ///< C_modal = B diag(c) B^T (may be empty)
+  SparseMatrix M, C, K, G;      ///< G per unit reference speed (may be empty: none)
+  Eigen::MatrixXd modal_basis;  ///< C_modal = B diag(c) B^T (may be empty)
   Eigen::VectorXd modal_coefficients;
   std::vector<PlacedElement> elements;
   std::vector<SpeedDriver> speed_drivers;

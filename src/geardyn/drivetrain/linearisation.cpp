@@ -48,7 +48,8 @@ Linearisation linearise(DrivetrainSystem& system, double t, const Eigen::VectorX
   Eigen::VectorXd d;
   if (system.tangent_low_rank(t, q, v, 0.0, 1.0, 0.0, U, d)) {
     lin.low_rank_basis.resize(m, U.cols());
-    for (int i = 0; i < m; ++i) lin.low_rank_basis.row(i) = U.row(lin.free[static_cast<std::size_t>(i)]);
+    for (int i = 0; i < m; ++i)
+      lin.low_rank_basis.row(i) = U.row(lin.free[static_cast<std::size_t>(i)]);
     lin.low_rank_coefficients = d;
   }
   if (m == 0) return lin;

@@ -28,16 +28,16 @@ struct LinearMode {
 struct Linearisation {
   Status status = Status::Ok;
   std::string message;
-  SparseMatrix M, C, K;       ///< over the free equations (C without the low-rank part)
+  SparseMatrix M, C, K;            ///< over the free equations (C without the low-rank part)
   Eigen::MatrixXd low_rank_basis;  ///< modal damping B (free rows), c below
   Eigen::VectorXd low_rank_coefficients;
-  std::vector<int> free;      ///< free equation -> system equation
+  std::vector<int> free;          ///< free equation -> system equation
   std::vector<LinearMode> modes;  ///< Im(lambda) >= 0, sorted by natural frequency; rigid-body
                                   ///< modes (|lambda| below the threshold) left out
   int rigid_body_modes = 0;
   double max_residual = 0.0;  ///< largest backward error of the eigen-solve
   std::string solver;         ///< the eigen-solver's brief report
-  int unstable_modes = 0;  ///< Re(lambda) > 0 (beyond round-off)
+  int unstable_modes = 0;     ///< Re(lambda) > 0 (beyond round-off)
 };
 
 /// The tangents at (t, q, v) and the lowest `n_modes` modes (>= 1).

@@ -49,8 +49,8 @@ PlacedElement PlacementBuilder::finish(std::shared_ptr<const elements::ForceElem
   p.equations.erase(std::unique(p.equations.begin(), p.equations.end()), p.equations.end());
   p.B.setZero(rows_, static_cast<Eigen::Index>(p.equations.size()));
   for (const Entry& e : entries_) {
-    const auto col = std::lower_bound(p.equations.begin(), p.equations.end(), e.equation) -
-                     p.equations.begin();
+    const auto col =
+        std::lower_bound(p.equations.begin(), p.equations.end(), e.equation) - p.equations.begin();
     p.B(e.row, col) += e.value;
   }
   p.element = std::move(element);

@@ -76,8 +76,9 @@ StaticResult solve_static(DrivetrainSystem& system, double t0, const Eigen::Vect
   }
   if (!std::isfinite(out.residual)) {
     out.status = Status::Diverged;
-    out.message = fmt::format("static equilibrium: the residual is not finite after {} iterations; {}",
-                              out.iterations, system.describe_state(t0, out.q, v0));
+    out.message =
+        fmt::format("static equilibrium: the residual is not finite after {} iterations; {}",
+                    out.iterations, system.describe_state(t0, out.q, v0));
   } else if (out.residual > options.tolerance * out.load_scale) {
     out.status = Status::NotConverged;
     out.message = fmt::format(

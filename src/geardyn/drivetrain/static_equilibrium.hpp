@@ -15,18 +15,18 @@
 namespace geardyn::drivetrain {
 
 struct StaticOptions {
-  double tolerance = 1e-9;   ///< ||r||_inf <= tolerance x (load scale)
+  double tolerance = 1e-9;  ///< ||r||_inf <= tolerance x (load scale)
   int max_iterations = 200;
 };
 
 struct StaticResult {
   Status status = Status::Ok;
   std::string message;
-  Eigen::VectorXd q;                   ///< the equilibrium
+  Eigen::VectorXd q;  ///< the equilibrium
   int iterations = 0;
-  double residual = 0.0;               ///< ||r||_inf at the end
-  double load_scale = 0.0;             ///< the scale of the tolerance [N]
-  std::vector<double> held_torques;    ///< torque at each held equation (held_equations order)
+  double residual = 0.0;             ///< ||r||_inf at the end
+  double load_scale = 0.0;           ///< the scale of the tolerance [N]
+  std::vector<double> held_torques;  ///< torque at each held equation (held_equations order)
 };
 
 /// Solves from q (the initial guess) at time t0 with velocity v0. The system is left in

@@ -74,9 +74,7 @@ std::string GapContact::describe() const {
   return s + ")";
 }
 
-int GapContact::num_switches() const {
-  return (upper_ ? 1 : 0) + (lower_ ? 1 : 0);
-}
+int GapContact::num_switches() const { return (upper_ ? 1 : 0) + (lower_ ? 1 : 0); }
 
 void GapContact::switches(const Eigen::VectorXd& u, double, double* g) const {
   int k = 0;

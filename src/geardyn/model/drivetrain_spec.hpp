@@ -29,7 +29,7 @@ struct ContactLawSpec {
   double exponent = 1.5;
   /// linear: c [N s/m]; Hertz: Hunt-Crossley chi [s/m]; penalty: c.
   double damping = 0.0;
-  double max_damping = 0.0;  ///< IMPACT c_max [N s/m]
+  double max_damping = 0.0;                                             ///< IMPACT c_max [N s/m]
   double penetration_depth = std::numeric_limits<double>::quiet_NaN();  ///< IMPACT d [m]
   double stiffness_exponent = 1.0;                                      ///< penalty m1
   double rate_exponent = 1.0;                                           ///< penalty m2
@@ -47,10 +47,11 @@ enum class ContactMotion { Translation, Rotation };
 
 struct ContactSpec {
   std::string name;
-  std::string node1;  ///< end i (empty: ground)
-  std::string node2;  ///< end j
+  std::string node1;                        ///< end i (empty: ground)
+  std::string node2;                        ///< end j
   DrivetrainVec3 direction{1.0, 0.0, 0.0};  ///< global; u = (u_2 - u_1) . direction
-  ContactMotion motion = ContactMotion::Translation;  ///< rotation: the rotation vectors' projection
+  ContactMotion motion =
+      ContactMotion::Translation;  ///< rotation: the rotation vectors' projection
   ContactKind kind = ContactKind::Stop;
   double gap = 0.0;       ///< stop: closes when u > gap [m or rad]
   double backlash = 0.0;  ///< end play: closes when |u| > backlash [m or rad]
@@ -61,8 +62,8 @@ struct ContactSpec {
 /// [[bolts]]: a preloaded bolted joint (VDI 2230 joint diagram) between two nodes.
 struct BoltSpec {
   std::string name;
-  std::string node1;  ///< end i: the clamped part on the nut side (empty: ground)
-  std::string node2;  ///< end j: the clamped part on the head side
+  std::string node1;                   ///< end i: the clamped part on the nut side (empty: ground)
+  std::string node2;                   ///< end j: the clamped part on the head side
   DrivetrainVec3 axis{0.0, 0.0, 1.0};  ///< bolt axis (global): u_a = (u_2 - u_1) . axis
   double bolt_stiffness = std::numeric_limits<double>::quiet_NaN();   ///< k_S [N/m]
   double clamp_stiffness = std::numeric_limits<double>::quiet_NaN();  ///< k_P [N/m]
