@@ -1,10 +1,13 @@
 // The `type = "drivetrain_transient"` analysis in the registry: its model-file keys and their
 // rules, its checks, how it runs and what it offers to sweeps.
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 #include "geardyn/analyses/common_checks.hpp"
 #include "geardyn/analyses/drivetrain_transient.hpp"
 #include "geardyn/analyses/registry.hpp"
+#include "geardyn/analyses/rotor_scalars.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
 namespace geardyn::analyses {
@@ -100,6 +103,23 @@ AnalysisType drivetrain_transient_analysis() {
     return d;
   };
   type.run = runner(run_drivetrain_transient, drivetrain_transient_output);
+  type.scalars = {{"channel_peak", "", "Largest |x(t)| of `channel` over the record.", {"channel"}},
+                  {"channel_rms", "", "RMS of `channel` over the record.", {"channel"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) {
+    const auto& r = result_of<DrivetrainTransientResult>(o);
+    const auto it = std::find_if(r.channels.begin(), r.channels.end(),
+                                 [&](const DrivetrainChannel& c) { return c.name == q.sensor; });
+    if (it == r.channels.end())
+      throw std::runtime_error("drivetrain_transient has no channel '" + q.sensor +
+                               "' (the columns of its time_history table)");
+    if (r.time.empty()) throw std::runtime_error("drivetrain_transient recorded no samples");
+    const Eigen::VectorXd x = r.values.col(it - r.channels.begin());
+    unit = it->unit;
+    if (q.quantity == "channel_peak") return x.cwiseAbs().maxCoeff();
+    if (q.quantity == "channel_rms")
+      return std::sqrt(x.squaredNorm() / static_cast<double>(x.size()));
+    unknown_scalar("drivetrain_transient", q.quantity);
+  };
   return type;
 }
 

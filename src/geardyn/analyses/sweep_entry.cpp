@@ -83,7 +83,8 @@ bool reads(const std::string& quantity, const std::string& parameter) {
 void finish_output(SweepOutput& o, const TableContext& t) {
   o.at_speed = t.has("at_rpm");
   if (t.has("label")) return;
-  const bool sensor = reads(o.quantity, "sensor") && t.has("sensor");
+  const bool sensor = (reads(o.quantity, "sensor") && t.has("sensor")) ||
+                      (reads(o.quantity, "channel") && t.has("channel"));
   // With a sensor, the mode (peak number) shows only when given.
   const bool mode = reads(o.quantity, "mode") && (!sensor || t.has("mode"));
   if (sensor && mode)
@@ -122,6 +123,12 @@ model::Section outputs_section() {
           reference("sensor", Ref::Sensor, "Sensor whose response is used.")
               .required()
               .only_in(scalars_reading("sensor"))
+              .to(&SweepOutput::sensor),
+          text("channel",
+               "Time-history channel whose response is used: a column name of the target's "
+               "time_history table (drivetrain_transient), e.g. \"B1_bolt_force_n\".")
+              .required()
+              .only_in(scalars_reading("channel"))
               .to(&SweepOutput::sensor),
           number("at_rpm", kRpm, "Speed at which to read the amplitude (unbalance target).")
               .required()
@@ -207,7 +214,9 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   for (std::size_t k = 0; k < s.outputs.size(); ++k) {
     const SweepOutput& o = s.outputs[k];
     const std::string opath = fmt::format("{}.outputs[{}]", path, k);
-    if (!o.sensor.empty())
+    // A `channel` names a column of the target's record, known only when it runs (the
+    // scalar reports an unknown one); a `sensor` is a [[sensors]] entry.
+    if (!o.sensor.empty() && !check.given(opath + ".channel"))
       check.check_name(opath + ".sensor", o.sensor, model::names_of(m.sensors), "sensor",
                        "sensors");
     if (!offers(target->type, o))
