@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -21,7 +22,7 @@ namespace {
 
 constexpr double kRadPerSToRpm = 60.0 / units::kTwoPi;
 /// Largest record kept in memory: samples x channels doubles.
-constexpr double kMaxRecordValues = 2.5e8;
+constexpr double kMaxRecordValues = 1.25e8;
 
 using Evaluator = std::function<double(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                        const Eigen::VectorXd& a)>;
@@ -30,7 +31,11 @@ using Evaluator = std::function<double(double t, const Eigen::VectorXd& q, const
 struct Recorder {
   std::vector<DrivetrainChannel> channels;
   std::vector<Evaluator> evaluate;
+  /// Names keep letters, digits and underscores (others become '_'), as CSV columns and HDF5
+  /// datasets need.
   void add(std::string name, std::string unit, std::string group, Evaluator e) {
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') c = '_';
     channels.push_back({std::move(name), std::move(unit), std::move(group)});
     evaluate.push_back(std::move(e));
   }
@@ -100,7 +105,8 @@ void add_sensor_channels(const model::Model& model, const DrivetrainTransientSet
 
 /// Force channels of element k (names by kind), and the mesh's transmission error.
 void add_element_channels(const model::Model& model, const fe::LinearSystem& sys,
-                          const drivetrain::DrivetrainSystem& system, Recorder& rec) {
+                          const drivetrain::DrivetrainSystem& system, Recorder& rec,
+                          std::vector<DrivetrainMeshOrders>& orders) {
   const auto& elements = system.parts().elements;
   std::size_t mesh_index = 0;
   for (std::size_t k = 0; k < elements.size(); ++k) {
@@ -149,6 +155,20 @@ void add_element_channels(const model::Model& model, const fe::LinearSystem& sys
       rec.add(e.name + "_dte_rad", "rad", "dte",
               [delta, rb1](double, const Eigen::VectorXd& q, const Eigen::VectorXd&,
                            const Eigen::VectorXd&) { return delta(q) / rb1; });
+      if (rows.pinion_spin >= 0) {
+        // Gear 1's spin angle in its working sense, and its speed.
+        const int e1 = rows.pinion_spin;
+        const double sign = rows.pinion_sign;
+        rec.add(e.name + "_pinion_angle_rad", "rad", "angle",
+                [e1, sign](double, const Eigen::VectorXd& q, const Eigen::VectorXd&,
+                           const Eigen::VectorXd&) { return sign * q[e1]; });
+        const int teeth1 = model.gear_meshes[mesh_index - 1].teeth1;
+        if (teeth1 > 0)
+          orders.push_back({e.name, teeth1, rec.channels.size() - 1, rec.channels.size() - 3});
+        rec.add(e.name + "_pinion_speed_rpm", "rpm", "speed",
+                [e1, sign](double, const Eigen::VectorXd&, const Eigen::VectorXd& v,
+                           const Eigen::VectorXd&) { return sign * v[e1] * kRadPerSToRpm; });
+      }
     } else {
       const bool rotation =
           model.contacts.size() > 0 &&
@@ -313,7 +333,7 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
 
   Recorder rec;
   add_sensor_channels(model, s, sys.dofs, rec);
-  add_element_channels(model, sys, system, rec);
+  add_element_channels(model, sys, system, rec, r.mesh_orders);
   add_drive_channels(system, rec);
   r.channels = rec.channels;
   const double n_samples = std::floor(s.duration * s.sample_rate + 1e-9) + 2.0;

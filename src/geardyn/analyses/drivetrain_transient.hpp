@@ -53,6 +53,13 @@ struct DrivetrainChannel {
                       ///< "torque", "speed", "dte"
 };
 
+/// Where a mesh's order analysis reads its record: gear 1's spin angle and the DTE channel.
+struct DrivetrainMeshOrders {
+  std::string mesh;
+  int teeth1 = 0;
+  std::size_t angle_channel = 0, dte_channel = 0;
+};
+
 struct DrivetrainTransientResult {
   Status status = Status::Ok;
   std::string message;
@@ -61,6 +68,7 @@ struct DrivetrainTransientResult {
   drivetrain::Linearisation linearisation;
   bool linearised = false;
   std::vector<DrivetrainChannel> channels;
+  std::vector<DrivetrainMeshOrders> mesh_orders;  ///< meshes with teeth1 and a spinning gear 1
   std::vector<double> time;
   Eigen::MatrixXd values;  ///< samples x channels (rows filled up to time.size())
   transient::AdaptiveSummary integration;
@@ -83,6 +91,8 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
 
 /// Tables "static_equilibrium", "eigen" (mode, undamped_natural_frequency_hz, damping_ratio,
 /// real_hz, imaginary_hz), "time_history", "summary" (peak and RMS per channel), "spectrum",
+/// "orders_<mesh>" (the DTE amplitude at mesh orders 1-3 over gear 1's speed, by a least-squares
+/// fit in gear 1's angle over successive windows of the record),
 /// "contacts" (closed fraction per switch) and "integration"; plots of the time histories by
 /// group and the spectra; notes on the integration and trust.
 AnalysisOutput drivetrain_transient_output(const model::Model& model,

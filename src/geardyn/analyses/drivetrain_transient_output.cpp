@@ -3,15 +3,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <limits>
+#include <memory>
 
 #include "geardyn/analyses/drivetrain_transient.hpp"
 #include "geardyn/analyses/plot_envelope.hpp"
+#include "geardyn/io/time_history_h5.hpp"
 #include "geardyn/signal/spectrum.hpp"
 
 namespace geardyn::analyses {
 namespace {
 
 constexpr int kMinSpectrumSamples = 16;
+/// Records of more values (samples x channels) go to time_history.h5 instead of a CSV table;
+/// the spectrum table is cut to as many values.
+constexpr double kMaxCsvValues = 2e6;
 
 std::vector<double> column(const Eigen::MatrixXd& m, std::size_t c) {
   const Eigen::VectorXd col = m.col(static_cast<Eigen::Index>(c));
@@ -54,14 +61,44 @@ void add_eigen(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   out.tables.push_back(std::move(t));
 }
 
-void add_history(const DrivetrainTransientResult& r, AnalysisOutput& out) {
-  Table t;
-  t.name = "time_history";
-  t.title = "Time histories at the output sample rate";
-  t.add("time_s", "s", r.time);
-  for (std::size_t c = 0; c < r.channels.size(); ++c)
-    t.add(r.channels[c].name, r.channels[c].unit, column(r.values, c));
-  out.tables.push_back(std::move(t));
+void add_history(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
+                 const Context& context, AnalysisOutput& out) {
+  const double values = static_cast<double>(r.time.size()) * static_cast<double>(r.channels.size());
+  if (values <= kMaxCsvValues) {
+    Table t;
+    t.name = "time_history";
+    t.title = "Time histories at the output sample rate";
+    t.add("time_s", "s", r.time);
+    for (std::size_t c = 0; c < r.channels.size(); ++c)
+      t.add(r.channels[c].name, r.channels[c].unit, column(r.values, c));
+    out.tables.push_back(std::move(t));
+  } else {
+    // The writer calls this after the analysis returns: the record is copied into it.
+    struct Record {
+      std::vector<double> time;
+      std::vector<io::TimeHistoryChannel> channels;
+      Eigen::MatrixXd values;
+    };
+    auto rec = std::make_shared<Record>();
+    rec->time = r.time;
+    for (const auto& c : r.channels) rec->channels.push_back({c.name, c.unit});
+    rec->values = r.values;
+    const double rate = s.sample_rate;
+    const std::string analysis = context.name();
+    out.files.push_back(
+        {"time_history.h5",
+         fmt::format("time histories, {} samples x {} channels at {:g} Hz (HDF5: /time and "
+                     "/channels/<name>, docs/output-reference.md)",
+                     r.time.size(), r.channels.size(), rate),
+         [rec, rate, analysis](const std::filesystem::path& path) {
+           io::write_time_history_h5(path, rate, rec->time, rec->channels, rec->values,
+                                     rec->time.size(), {{"analysis", analysis}});
+         }});
+    out.notes.push_back(fmt::format(
+        "the record ({:.3g} values) is written to time_history.h5, not to a CSV table (more "
+        "than {:.0e} values)",
+        values, kMaxCsvValues));
+  }
   std::vector<std::string> groups;
   for (const auto& ch : r.channels)
     if (std::find(groups.begin(), groups.end(), ch.group) == groups.end())
@@ -120,6 +157,18 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
         fmt::format("fewer than {} samples after spectrum_start: no spectra", kMinSpectrumSamples));
     return;
   }
+  // Spectra of the vibration channels (transmission error, accelerations, forces, torques);
+  // displacements, angles and speeds of a run-up are dominated by the rigid motion.
+  std::vector<std::size_t> chosen;
+  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+    const std::string& g = r.channels[c].group;
+    if (g == "dte" || g == "acceleration" || g == "force" || g == "torque") chosen.push_back(c);
+  }
+  if (chosen.empty()) return;
+  // The table keeps at most kMaxCsvValues values: the lowest bins when the record is long.
+  const auto bins_all = static_cast<std::size_t>(n / 2 + 1);
+  const std::size_t bins = std::min(
+      bins_all, static_cast<std::size_t>(kMaxCsvValues / static_cast<double>(chosen.size() + 1)));
   Table t;
   t.name = "spectrum";
   t.title = fmt::format("Amplitude spectra (0-peak, Hann) of t >= {:.6g} s", s.spectrum_start);
@@ -129,24 +178,105 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
   plot.x_label = "frequency [Hz]";
   plot.y_label = "amplitude (0-peak)";
   plot.y_log = true;
-  for (std::size_t c = 0; c < r.channels.size(); ++c) {
+  for (std::size_t c : chosen) {
     const Eigen::VectorXd x = r.values.col(static_cast<Eigen::Index>(c)).segment(first, n);
     const signal::AmplitudeSpectrum sp = signal::amplitude_spectrum(x, s.sample_rate);
-    if (c == 0)
-      t.add("frequency_hz", "Hz",
-            {sp.frequency_hz.data(), sp.frequency_hz.data() + sp.frequency_hz.size()});
+    const auto keep = static_cast<Eigen::Index>(bins);
+    if (!t.has_column("frequency_hz"))
+      t.add("frequency_hz", "Hz", {sp.frequency_hz.data(), sp.frequency_hz.data() + keep});
     t.add(r.channels[c].name, r.channels[c].unit,
-          {sp.amplitude.data(), sp.amplitude.data() + sp.amplitude.size()});
+          {sp.amplitude.data(), sp.amplitude.data() + keep});
     if (r.channels[c].group == "dte" || r.channels[c].group == "acceleration") {
       Trace tr;
       tr.name = r.channels[c].name;
-      const std::vector<double> f(sp.frequency_hz.data(),
-                                  sp.frequency_hz.data() + sp.frequency_hz.size());
-      envelope(f, sp.amplitude, tr.x, tr.y);
+      const std::vector<double> f(sp.frequency_hz.data(), sp.frequency_hz.data() + keep);
+      envelope(f, sp.amplitude.head(keep), tr.x, tr.y);
       plot.traces.push_back(std::move(tr));
     }
   }
+  if (bins < bins_all)
+    out.notes.push_back(fmt::format(
+        "spectrum table: the lowest {} of {} frequency bins (up to {:.6g} Hz) to stay within "
+        "{:.0e} values",
+        bins, bins_all, static_cast<double>(bins - 1) * s.sample_rate / static_cast<double>(n),
+        kMaxCsvValues));
   out.tables.push_back(std::move(t));
+  if (!plot.traces.empty()) out.plots.push_back(std::move(plot));
+}
+
+/// Amplitude of the order-`order` component of x in the angle theta (x ~ c + a cos(order theta)
+/// + b sin(order theta), least squares) over samples [i0, i1).
+double order_amplitude(const Eigen::VectorXd& theta, const Eigen::VectorXd& x, Eigen::Index i0,
+                       Eigen::Index i1, double order) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = i0; i < i1; ++i) {
+    const Eigen::Vector3d phi(1.0, std::cos(order * theta[i]), std::sin(order * theta[i]));
+    A += phi * phi.transpose();
+    b += phi * x[i];
+  }
+  const Eigen::Vector3d c = A.ldlt().solve(b);
+  return std::hypot(c[1], c[2]);
+}
+
+/// Table "orders": per mesh, the DTE's amplitude at mesh orders 1-3 (k z1 per revolution of
+/// gear 1), fitted in gear 1's actual angle (so the orders stay sharp while the speed changes)
+/// over successive windows of at least 8 mesh periods and 64 samples (at most 400 windows).
+void add_orders(const DrivetrainTransientResult& r, AnalysisOutput& out) {
+  const auto n = static_cast<Eigen::Index>(r.time.size());
+  if (r.mesh_orders.empty() || n < 64) return;
+  Plot plot;
+  plot.name = "orders";
+  plot.title = "Dynamic transmission error at the mesh orders over speed";
+  plot.x_label = "gear 1 speed [rpm]";
+  plot.y_label = "DTE (0-peak) [m]";
+  plot.y_log = true;
+  for (const DrivetrainMeshOrders& m : r.mesh_orders) {
+    const Eigen::VectorXd theta = r.values.col(static_cast<Eigen::Index>(m.angle_channel));
+    const Eigen::VectorXd x = r.values.col(static_cast<Eigen::Index>(m.dte_channel));
+    const double periods = std::abs(theta[n - 1] - theta[0]) * m.teeth1 / (2.0 * M_PI);
+    const double per_window = std::max(8.0, periods / 400.0);
+    Table t;
+    t.name = "orders_" + m.mesh;
+    t.title = fmt::format(
+        "Dynamic transmission error of mesh '{}' at its mesh orders (0-peak, fitted in gear 1's "
+        "angle over windows of >= {:.3g} mesh periods)",
+        m.mesh, per_window);
+    std::vector<double> time, rpm;
+    std::vector<std::vector<double>> amp(3);
+    for (Eigen::Index i0 = 0; i0 < n;) {
+      Eigen::Index i1 = i0 + 64;
+      while (i1 < n && std::abs(theta[i1 - 1] - theta[i0]) * m.teeth1 / (2.0 * M_PI) < per_window)
+        ++i1;
+      if (i1 > n || std::abs(theta[i1 - 1] - theta[i0]) * m.teeth1 / (2.0 * M_PI) < per_window)
+        break;
+      const double t0 = r.time[static_cast<std::size_t>(i0)];
+      const double t1 = r.time[static_cast<std::size_t>(i1 - 1)];
+      time.push_back(0.5 * (t0 + t1));
+      rpm.push_back((theta[i1 - 1] - theta[i0]) / (t1 - t0) * 60.0 / (2.0 * M_PI));
+      for (int k = 0; k < 3; ++k)
+        amp[static_cast<std::size_t>(k)].push_back(
+            order_amplitude(theta, x, i0, i1, (k + 1.0) * m.teeth1));
+      i0 = i1;
+    }
+    if (time.empty()) {
+      out.notes.push_back(
+          fmt::format("mesh '{}' turned through fewer than {:.3g} mesh periods: no order table",
+                      m.mesh, per_window));
+      continue;
+    }
+    t.add("time_s", "s", time);
+    t.add("pinion_speed_rpm", "rpm", rpm);
+    for (int k = 0; k < 3; ++k) {
+      t.add(fmt::format("order{}_dte_m", k + 1), "m", amp[static_cast<std::size_t>(k)]);
+      Trace tr;
+      tr.name = fmt::format("{} mesh order {}", m.mesh, k + 1);
+      tr.x = rpm;
+      tr.y = amp[static_cast<std::size_t>(k)];
+      plot.traces.push_back(std::move(tr));
+    }
+    out.tables.push_back(std::move(t));
+  }
   if (!plot.traces.empty()) out.plots.push_back(std::move(plot));
 }
 
@@ -205,9 +335,10 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
   add_static(result, out);
   add_eigen(result, out);
   if (!result.time.empty()) {
-    add_history(result, out);
+    add_history(settings, result, context, out);
     add_summary(result, out);
     add_spectra(settings, result, out);
+    add_orders(result, out);
   }
   add_contacts(result, out);
   add_integration(result, out);
