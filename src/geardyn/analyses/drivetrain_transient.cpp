@@ -297,7 +297,7 @@ void static_rows(const drivetrain::DrivetrainSystem& system, const Eigen::Vector
   for (std::size_t k = 0; k < p.elements.size(); ++k) {
     const Eigen::VectorXd f = system.element_force(k, 0.0, r.equilibrium.q, v0);
     for (Eigen::Index i = 0; i < f.size(); ++i) {
-      r.static_rows_element.push_back(p.elements[k].element->describe());
+      r.static_rows_element.push_back(p.elements[k].kind + " '" + p.elements[k].name + "'");
       r.static_rows_quantity.push_back(fmt::format("force on coordinate {}", i));
       r.static_rows_unit.push_back("N or N m");
       r.static_rows_value.push_back(f[i]);
