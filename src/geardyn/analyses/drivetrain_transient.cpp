@@ -226,11 +226,11 @@ void validate(const model::Model& model, const DrivetrainTransientSettings& s,
   };
   if (!(s.duration > 0.0) || !std::isfinite(s.duration))
     fail("duration", "a positive duration [s]", fmt::format("{}", s.duration));
-  if (!(s.sample_rate > 0.0) || !std::isfinite(s.sample_rate))
-    fail("sample_rate_hz", "a positive sample rate [Hz]", fmt::format("{}", s.sample_rate));
-  if (s.sample_rate * s.duration < 1.0)
+  if (!(s.sample_rate() > 0.0) || !std::isfinite(s.sample_rate()))
+    fail("sample_rate_hz", "a positive sample rate [Hz]", fmt::format("{}", s.sample_rate()));
+  if (s.sample_rate() * s.duration < 1.0)
     fail("sample_rate_hz", "at least one sample after t = 0 (sample_rate_hz x duration >= 1)",
-         fmt::format("{} Hz x {} s", s.sample_rate, s.duration));
+         fmt::format("{} Hz x {} s", s.sample_rate(), s.duration));
   if (!(s.spectrum_start >= 0.0 && s.spectrum_start < s.duration))
     fail("spectrum_start", fmt::format("a time in [0, duration = {} s)", s.duration),
          fmt::format("{}", s.spectrum_start));
@@ -247,10 +247,10 @@ transient::AdaptiveOptions integrator_options(const DrivetrainTransientSettings&
   transient::AdaptiveOptions o;
   o.start_time = 0.0;
   o.end_time = s.duration;
-  o.sample_rate = s.sample_rate;
+  o.sample_rate = s.sample_rate();
   o.relative_tolerance = s.relative_tolerance;
   o.absolute_tolerance = s.absolute_tolerance;
-  o.max_step = std::isnan(s.max_step) ? 1.0 / s.sample_rate : s.max_step;
+  o.max_step = std::isnan(s.max_step) ? 1.0 / s.sample_rate() : s.max_step;
   o.rho_infinity = s.rho_infinity;
   return o;
 }
@@ -336,7 +336,7 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   add_element_channels(model, sys, system, rec, r.mesh_orders);
   add_drive_channels(system, rec);
   r.channels = rec.channels;
-  const double n_samples = std::floor(s.duration * s.sample_rate + 1e-9) + 2.0;
+  const double n_samples = std::floor(s.duration * s.sample_rate() + 1e-9) + 2.0;
   if (n_samples * static_cast<double>(rec.channels.size()) > kMaxRecordValues)
     throw context.error(
         "sample_rate_hz",

@@ -33,7 +33,10 @@ enum class DrivetrainIntegrator { GeneralizedAlpha, Ida };
 
 struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettings> {
   double duration = model::kNaN;     ///< [s]
-  double sample_rate = model::kNaN;  ///< output samples per second [Hz]
+  /// 2 pi x the output samples per second [rad/s] (the key sample_rate_hz, converted like every
+  /// _hz key); sample_rate() gives it in Hz.
+  double sample_angular_rate = model::kNaN;
+  double sample_rate() const { return sample_angular_rate / (2.0 * 3.14159265358979323846); }
   DrivetrainIntegrator integrator = DrivetrainIntegrator::GeneralizedAlpha;
   double relative_tolerance = 1e-4;
   double absolute_tolerance = 1e-9;  ///< [m, rad]

@@ -16,9 +16,6 @@ namespace {
 using namespace model::keys;  // NOLINT: the declaration table reads as a table
 using model::Analysis;
 
-/// Output sample rates are written in Hz and kept in Hz (not converted to rad/s).
-constexpr model::Unit kSamplesPerSecond{"Hz", 1.0};
-
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   const auto& t = a.settings_of<DrivetrainTransientSettings>();
   const auto& m = check.model();
@@ -35,12 +32,12 @@ std::vector<model::Field> keys() {
           .required()
           .gt(0)
           .to_settings(&DrivetrainTransientSettings::duration),
-      number("sample_rate_hz", kSamplesPerSecond,
+      number("sample_rate_hz", kHertz,
              "Output samples per second, independent of the integrator's steps (interpolated "
              "within a step); spectra reach sample_rate_hz / 2.")
           .required()
           .gt(0)
-          .to_settings(&DrivetrainTransientSettings::sample_rate),
+          .to_settings(&DrivetrainTransientSettings::sample_angular_rate),
       choice("integrator", {"generalized_alpha", "ida"},
              "Adaptive integrator: geardyn's generalised-alpha with local error control and "
              "contact event location, or SUNDIALS IDA (variable-order BDF).")

@@ -83,7 +83,7 @@ void add_history(const DrivetrainTransientSettings& s, const DrivetrainTransient
     rec->time = r.time;
     for (const auto& c : r.channels) rec->channels.push_back({c.name, c.unit});
     rec->values = r.values;
-    const double rate = s.sample_rate;
+    const double rate = s.sample_rate();
     const std::string analysis = context.name();
     out.files.push_back(
         {"time_history.h5",
@@ -180,7 +180,7 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
   plot.y_log = true;
   for (std::size_t c : chosen) {
     const Eigen::VectorXd x = r.values.col(static_cast<Eigen::Index>(c)).segment(first, n);
-    const signal::AmplitudeSpectrum sp = signal::amplitude_spectrum(x, s.sample_rate);
+    const signal::AmplitudeSpectrum sp = signal::amplitude_spectrum(x, s.sample_rate());
     const auto keep = static_cast<Eigen::Index>(bins);
     if (!t.has_column("frequency_hz"))
       t.add("frequency_hz", "Hz", {sp.frequency_hz.data(), sp.frequency_hz.data() + keep});
@@ -198,7 +198,7 @@ void add_spectra(const DrivetrainTransientSettings& s, const DrivetrainTransient
     out.notes.push_back(fmt::format(
         "spectrum table: the lowest {} of {} frequency bins (up to {:.6g} Hz) to stay within "
         "{:.0e} values",
-        bins, bins_all, static_cast<double>(bins - 1) * s.sample_rate / static_cast<double>(n),
+        bins, bins_all, static_cast<double>(bins - 1) * s.sample_rate() / static_cast<double>(n),
         kMaxCsvValues));
   out.tables.push_back(std::move(t));
   if (!plot.traces.empty()) out.plots.push_back(std::move(plot));
@@ -348,7 +348,7 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
       "{} factorisations; local error tolerance rtol = {:g}, atol = {:g} m; samples at {:g} Hz "
       "interpolated within the steps",
       i.integrator, i.end_time, i.steps, i.rejected_error, i.rejected_newton, i.factorizations,
-      settings.relative_tolerance, settings.absolute_tolerance, settings.sample_rate));
+      settings.relative_tolerance, settings.absolute_tolerance, settings.sample_rate()));
   if (result.linearised) {
     const auto& L = result.linearisation;
     out.notes.push_back(fmt::format(

@@ -25,42 +25,6 @@ namespace geardyn::transient {
 
 namespace {
 
-// The options integrate_ida uses, checked by the rules adaptive.hpp states (AdaptiveOptions::
-// validate replaces this at integration).
-std::vector<std::string> check_ida_options(const AdaptiveOptions& o) {
-  std::vector<std::string> problems;
-  auto positive_finite = [](double x) { return x > 0.0 && std::isfinite(x); };
-  if (!std::isfinite(o.start_time))
-    problems.push_back(fmt::format("start_time must be finite, got {}", o.start_time));
-  if (!std::isfinite(o.end_time) || !(o.end_time > o.start_time))
-    problems.push_back(fmt::format("end_time must be finite and > start_time = {}, got {}",
-                                   o.start_time, o.end_time));
-  if (!positive_finite(o.sample_rate))
-    problems.push_back(
-        fmt::format("sample_rate must be positive and finite, got {}", o.sample_rate));
-  if (!(o.relative_tolerance >= 0.0 && o.relative_tolerance < 1.0))
-    problems.push_back(
-        fmt::format("relative_tolerance must lie in [0, 1), got {}", o.relative_tolerance));
-  if (!positive_finite(o.absolute_tolerance))
-    problems.push_back(fmt::format("absolute_tolerance must be positive and finite, got {}",
-                                   o.absolute_tolerance));
-  if (!std::isnan(o.initial_step) && !positive_finite(o.initial_step))
-    problems.push_back(
-        fmt::format("initial_step must be NaN (automatic) or positive, got {}", o.initial_step));
-  if (!positive_finite(o.min_step))
-    problems.push_back(fmt::format("min_step must be positive and finite, got {}", o.min_step));
-  if (!std::isnan(o.max_step) && !(positive_finite(o.max_step) && o.max_step >= o.min_step))
-    problems.push_back(
-        fmt::format("max_step must be NaN (1 / sample_rate) or >= min_step = {}, got {}",
-                    o.min_step, o.max_step));
-  if (o.max_steps < 1)
-    problems.push_back(fmt::format("max_steps must be >= 1, got {}", o.max_steps));
-  if (!positive_finite(o.event_tolerance))
-    problems.push_back(
-        fmt::format("event_tolerance must be positive and finite, got {}", o.event_tolerance));
-  return problems;
-}
-
 // --- RAII for the SUNDIALS objects (freed on every path, in reverse order of creation) ---------
 
 struct ContextDeleter {
@@ -562,7 +526,7 @@ void IdaRun::fail(int flag, const std::string& what) {
 AdaptiveSummary integrate_ida(SecondOrderSystem& system, const AdaptiveOptions& options,
                               Eigen::VectorXd& q, Eigen::VectorXd& v,
                               const SampleObserver& observer, Progress& progress) {
-  if (const auto problems = check_ida_options(options); !problems.empty()) {
+  if (const auto problems = options.validate(); !problems.empty()) {
     std::string text = "invalid integrator options:";
     for (const auto& p : problems) text += " " + p + ";";
     throw std::invalid_argument(text);
