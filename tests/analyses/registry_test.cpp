@@ -70,7 +70,7 @@ TEST(Registry, EveryAnalysisOffersScalarsToSweepsAndDesignStudies) {
   // Issue [architecture]: every analysis is sweepable. A sweep cannot target a sweep; every
   // other type declares at least one scalar, each with a meaning and only parameters that
   // [[analyses.outputs]] has; a name offered by several types has one unit everywhere.
-  const std::set<std::string> parameters = {"mode", "sensor", "at_rpm", "at_hz"};
+  const std::set<std::string> parameters = {"mode", "sensor", "channel", "at_rpm", "at_hz"};
   std::map<std::string, std::string> unit_of;
   for (const auto& t : registry()) {
     if (t.name == "sweep") {

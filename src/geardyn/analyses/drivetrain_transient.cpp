@@ -80,7 +80,8 @@ Projection sensor_projection(const model::VirtualSensorSpec& s, const fe::DofMap
 }
 
 void add_sensor_channels(const model::Model& model, const DrivetrainTransientSettings& s,
-                         const fe::DofMap& dofs, Recorder& rec) {
+                         const fe::DofMap& dofs, Recorder& rec,
+                         std::vector<std::pair<std::string, Projection>>& projections) {
   for (const model::VirtualSensorSpec& vs : model.virtual_sensors) {
     if (!s.sensors.empty() &&
         std::find(s.sensors.begin(), s.sensors.end(), vs.name) == s.sensors.end())
@@ -88,6 +89,7 @@ void add_sensor_channels(const model::Model& model, const DrivetrainTransientSet
     bool rot = false;
     const Projection p = sensor_projection(vs, dofs, rot);
     const std::string u = rot ? "rad" : "m";
+    projections.emplace_back(vs.name, p);
     rec.add(vs.name + "_" + u, u, "displacement",
             [p](double, const Eigen::VectorXd& q, const Eigen::VectorXd&, const Eigen::VectorXd&) {
               return p.of(q);
@@ -332,7 +334,8 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
     r.held_names.push_back("motor '" + m.name + "' (held)");
 
   Recorder rec;
-  add_sensor_channels(model, s, sys.dofs, rec);
+  std::vector<std::pair<std::string, Projection>> projections;
+  add_sensor_channels(model, s, sys.dofs, rec, projections);
   add_element_channels(model, sys, system, rec, r.mesh_orders);
   add_drive_channels(system, rec);
   r.channels = rec.channels;
@@ -360,6 +363,28 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   if (s.modes > 0) {
     r.linearisation = drivetrain::linearise(system, 0.0, q, v0, s.modes);
     r.linearised = true;
+    // Mode shapes at the virtual sensors, scaled to 1 at the largest sensor of each mode.
+    const auto n_modes = static_cast<Eigen::Index>(r.linearisation.modes.size());
+    r.shape_at_sensors.setZero(n_modes, static_cast<Eigen::Index>(projections.size()));
+    for (const auto& [name, p] : projections) r.shape_sensors.push_back(name);
+    for (Eigen::Index k = 0; k < n_modes; ++k) {
+      const Eigen::VectorXcd& x = r.linearisation.modes[static_cast<std::size_t>(k)].shape;
+      for (std::size_t j = 0; j < projections.size(); ++j) {
+        std::complex<double> sum = 0.0;
+        const Projection& p = projections[j].second;
+        for (std::size_t i = 0; i < p.equations.size(); ++i)
+          sum += p.coefficients[i] * x[p.equations[i]];
+        r.shape_at_sensors(k, static_cast<Eigen::Index>(j)) = sum;
+      }
+      double largest = 0.0;
+      std::complex<double> ref = 1.0;
+      for (Eigen::Index j = 0; j < r.shape_at_sensors.cols(); ++j)
+        if (std::abs(r.shape_at_sensors(k, j)) > largest) {
+          largest = std::abs(r.shape_at_sensors(k, j));
+          ref = r.shape_at_sensors(k, j);
+        }
+      if (largest > 0.0) r.shape_at_sensors.row(k) /= ref;
+    }
   }
 
   // Integration with output at the fixed sample rate.

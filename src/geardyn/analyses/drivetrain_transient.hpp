@@ -32,7 +32,7 @@ namespace geardyn::analyses {
 enum class DrivetrainIntegrator { GeneralizedAlpha, Ida };
 
 struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettings> {
-  double duration = model::kNaN;     ///< [s]
+  double duration = model::kNaN;  ///< [s]
   /// 2 pi x the output samples per second [rad/s] (the key sample_rate_hz, converted like every
   /// _hz key); sample_rate() gives it in Hz.
   double sample_angular_rate = model::kNaN;
@@ -70,6 +70,10 @@ struct DrivetrainTransientResult {
   std::vector<std::string> held_names;  ///< drivers / motors held in the static solution
   drivetrain::Linearisation linearisation;
   bool linearised = false;
+  /// The linearised mode shapes at the virtual sensors (modes x sensors; each mode scaled to 1
+  /// at its largest sensor).
+  std::vector<std::string> shape_sensors;
+  Eigen::MatrixXcd shape_at_sensors;
   std::vector<DrivetrainChannel> channels;
   std::vector<DrivetrainMeshOrders> mesh_orders;  ///< meshes with teeth1 and a spinning gear 1
   std::vector<double> time;
@@ -93,7 +97,8 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
                                                    const Context& context);
 
 /// Tables "static_equilibrium", "eigen" (mode, undamped_natural_frequency_hz, damping_ratio,
-/// real_hz, imaginary_hz), "time_history", "summary" (peak and RMS per channel), "spectrum",
+/// real_hz, imaginary_hz), "mode_shapes" (at the virtual sensors), "time_history" (or the file
+/// time_history.h5 for long records), "summary" (peak and RMS per channel), "spectrum",
 /// "orders_<mesh>" (the DTE amplitude at mesh orders 1-3 over gear 1's speed, by a least-squares
 /// fit in gear 1's angle over successive windows of the record),
 /// "contacts" (closed fraction per switch) and "integration"; plots of the time histories by

@@ -61,6 +61,31 @@ void add_eigen(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   out.tables.push_back(std::move(t));
 }
 
+void add_mode_shapes(const DrivetrainTransientResult& r, AnalysisOutput& out) {
+  if (!r.linearised || r.shape_sensors.empty() || r.shape_at_sensors.rows() == 0) return;
+  Table t;
+  t.name = "mode_shapes";
+  t.title = "Linearised mode shapes at the virtual sensors (1 at the largest sensor of each mode)";
+  std::vector<double> mode, f;
+  for (Eigen::Index k = 0; k < r.shape_at_sensors.rows(); ++k) {
+    mode.push_back(static_cast<double>(k + 1));
+    f.push_back(r.linearisation.modes[static_cast<std::size_t>(k)].natural_frequency_hz);
+  }
+  t.add("mode", "", mode);
+  t.add("undamped_natural_frequency_hz", "Hz", f);
+  for (std::size_t j = 0; j < r.shape_sensors.size(); ++j) {
+    std::vector<double> amp, phase;
+    for (Eigen::Index k = 0; k < r.shape_at_sensors.rows(); ++k) {
+      const std::complex<double> z = r.shape_at_sensors(k, static_cast<Eigen::Index>(j));
+      amp.push_back(std::abs(z));
+      phase.push_back(std::arg(z) * 180.0 / M_PI);
+    }
+    t.add(r.shape_sensors[j] + "_amplitude", "", amp);
+    t.add(r.shape_sensors[j] + "_phase_deg", "deg", phase);
+  }
+  out.tables.push_back(std::move(t));
+}
+
 void add_history(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
                  const Context& context, AnalysisOutput& out) {
   const double values = static_cast<double>(r.time.size()) * static_cast<double>(r.channels.size());
@@ -334,6 +359,7 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
   out.run_time_s = result.run_time_s;
   add_static(result, out);
   add_eigen(result, out);
+  add_mode_shapes(result, out);
   if (!result.time.empty()) {
     add_history(settings, result, context, out);
     add_summary(result, out);
