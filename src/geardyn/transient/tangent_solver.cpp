@@ -31,6 +31,11 @@ struct TangentSolver::Impl {
   Eigen::VectorXd d;
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;
 
+  // No iterative refinement in UMFPACK's solves: the Newton iterations that use them correct the
+  // solution anyway, and the refinement was about half the integration time of a drivetrain
+  // run-up (perf, docs/performance.md).
+  Impl() { lu.umfpackControl()(UMFPACK_IRSTEP) = 0; }
+
   static bool same_pattern(const Sparse& a, const Sparse& b) {
     if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
     for (Eigen::Index j = 0; j <= a.outerSize(); ++j)
