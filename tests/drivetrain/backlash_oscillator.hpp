@@ -253,11 +253,16 @@ struct Sweep {
   AdaptiveSummary summary;
   double seconds = 0.0;
 
-  // The first cycle whose peak-to-peak crosses `threshold` upward (up) or downward: its
-  // frequency; NaN when none.
+  // The first cycle whose peak-to-peak crosses `threshold` upward (up) or downward, i.e. after a
+  // cycle on the other side (a sweep down from above the resonance starts below the threshold
+  // and rises above it before it jumps down): its frequency; NaN when none.
   double jump(double threshold, bool up) const {
-    for (const Cycle& c : cycles)
-      if (up ? c.peak_to_peak > threshold : c.peak_to_peak < threshold) return c.omega;
+    bool armed = false;
+    for (const Cycle& c : cycles) {
+      const bool past = up ? c.peak_to_peak > threshold : c.peak_to_peak < threshold;
+      if (past && armed) return c.omega;
+      armed = armed || !past;
+    }
     return std::numeric_limits<double>::quiet_NaN();
   }
   // The cycle nearest to frequency omega.
