@@ -16,7 +16,7 @@
 //   BM_DrivetrainAccuracy/<integrator>/<-log10 rtol>: the same run (200 modes, 20 ms) and the
 //     error of its DTE peak and of its DTE record against a tight-tolerance reference
 //     (generalised-alpha at rtol 1e-7), so that the two integrators are compared at equal
-//     accuracy (the IDA runs converging on it show that the reference is not biased towards
+//     accuracy (IDA's errors against it, as rtol falls, show whether the reference favours
 //     generalised-alpha).
 // Iterations are fixed at 1 (a run is seconds to minutes); timings live here, never in tests.
 #include <benchmark/benchmark.h>
