@@ -67,8 +67,10 @@ RollingBearing::RollingBearing(RollingBearingParams params, const std::string& k
                                SourceLocation where)
     : p_(std::move(params)) {
   check(p_, key_path, where);
+  // The axial play projects on the contact line with |sin(alpha)|: a bearing carrying thrust in
+  // -z (alpha < 0) closes its axial play just like one carrying it in +z.
   gap_ = 0.5 * (p_.radial_clearance * std::cos(p_.contact_angle) +
-                p_.axial_clearance * std::sin(p_.contact_angle));
+                p_.axial_clearance * std::abs(std::sin(p_.contact_angle)));
   kappa_ = 0.5 * (1.0 - kinematics().gamma());
 }
 

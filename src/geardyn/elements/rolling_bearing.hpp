@@ -23,7 +23,7 @@
 // Element k sits at psi_k = psi_0 + 2 pi k / Z (psi measured from x towards y) and its contact
 // line has the direction e_k = (cos(alpha) cos(psi_k), cos(alpha) sin(psi_k), sin(alpha)) with
 // the contact angle alpha. Its deflection is delta_k = e_k . u - g with the gap
-// g = (c_r / 2) cos(alpha) + (c_a / 2) sin(alpha), the projection of the free play on the contact
+// g = (c_r / 2) cos(alpha) + (c_a / 2) |sin(alpha)|, the projection of the free play on the contact
 // line (c_r: diametral clearance, the total radial free travel of the inner ring, Harris's P_d;
 // c_a: total axial free travel). A negative clearance is an interference (preload). The element
 // pushes the rings apart with Q_k = K_n delta_k^n e_k for delta_k > 0 and nothing otherwise; the
