@@ -8,6 +8,7 @@
 
 #include "geardyn/transient/generalized_alpha_step.hpp"
 #include "geardyn/transient/integrator.hpp"
+#include "geardyn/transient/run_input.hpp"
 #include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
@@ -28,16 +29,7 @@ int count_crossings(const Eigen::VectorXd& g0, const Eigen::VectorXd& g1) {
 
 void check_input(SecondOrderSystem& system, const AdaptiveOptions& options,
                  const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
-  if (const auto problems = options.validate(); !problems.empty()) {
-    std::string text = "invalid adaptive integrator options:";
-    for (const auto& p : problems) text += " " + p + ";";
-    throw std::invalid_argument(text);
-  }
-  const int n = system.size();
-  if (n < 1) throw std::invalid_argument("the system has no unknowns");
-  if (q.size() != n || v.size() != n)
-    throw std::invalid_argument(fmt::format(
-        "initial q and v have sizes {} and {}, the system has {} unknowns", q.size(), v.size(), n));
+  detail::check_run_input(system, options.validate(), "invalid adaptive integrator options", q, v);
 }
 
 // Why the last attempt of a step failed.

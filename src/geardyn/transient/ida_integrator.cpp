@@ -19,6 +19,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "geardyn/transient/run_input.hpp"
 #include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
@@ -526,16 +527,7 @@ void IdaRun::fail(int flag, const std::string& what) {
 AdaptiveSummary integrate_ida(SecondOrderSystem& system, const AdaptiveOptions& options,
                               Eigen::VectorXd& q, Eigen::VectorXd& v,
                               const SampleObserver& observer, Progress& progress) {
-  if (const auto problems = options.validate(); !problems.empty()) {
-    std::string text = "invalid integrator options:";
-    for (const auto& p : problems) text += " " + p + ";";
-    throw std::invalid_argument(text);
-  }
-  const int n = system.size();
-  if (n < 1) throw std::invalid_argument("the system has no unknowns");
-  if (q.size() != n || v.size() != n)
-    throw std::invalid_argument(fmt::format(
-        "initial q and v have sizes {} and {}, the system has {} unknowns", q.size(), v.size(), n));
+  detail::check_run_input(system, options.validate(), "invalid integrator options", q, v);
   IdaRun run(system, options, observer, progress);
   return run.run(q, v);
 }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geardyn/transient/generalized_alpha_step.hpp"
+#include "geardyn/transient/run_input.hpp"
 #include "geardyn/transient/tangent_solver.hpp"
 
 namespace geardyn::transient {
@@ -83,16 +84,8 @@ using detail::StepWork;
 
 void check_input(SecondOrderSystem& system, const IntegratorOptions& options,
                  const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
-  if (const auto problems = options.validate(); !problems.empty()) {
-    std::string text = "invalid integrator options:";
-    for (const auto& p : problems) text += " " + p + ";";
-    throw std::invalid_argument(text);
-  }
+  detail::check_run_input(system, options.validate(), "invalid integrator options", q, v);
   const int n = system.size();
-  if (n < 1) throw std::invalid_argument("the system has no unknowns");
-  if (q.size() != n || v.size() != n)
-    throw std::invalid_argument(fmt::format(
-        "initial q and v have sizes {} and {}, the system has {} unknowns", q.size(), v.size(), n));
   if (options.initial_acceleration && options.initial_acceleration->size() != n)
     throw std::invalid_argument(fmt::format("initial acceleration has size {}, expected {}",
                                             options.initial_acceleration->size(), n));
