@@ -262,5 +262,55 @@ TEST(DrivetrainRunUp, JeffcottPassageThroughResonanceMatchesTheLinearRotorRunUp)
   EXPECT_NEAR(at, at_ref, 2e-3 * at_ref);
 }
 
+// Speed-dependent bearings follow the actual speed (issue #16, item 1): a rotor on a bearing
+// tabulated at 0 and 400 rad/s, built at rest and evaluated spinning at W = 150 rad/s, has the
+// residual M a + (C_at(W) + W G) v + K_at(W) q of the linear rotor model at W (the same algebra,
+// to round-off), and its tangent includes d(K_b q + C_b v)/dW on the driver's column: compared
+// with central differences of the residual in v, exact here (the residual is quadratic in v
+// inside one table segment), so to 1e-7 of the column's size (difference round-off).
+TEST(DrivetrainSystem, SpeedDependentBearingsFollowTheActualSpeed) {
+  model::Model m = transient::testing::flexible_rotor(1.0);
+  m.unbalances.clear();
+  m.constraints.front().dofs = {Component::Uz};
+  model::Bearing& b = m.bearings[1];
+  b.speeds = {0.0, 400.0};
+  b.stiffness = {transient::testing::diagonal6(2e7, 5e7), transient::testing::diagonal6(4e7, 3e7)};
+  b.damping = {transient::testing::diagonal6(2e3, 3e3), transient::testing::diagonal6(1e3, 1e3)};
+  b.stiffness[1][1] = 5e6;  // cross-coupled k_xy at speed
+  m.drivers.push_back(speed_driver("s.0", {0.0, 1.0}, {0.0, 300.0}));
+  const fe::LinearSystem sys = assembly::build_system(m);
+  ASSERT_EQ(sys.speed_bearings.size(), 1U);
+  DrivetrainSystem system(build_drivetrain(m, sys, {}));
+  ASSERT_EQ(system.parts().speed_bearings.size(), 1U);
+  const int n = system.size();
+  const double W = 150.0;
+  const Eigen::VectorXd q = Eigen::VectorXd::LinSpaced(n, -1e-5, 2e-5);
+  const Eigen::VectorXd a = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  const Eigen::VectorXd v = rigid_spin(sys, W) + Eigen::VectorXd::LinSpaced(n, 3e-3, -1e-3);
+  const double omega = system.reference_speed(v);
+  Eigen::VectorXd r;
+  system.free_residual(0.2, q, v, a, r);
+  const Eigen::VectorXd expected =
+      sys.M * a + (sys.C_at(omega) + omega * sys.G) * v + sys.K_at(omega) * q;
+  EXPECT_LT((r - expected).norm(), 1e-12 * (sys.K_at(omega) * q).norm());
+
+  SparseMatrix S;
+  system.tangent(0.2, q, v, 0.0, 1.0, 0.0, S);
+  const Eigen::MatrixXd St(S);
+  const int driven = system.held_equations().front();
+  for (int j = 0; j < n; ++j) {
+    const double h = 1e-3 * std::max(1.0, std::abs(v[j]));
+    Eigen::VectorXd vp = v, vm = v, rp, rm;
+    vp[j] += h;
+    vm[j] -= h;
+    system.free_residual(0.2, q, vp, a, rp);
+    system.free_residual(0.2, q, vm, a, rm);
+    Eigen::VectorXd fd = (rp - rm) / (2.0 * h);
+    Eigen::VectorXd col = St.col(j);
+    fd[driven] = col[driven] = 0.0;  // the servo row is not the free residual
+    EXPECT_LT((col - fd).norm(), 1e-7 * std::max(1.0, fd.norm())) << "column " << j;
+  }
+}
+
 }  // namespace
 }  // namespace geardyn::drivetrain

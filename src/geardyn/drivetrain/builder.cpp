@@ -376,8 +376,6 @@ DrivetrainParts build_drivetrain(const model::Model& model, const fe::LinearSyst
                                  const BuildOptions& options) {
   DrivetrainParts parts;
   parts.M = system.M;
-  parts.K = system.K_at(options.initial_reference_speed);
-  parts.C = system.C_at(options.initial_reference_speed);
   parts.G = system.G;
   parts.modal_basis = system.modal_basis;
   parts.modal_coefficients = system.modal_coefficients;
@@ -387,6 +385,16 @@ DrivetrainParts build_drivetrain(const model::Model& model, const fe::LinearSyst
   place_rolling_bearings(model, system, options, parts);
   place_drivers_and_loads(model, system, parts);
   place_meshes(model, system, options, parts);
+  // Speed-dependent bearings follow the actual reference speed (a driver's spin); without one
+  // they stay at the initial speed.
+  if (parts.speed_equation >= 0) {
+    parts.K = system.K;
+    parts.C = system.C;
+    parts.speed_bearings = system.speed_bearings;
+  } else {
+    parts.K = system.K_at(options.initial_reference_speed);
+    parts.C = system.C_at(options.initial_reference_speed);
+  }
   return parts;
 }
 

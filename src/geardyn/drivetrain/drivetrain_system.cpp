@@ -46,6 +46,12 @@ DrivetrainSystem::DrivetrainSystem(DrivetrainParts parts) : p_(std::move(parts))
   for (const SpinUnbalance& u : p_.unbalances)
     check_equation(u.spin, n, "unbalance '" + u.name + "'");
   if (p_.speed_equation >= 0) check_equation(p_.speed_equation, n, "reference speed");
+  if (!p_.speed_bearings.empty() && p_.speed_equation < 0)
+    throw std::invalid_argument(
+        "DrivetrainSystem: speed-dependent bearings without a reference speed equation");
+  for (const fe::SpeedDependentBearing& b : p_.speed_bearings)
+    for (int e : b.equations)
+      if (e >= 0) check_equation(e, n, "speed-dependent bearing");
   for (std::size_t k = 0; k < p_.elements.size(); ++k) {
     const PlacedElement& e = p_.elements[k];
     for (int eq : e.equations) check_equation(eq, n, e.element->describe());
@@ -74,6 +80,7 @@ void DrivetrainSystem::add_linear(const Eigen::VectorXd& q, const Eigen::VectorX
   r.noalias() += p_.K * q;
   const double omega = reference_speed(v);
   if (omega != 0.0) r.noalias() += omega * (p_.G * v);
+  for (const fe::SpeedDependentBearing& b : p_.speed_bearings) b.add_force(omega, q, v, r);
   if (p_.modal_coefficients.size() > 0)
     r.noalias() +=
         p_.modal_basis * (p_.modal_coefficients.asDiagonal() * (p_.modal_basis.transpose() * v));
@@ -151,6 +158,17 @@ void DrivetrainSystem::tangent(double t, const Eigen::VectorXd& q, const Eigen::
     for (Eigen::Index i = 0; i < gv.size(); ++i)
       if (gv[i] != 0.0)
         trip.emplace_back(static_cast<int>(i), p_.speed_equation, c_c * gv[i] / p_.speed_ratio);
+  }
+  // Speed-dependent bearings: K_b(Omega), C_b(Omega), and d(K_b q + C_b v) / d Omega times
+  // d Omega / d v_ref = 1 / speed_ratio on the reference speed's column.
+  if (!p_.speed_bearings.empty()) {
+    Eigen::VectorXd column = Eigen::VectorXd::Zero(size());
+    for (const fe::SpeedDependentBearing& b : p_.speed_bearings) {
+      b.add_tangent(omega, c_k, c_c, trip);
+      if (c_c != 0.0) b.add_speed_derivative(omega, q, v, c_c / p_.speed_ratio, column);
+    }
+    for (Eigen::Index i = 0; i < column.size(); ++i)
+      if (column[i] != 0.0) trip.emplace_back(static_cast<int>(i), p_.speed_equation, column[i]);
   }
   Eigen::VectorXd u, w;
   elements::ElementForce f;

@@ -11,7 +11,8 @@
 // linear shaft model, and gear meshes, bearings and clutches read the actual angles and speeds.
 // The gyroscopic matrix G (per unit reference speed) is scaled by the actual reference speed
 // Omega(v) = v[speed_equation] / speed_ratio, the spin speed of one node (a driver's) over its
-// speed ratio; its derivative with respect to that speed is in the tangent.
+// speed ratio; its derivative with respect to that speed is in the tangent. Speed-dependent
+// linear bearings are interpolated at the same Omega(v), their speed derivative in the tangent.
 //
 // A speed driver's equation is replaced by a stiff, critically damped servo on its tracking
 // error e = q_d - theta(t):
@@ -30,6 +31,7 @@
 
 #include "geardyn/drivetrain/drivers.hpp"
 #include "geardyn/drivetrain/placement.hpp"
+#include "geardyn/fe/linear_system.hpp"
 #include "geardyn/transient/second_order_system.hpp"
 
 namespace geardyn::drivetrain {
@@ -54,6 +56,9 @@ struct DrivetrainParts {
   SparseMatrix M, C, K, G;      ///< G per unit reference speed (may be empty: none)
   Eigen::MatrixXd modal_basis;  ///< C_modal = B diag(c) B^T (may be empty)
   Eigen::VectorXd modal_coefficients;
+  /// Bearings whose coefficients depend on speed, evaluated at the actual reference speed
+  /// Omega(v) (K and C above leave them out); empty when there is no reference speed.
+  std::vector<fe::SpeedDependentBearing> speed_bearings;
   std::vector<PlacedElement> elements;
   std::vector<SpeedDriver> speed_drivers;
   std::vector<Motor> motors;

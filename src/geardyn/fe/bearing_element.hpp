@@ -31,4 +31,17 @@ Matrix interpolate_by_speed(const std::vector<double>& speeds, const std::vector
   return ((1.0 - t) * values[i - 1] + t * values[i]).eval();
 }
 
+/// d/d speed of interpolate_by_speed: the slope of the table's segment that holds `speed`, zero
+/// outside the table (where it is held constant) and for a one-row table. At a breakpoint, the
+/// slope of the segment to its right (the segment below the last one at the last breakpoint).
+template <class Matrix>
+Matrix slope_by_speed(const std::vector<double>& speeds, const std::vector<Matrix>& values,
+                      double speed) {
+  if (speeds.size() == 1 || speed < speeds.front() || speed >= speeds.back())
+    return (0.0 * values.front()).eval();
+  std::size_t i = 1;
+  while (speeds[i] <= speed) ++i;
+  return ((values[i] - values[i - 1]) / (speeds[i] - speeds[i - 1])).eval();
+}
+
 }  // namespace geardyn::fe

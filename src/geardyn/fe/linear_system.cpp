@@ -428,6 +428,55 @@ SparseMatrix add_speed_bearings(const LinearSystem& system, const SparseMatrix& 
 
 }  // namespace
 
+namespace {
+
+/// The bearing's 12 coordinates gathered from a system vector (0 at constrained / ground ends).
+Eigen::Matrix<double, 12, 1> gather12(const std::array<int, 12>& equations,
+                                      const Eigen::VectorXd& x) {
+  Eigen::Matrix<double, 12, 1> out = Eigen::Matrix<double, 12, 1>::Zero();
+  for (int i = 0; i < 12; ++i)
+    if (const int e = equations[static_cast<std::size_t>(i)]; e >= 0) out[i] = x[e];
+  return out;
+}
+
+void scatter12(const std::array<int, 12>& equations, const Eigen::Matrix<double, 12, 1>& f,
+               double scale, Eigen::VectorXd& out) {
+  for (int i = 0; i < 12; ++i)
+    if (const int e = equations[static_cast<std::size_t>(i)]; e >= 0) out[e] += scale * f[i];
+}
+
+}  // namespace
+
+void SpeedDependentBearing::add_force(double speed, const Eigen::VectorXd& q,
+                                      const Eigen::VectorXd& v, Eigen::VectorXd& r) const {
+  const Matrix12d Kb = interpolate_by_speed(speeds, stiffness, speed);
+  const Matrix12d Cb = interpolate_by_speed(speeds, damping, speed);
+  scatter12(equations, Kb * gather12(equations, q) + Cb * gather12(equations, v), 1.0, r);
+}
+
+void SpeedDependentBearing::add_tangent(double speed, double c_k, double c_c,
+                                        std::vector<Eigen::Triplet<double>>& out) const {
+  Matrix12d block = Matrix12d::Zero();
+  if (c_k != 0.0) block += c_k * interpolate_by_speed(speeds, stiffness, speed);
+  if (c_c != 0.0) block += c_c * interpolate_by_speed(speeds, damping, speed);
+  for (int i = 0; i < 12; ++i) {
+    const int row = equations[static_cast<std::size_t>(i)];
+    if (row < 0) continue;
+    for (int j = 0; j < 12; ++j) {
+      const int col = equations[static_cast<std::size_t>(j)];
+      if (col >= 0 && block(i, j) != 0.0) out.emplace_back(row, col, block(i, j));
+    }
+  }
+}
+
+void SpeedDependentBearing::add_speed_derivative(double speed, const Eigen::VectorXd& q,
+                                                 const Eigen::VectorXd& v, double scale,
+                                                 Eigen::VectorXd& out) const {
+  const Matrix12d dK = slope_by_speed(speeds, stiffness, speed);
+  const Matrix12d dC = slope_by_speed(speeds, damping, speed);
+  scatter12(equations, dK * gather12(equations, q) + dC * gather12(equations, v), scale, out);
+}
+
 SparseMatrix LinearSystem::K_at(double speed) const {
   return add_speed_bearings(*this, K, speed, true);
 }

@@ -25,6 +25,17 @@ struct SpeedDependentBearing {
   std::vector<double> speeds;                                     ///< [rad/s], increasing
   std::vector<Eigen::Matrix<double, 12, 12>> stiffness, damping;  ///< in equation space
   std::array<int, 12> equations{};                                ///< -1 for constrained or ground
+
+  /// r += K_b(speed) q_b + C_b(speed) v_b over the bearing's equations (block by block: cheaper
+  /// than assembling sparse matrices per call).
+  void add_force(double speed, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                 Eigen::VectorXd& r) const;
+  /// Triplets of c_k K_b(speed) + c_c C_b(speed) (entries that are zero left out).
+  void add_tangent(double speed, double c_k, double c_c,
+                   std::vector<Eigen::Triplet<double>>& out) const;
+  /// out += scale d/d speed (K_b(speed) q_b + C_b(speed) v_b), over all equations.
+  void add_speed_derivative(double speed, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                            double scale, Eigen::VectorXd& out) const;
 };
 
 struct LinearSystem {

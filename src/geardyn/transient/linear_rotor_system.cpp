@@ -29,23 +29,6 @@ double SpeedProfile::angle(double t) const {
   return theta + speed_end * (t - ramp);
 }
 
-namespace {
-
-// Linear interpolation in a bearing's speed table, constant outside it (fe::LinearSystem::K_at).
-Eigen::Matrix<double, 12, 12> interpolate(const std::vector<double>& speeds,
-                                          const std::vector<Eigen::Matrix<double, 12, 12>>& table,
-                                          double speed) {
-  if (table.empty()) return Eigen::Matrix<double, 12, 12>::Zero();
-  if (table.size() == 1 || speed <= speeds.front()) return table.front();
-  if (speed >= speeds.back()) return table.back();
-  const auto upper = std::upper_bound(speeds.begin(), speeds.end(), speed);
-  const std::size_t i = static_cast<std::size_t>(upper - speeds.begin());
-  const double s = (speed - speeds[i - 1]) / (speeds[i] - speeds[i - 1]);
-  return (1.0 - s) * table[i - 1] + s * table[i];
-}
-
-}  // namespace
-
 LinearRotorSystem::LinearRotorSystem(const model::Model& model, const fe::LinearSystem& system,
                                      const SpeedProfile& profile,
                                      const std::vector<std::string>& unbalances)
@@ -94,19 +77,8 @@ LinearRotorSystem::LinearRotorSystem(const model::Model& model, const fe::Linear
 
 void LinearRotorSystem::bearing_blocks(double speed, bool stiffness,
                                        std::vector<Eigen::Triplet<double>>& triplets) const {
-  for (const auto& b : system_.speed_bearings) {
-    const Eigen::Matrix<double, 12, 12> block =
-        interpolate(b.speeds, stiffness ? b.stiffness : b.damping, speed);
-    for (int i = 0; i < 12; ++i) {
-      const int row = b.equations[static_cast<std::size_t>(i)];
-      if (row < 0) continue;
-      for (int j = 0; j < 12; ++j) {
-        const int col = b.equations[static_cast<std::size_t>(j)];
-        if (col < 0 || block(i, j) == 0.0) continue;
-        triplets.emplace_back(row, col, block(i, j));
-      }
-    }
-  }
+  for (const auto& b : system_.speed_bearings)
+    b.add_tangent(speed, stiffness ? 1.0 : 0.0, stiffness ? 0.0 : 1.0, triplets);
 }
 
 SparseMatrix LinearRotorSystem::bearing_stiffness(double speed) const {
@@ -127,25 +99,7 @@ SparseMatrix LinearRotorSystem::bearing_damping(double speed) const {
 
 void LinearRotorSystem::apply_bearings(double speed, const Eigen::VectorXd& q,
                                        const Eigen::VectorXd& v, Eigen::VectorXd& r) const {
-  // r += K_b(W) q + C_b(W) v, block by block: cheaper than assembling sparse matrices per call.
-  for (const auto& b : system_.speed_bearings) {
-    const Eigen::Matrix<double, 12, 12> Kb = interpolate(b.speeds, b.stiffness, speed);
-    const Eigen::Matrix<double, 12, 12> Cb = interpolate(b.speeds, b.damping, speed);
-    Eigen::Matrix<double, 12, 1> qe = Eigen::Matrix<double, 12, 1>::Zero();
-    Eigen::Matrix<double, 12, 1> ve = Eigen::Matrix<double, 12, 1>::Zero();
-    for (int i = 0; i < 12; ++i) {
-      const int e = b.equations[static_cast<std::size_t>(i)];
-      if (e >= 0) {
-        qe[i] = q[e];
-        ve[i] = v[e];
-      }
-    }
-    const Eigen::Matrix<double, 12, 1> force = Kb * qe + Cb * ve;
-    for (int i = 0; i < 12; ++i) {
-      const int e = b.equations[static_cast<std::size_t>(i)];
-      if (e >= 0) r[e] += force[i];
-    }
-  }
+  for (const auto& b : system_.speed_bearings) b.add_force(speed, q, v, r);
 }
 
 void LinearRotorSystem::add_external_force(double t, Eigen::VectorXd& f) const {
