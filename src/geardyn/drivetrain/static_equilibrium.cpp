@@ -270,4 +270,23 @@ std::string coordinate_unit(const PlacedElement& element, Eigen::Index row,
   return any ? "N m" : "N";
 }
 
+std::vector<StaticRow> static_table(const DrivetrainSystem& system, const fe::DofMap& dofs,
+                                    double t0, const Eigen::VectorXd& v0,
+                                    const StaticResult& result,
+                                    const std::vector<std::string>& held_names) {
+  std::vector<StaticRow> rows;
+  const DrivetrainParts& p = system.parts();
+  for (std::size_t k = 0; k < p.elements.size(); ++k) {
+    const PlacedElement& e = p.elements[k];
+    const Eigen::VectorXd f = system.element_force(k, t0, result.q, v0);
+    for (Eigen::Index i = 0; i < f.size(); ++i)
+      rows.push_back({e.kind + " '" + e.name + "'", fmt::format("force on coordinate {}", i),
+                      coordinate_unit(e, i, dofs), f[i]});
+  }
+  for (std::size_t k = 0; k < result.held_torques.size(); ++k)
+    rows.push_back({k < held_names.size() ? held_names[k] : fmt::format("held equation {}", k),
+                    "holding torque", "N m", result.held_torques[k]});
+  return rows;
+}
+
 }  // namespace geardyn::drivetrain

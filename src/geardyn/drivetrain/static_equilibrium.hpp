@@ -63,4 +63,18 @@ std::vector<std::string> equation_names(const fe::DofMap& dofs);
 /// enter times a lever arm, is a displacement).
 std::string coordinate_unit(const PlacedElement& element, Eigen::Index row, const fe::DofMap& dofs);
 
+/// One row of the static_equilibrium table.
+struct StaticRow {
+  std::string element, quantity, unit;
+  double value = 0.0;
+};
+
+/// The static_equilibrium table at result.q: every element's force on each of its relative
+/// coordinates (unit by coordinate_unit: N for a force, N m for a moment) and the holding torque
+/// of every held equation (named by held_names, in held_equations order) in N m.
+std::vector<StaticRow> static_table(const DrivetrainSystem& system, const fe::DofMap& dofs,
+                                    double t0, const Eigen::VectorXd& v0,
+                                    const StaticResult& result,
+                                    const std::vector<std::string>& held_names);
+
 }  // namespace geardyn::drivetrain
