@@ -22,6 +22,21 @@ TEST(FormatNumber, ShortestRoundTripText) {
   EXPECT_EQ(format_number(6.02214076e23), "6.02214076e+23");
 }
 
+// Round-off of a zero (a subnormal such as 4.9e-324, or -0) is written as 0, so that readers
+// that reject subnormals (std::stod: out_of_range) read every cell; 1e-300 and above are kept.
+TEST(FormatNumber, MagnitudesBelow1e300AreWrittenAsZero) {
+  const double smallest = std::numeric_limits<double>::denorm_min();  // 4.9e-324
+  EXPECT_EQ(format_number(smallest), "0");
+  EXPECT_EQ(format_number(-smallest), "0");
+  EXPECT_EQ(format_number(5e-318), "0");
+  EXPECT_EQ(format_number(std::numeric_limits<double>::min()), "0");  // 2.2e-308, normal
+  EXPECT_EQ(format_number(-0.0), "0");
+  EXPECT_EQ(format_number(9.99e-301), "0");
+  EXPECT_EQ(format_number(1e-300), "1e-300");
+  EXPECT_EQ(format_number(-2.5e-300), "-2.5e-300");
+  EXPECT_NO_THROW((void)std::stod(format_number(smallest)));
+}
+
 TEST(FormatNumber, NonFiniteValues) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(format_number(nan), "nan");

@@ -613,6 +613,30 @@ const std::string kBoltBody = R"(bolt_stiffness = 1e8
 clamp_stiffness = 3e8
 )";
 
+// The first lines of an error case's entry of array `array`: the empty line 1, the header on
+// line 2, `name` on line 3 and the node key on line 4; the case's own keys follow from line 5.
+std::string head(const std::string& array, const std::string& name, const std::string& node_key,
+                 const std::string& node) {
+  return fmt::format("\n[[{}]]\nname = \"{}\"\n{} = \"{}\"\n", array, name, node_key, node);
+}
+
+// A bushing "k" on input.0 (lines 1-4) without its keys.
+const std::string kBushingHead = head("bushings", "k", "node2", "input.0");
+
+// A speed driver "d" on `node` (line 4) at 100 rpm: its type, time and speed on lines 5-7.
+std::string speed_driver(const std::string& node) {
+  return head("drivers", "d", "node", node) +
+         "type = \"speed\"\ntime = [0.0]\nspeed_rpm = [100.0]\n";
+}
+
+// A rolling bearing "r" on `node` (line 4) of 8 elements: elements, stiffness_constant and
+// pitch_diameter = 0.04 m on lines 5-7, then `rest` from line 8.
+std::string rolling_bearing(const std::string& node,
+                            const std::string& rest = "element_diameter = 0.006\n") {
+  return head("rolling_bearings", "r", "node", node) +
+         "elements = 8\nstiffness_constant = 1e10\npitch_diameter = 0.04\n" + rest;
+}
+
 const ErrorCase kCases[] = {
     // --- contacts and laws ---
     {"ContactZeroDirection",
@@ -660,104 +684,93 @@ const ErrorCase kCases[] = {
      9, "contacts[1].name", "a name not used by another of [[contacts]]",
      "\"c\", already the name of contacts[0]"},
     // --- bolts ---
-    {"BoltWithoutNode2", "\n[[bolts]]\nname = \"b\"\nnode1 = \"housing\"\n" + kBoltBody, 2,
-     "bolts[0].node2", "the key 'node2'", "without it"},
+    {"BoltWithoutNode2", head("bolts", "b", "node1", "housing") + kBoltBody, 2, "bolts[0].node2",
+     "the key 'node2'", "without it"},
     {"BoltOnAMasslessNode",
-     "\n[[bolts]]\nname = \"b\"\nnode1 = \"loose\"\nnode2 = \"input.0\"\n" + kBoltBody, 4,
+     head("bolts", "b", "node1", "loose") + "node2 = \"input.0\"\n" + kBoltBody, 4,
      "bolts[0].node1", "a node on a body", "\"loose\", a node without mass that no body holds",
      "[[solids.spiders]]"},
     {"BoltLoadIntroductionAboveOne",
-     "\n[[bolts]]\nname = \"b\"\nnode2 = \"input.0\"\nload_introduction = 1.2\n" + kBoltBody, 5,
+     head("bolts", "b", "node2", "input.0") + "load_introduction = 1.2\n" + kBoltBody, 5,
      "bolts[0].load_introduction", "in (0, 1]", "1.2"},
-    {"BoltMissingStiffness", "\n[[bolts]]\nname = \"b\"\nnode2 = \"input.0\"\n", 2,
-     "bolts[0].bolt_stiffness", "the key 'bolt_stiffness'", "without it"},
+    {"BoltMissingStiffness", head("bolts", "b", "node2", "input.0"), 2, "bolts[0].bolt_stiffness",
+     "the key 'bolt_stiffness'", "without it"},
     // --- bushings ---
     {"BushingAxesNotOrthogonal",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\nx_axis = [1.0, 0.0, 0.0]\n"
-     "z_axis = [1.0, 0.0, 1.0]\nkxx = 1\n",
+     kBushingHead + "x_axis = [1.0, 0.0, 0.0]\n"
+                    "z_axis = [1.0, 0.0, 1.0]\nkxx = 1\n",
      6, "bushings[0].z_axis", "orthogonal to x_axis", "at 45 deg to x_axis"},
     {"BushingMatrixAndKeys",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\nkxx = 1\nstiffness = [[1.0, 0.0, 0.0, "
-     "0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, 0.0, "
-     "0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]\n",
+     kBushingHead +
+         "kxx = 1\nstiffness = [[1.0, 0.0, 0.0, "
+         "0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, "
+         "0.0, "
+         "0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]\n",
      6, "bushings[0].stiffness", "only one of (kxx, kyy, kzz, ktxx, ktyy, ktzz) or stiffness",
      "both 'kxx' and 'stiffness'"},
     {"BushingAsymmetricMatrix",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\nstiffness = [[1.0, 0.5, 0.0, 0.0, 0.0, "
-     "0.0], [0.0, 1.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0, "
-     "0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]\n",
+     kBushingHead + "stiffness = [[1.0, 0.5, 0.0, 0.0, 0.0, "
+                    "0.0], [0.0, 1.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0, 0.0, 0.0], [0.0, "
+                    "0.0, 0.0, 1.0, "
+                    "0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 1.0]]\n",
      5, "bushings[0].stiffness", "a symmetric 6x6 matrix", "stiffness[0][1] = 0.5"},
-    {"BushingPreloadSize",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\npreload = [1.0, 2.0]\n", 5,
-     "bushings[0].preload", "6 values", "2 values"},
+    {"BushingPreloadSize", kBushingHead + "preload = [1.0, 2.0]\n", 5, "bushings[0].preload",
+     "6 values", "2 values"},
     {"BushingTableWithoutZero",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\n[[bushings.tables]]\ndirection = \"x\"\n"
-     "deflection = [0.001, 0.002]\nforce = [1.0, 2.0]\n",
+     kBushingHead + "[[bushings.tables]]\ndirection = \"x\"\n"
+                    "deflection = [0.001, 0.002]\nforce = [1.0, 2.0]\n",
      7, "bushings[0].tables[0].deflection", "a point at deflection 0 with force 0", "without 0",
      "preload"},
     {"BushingTableForceDecreasing",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\n[[bushings.tables]]\ndirection = \"x\"\n"
-     "deflection = [0.0, 0.002]\nforce = [0.0, -2.0]\n",
+     kBushingHead + "[[bushings.tables]]\ndirection = \"x\"\n"
+                    "deflection = [0.0, 0.002]\nforce = [0.0, -2.0]\n",
      8, "bushings[0].tables[0].force", "non-decreasing", "0 then -2"},
     {"BushingTableLengths",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\n[[bushings.tables]]\ndirection = \"x\"\n"
-     "deflection = [0.0, 0.002]\nforce = [0.0, 2.0, 3.0]\n",
+     kBushingHead + "[[bushings.tables]]\ndirection = \"x\"\n"
+                    "deflection = [0.0, 0.002]\nforce = [0.0, 2.0, 3.0]\n",
      8, "bushings[0].tables[0].force", "2 values, one per 'deflection' entry", "3 values"},
     {"BushingTwoTablesOneDirection",
-     "\n[[bushings]]\nname = \"k\"\nnode2 = \"input.0\"\n[[bushings.tables]]\ndirection = \"rz\"\n"
-     "deflection = [0.0, 0.1]\nforce = [0.0, 2.0]\n[[bushings.tables]]\ndirection = \"rz\"\n"
-     "deflection = [0.0, 0.1]\nforce = [0.0, 3.0]\n",
+     kBushingHead +
+         "[[bushings.tables]]\ndirection = \"rz\"\n"
+         "deflection = [0.0, 0.1]\nforce = [0.0, 2.0]\n[[bushings.tables]]\ndirection = \"rz\"\n"
+         "deflection = [0.0, 0.1]\nforce = [0.0, 3.0]\n",
      9, "bushings[0].tables[1].direction", "one table per direction", "\"rz\" again"},
     // --- rolling bearings ---
-    {"RollingBearingOnANodeWithoutSpin",
-     "\n[[rolling_bearings]]\nname = \"r\"\nnode = \"housing\"\nelements = 8\nstiffness_constant "
-     "= 1e10\npitch_diameter = 0.04\nelement_diameter = 0.006\n",
-     4, "rolling_bearings[0].node", "a node with a spin axis",
-     "\"housing\", a [[nodes]] entry that does not spin", "spin_of"},
-    {"RollingBearingElementTooLarge",
-     "\n[[rolling_bearings]]\nname = \"r\"\nnode = \"input.1\"\nelements = 8\nstiffness_constant "
-     "= 1e10\npitch_diameter = 0.04\nelement_diameter = 0.05\n",
-     8, "rolling_bearings[0].element_diameter", "< pitch_diameter = 0.04 m", "0.05"},
+    {"RollingBearingOnANodeWithoutSpin", rolling_bearing("housing"), 4, "rolling_bearings[0].node",
+     "a node with a spin axis", "\"housing\", a [[nodes]] entry that does not spin", "spin_of"},
+    {"RollingBearingElementTooLarge", rolling_bearing("input.1", "element_diameter = 0.05\n"), 8,
+     "rolling_bearings[0].element_diameter", "< pitch_diameter = 0.04 m", "0.05"},
     {"RollingBearingHousingIsTheNode",
-     "\n[[rolling_bearings]]\nname = \"r\"\nnode = \"input.1\"\nhousing = \"input.1\"\nelements "
-     "= 8\nstiffness_constant = 1e10\npitch_diameter = 0.04\nelement_diameter = 0.006\n",
-     4, "rolling_bearings[0].node", "a node other than `housing`", "\"input.1\" again"},
+     rolling_bearing("input.1", "element_diameter = 0.006\nhousing = \"input.1\"\n"), 4,
+     "rolling_bearings[0].node", "a node other than `housing`", "\"input.1\" again"},
     {"RollingBearingExponent",
-     "\n[[rolling_bearings]]\nname = \"r\"\nnode = \"input.1\"\nelements = 8\nstiffness_constant "
-     "= 1e10\nexponent = 3\npitch_diameter = 0.04\nelement_diameter = 0.006\n",
-     7, "rolling_bearings[0].exponent", "in [1, 2]", "3"},
+     rolling_bearing("input.1", "element_diameter = 0.006\nexponent = 3\n"), 9,
+     "rolling_bearings[0].exponent", "in [1, 2]", "3"},
     // --- drivers, loads, clutches ---
-    {"DriverOnAConstrainedDof",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"input.4\"\ntype = \"speed\"\ntime = [0.0]\n"
-     "speed_rpm = [100.0]\n",
-     4, "drivers[0].node", "a node whose rz is free (not fixed by [[constraints]]), for a driver",
+    {"DriverOnAConstrainedDof", speed_driver("input.4"), 4, "drivers[0].node",
+     "a node whose rz is free (not fixed by [[constraints]]), for a driver",
      "\"input.4\", whose rz constraints[0] fixes: a driver on a constrained DOF",
      "remove \"rz\" from constraints[0].dofs"},
-    {"DriverOnAShaftWithoutTorsion",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"output.1\"\ntype = \"speed\"\ntime = [0.0]\n"
-     "speed_rpm = [100.0]\n",
-     4, "drivers[0].node", "rotation about its spin axis (rz) is a DOF, for a driver",
+    {"DriverOnAShaftWithoutTorsion", speed_driver("output.1"), 4, "drivers[0].node",
+     "rotation about its spin axis (rz) is a DOF, for a driver",
      "\"output.1\", whose DOFs are \"lateral\" (no torsion)", "set the `dofs` of shaft \"output\""},
     {"TwoDriversOnOneNode",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"input.0\"\ntype = \"speed\"\ntime = [0.0]\n"
-     "speed_rpm = [100.0]\n[[drivers]]\nname = \"e\"\nnode = \"input.0\"\ntype = \"motor\"\n"
-     "motor_speed_rpm = [0.0]\nmotor_torque = [1.0]\n",
+     speed_driver("input.0") + "[[drivers]]\nname = \"e\"\nnode = \"input.0\"\ntype = \"motor\"\n"
+                               "motor_speed_rpm = [0.0]\nmotor_torque = [1.0]\n",
      10, "drivers[1].node", "a node that no other driver drives",
      "\"input.0\", already driven by drivers[0] (\"d\")"},
     {"DriverSpeedTableLengths",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"input.0\"\ntype = \"speed\"\ntime = [0.0, 1.0]\n"
-     "speed_rpm = [100.0]\n",
+     head("drivers", "d", "node", "input.0") + "type = \"speed\"\ntime = [0.0, 1.0]\n"
+                                               "speed_rpm = [100.0]\n",
      7, "drivers[0].speed_rpm", "2 values, one per 'time' entry", "1 value"},
     {"DriverTimesNotIncreasing",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"input.0\"\ntype = \"speed\"\ntime = [0.0, 1.0, 0.5]\n"
-     "speed_rpm = [1.0, 2.0, 3.0]\n",
+     head("drivers", "d", "node", "input.0") + "type = \"speed\"\ntime = [0.0, 1.0, 0.5]\n"
+                                               "speed_rpm = [1.0, 2.0, 3.0]\n",
      6, "drivers[0].time[2]", "values must increase", "0.5"},
-    {"DriverWithoutType", "\n[[drivers]]\nname = \"d\"\nnode = \"input.0\"\n", 2, "drivers[0].type",
+    {"DriverWithoutType", head("drivers", "d", "node", "input.0"), 2, "drivers[0].type",
      "the key 'type'", "without it"},
-    {"MotorKeyInASpeedDriver",
-     "\n[[drivers]]\nname = \"d\"\nnode = \"input.0\"\ntype = \"speed\"\ntime = [0.0]\n"
-     "speed_rpm = [100.0]\ninertia = 1e-3\n",
-     8, "drivers[0].inertia", "a key of [[drivers]] with type = \"speed\"", "'inertia'",
+    {"MotorKeyInASpeedDriver", speed_driver("input.0") + "inertia = 1e-3\n", 8,
+     "drivers[0].inertia", "a key of [[drivers]] with type = \"speed\"", "'inertia'",
      "'inertia' is a key of type = \"motor\" only"},
     {"LoadOnANodeWithoutRz", "\n[[loads]]\nname = \"l\"\nnode = \"output.0\"\ntorque = 5\n", 4,
      "loads[0].node", "rz) is a DOF, for a load torque", "\"output.0\""},

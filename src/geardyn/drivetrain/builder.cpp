@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "geardyn/core/units.hpp"
 #include "geardyn/elements/bolted_joint.hpp"
 #include "geardyn/elements/bushing.hpp"
 #include "geardyn/elements/contact_law.hpp"
@@ -347,6 +348,46 @@ model::Model without_mesh_springs(const model::Model& model) {
   return m;
 }
 
+namespace {
+
+// A crossed-axis mesh (bevel, hypoid: the equivalent spiral bevel at mid face, the hypoid offset
+// in the pair's LTCA) is located at its mid-face pitch point, r_p1 = r_b1 / cos(alpha_t) from
+// gear 1's node along the mesh direction. That point must lie on gear 2 too: in gear 2's
+// transverse plane through its node, at r_p2 = r_b2 / cos(alpha_t) from its axis, within
+// kConsistencyTolerance of r_p2 (as the parallel-axis centre distance, fe/gear_mesh_element.cpp):
+// otherwise the lever arms of the two gears are not those of one contact point.
+void check_crossed_axes_pitch_point(const model::GearMesh& g, const fe::NodeInfo& a,
+                                    const fe::NodeInfo& b, const fe::GearMeshGeometry& geo,
+                                    const std::string& key) {
+  if (g.type != model::GearType::StraightBevel && g.type != model::GearType::SpiralBevel &&
+      g.type != model::GearType::Hypoid)
+    return;
+  const double r_p2 = g.base_radius2 / std::cos(geo.transverse_pressure_angle);
+  const Eigen::Vector3d a2 = b.frame.col(2);
+  const Eigen::Vector3d arm = geo.pitch_point - b.position;
+  const double axial = arm.dot(a2);
+  const double radial = (arm - axial * a2).norm();
+  const double distance = std::hypot(radial - r_p2, axial);
+  const double tolerance = fe::kConsistencyTolerance * r_p2;
+  if (distance <= tolerance) return;
+  throw InputError(
+      g.where, key + ".gear2",
+      fmt::format("the mesh's mid-face pitch point, {:.6g} m from node '{}' along the mesh "
+                  "direction (r_b1 / cos(alpha_t), alpha_t = {:.6g} deg), in the transverse "
+                  "plane of node '{}' at r_b2 / cos(alpha_t) = {:.6g} m from its axis, within "
+                  "{:.3g} m",
+                  geo.pitch_radius1, a.name, geo.transverse_pressure_angle / units::kRadPerDegree,
+                  b.name, r_p2, tolerance),
+      fmt::format("the pitch point at ({:.6g}, {:.6g}, {:.6g}) m, {:.6g} m from that point "
+                  "({:.6g} m from the axis, {:.6g} m off the plane) in mesh '{}'",
+                  geo.pitch_point.x(), geo.pitch_point.y(), geo.pitch_point.z(), distance, radial,
+                  axial, g.name),
+      "move the gear nodes (shafts[].origin, the element lengths) or correct base_radius1, "
+      "base_radius2, helix_angle_deg or mesh_direction");
+}
+
+}  // namespace
+
 MeshRows mesh_rows(const model::Model& model, const fe::LinearSystem& system, std::size_t index) {
   model::GearMesh g = model.gear_meshes.at(index);
   g.flank = model::Flank::Drive;
@@ -356,6 +397,7 @@ MeshRows mesh_rows(const model::Model& model, const fe::LinearSystem& system, st
   const fe::NodeInfo& a = system.dofs.node(n1);
   const fe::NodeInfo& b = system.dofs.node(n2);
   const fe::GearMeshGeometry geo = fe::gear_mesh_geometry(g, a, b, key);
+  check_crossed_axes_pitch_point(g, a, b, geo, key);
   const fe::Vector12d v = fe::gear_mesh_vector(geo, a, b);
   MeshRows rows;
   for (int k = 0; k < 12; ++k) {

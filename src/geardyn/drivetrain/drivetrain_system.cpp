@@ -110,10 +110,6 @@ void DrivetrainSystem::add_loads(double t, const Eigen::VectorXd& q, const Eigen
   }
 }
 
-double DrivetrainSystem::target_angle(std::size_t driver, double t) const {
-  return p_.speed_drivers[driver].angle(t);
-}
-
 void DrivetrainSystem::free_residual(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                      const Eigen::VectorXd& a, Eigen::VectorXd& r) const {
   r.setZero(size());
@@ -127,10 +123,9 @@ void DrivetrainSystem::residual(double t, const Eigen::VectorXd& q, const Eigen:
   free_residual(static_ ? static_time_ : t, q, v, a, r);
   const double ws = p_.servo_frequency;
   if (static_) {
-    for (std::size_t k = 0; k < p_.speed_drivers.size(); ++k) {
-      const int e = p_.speed_drivers[k].equation;
-      r[e] = held_mass_[static_cast<std::size_t>(e)] * ws * ws *
-             (q[e] - target_angle(k, static_time_));
+    for (const SpeedDriver& d : p_.speed_drivers) {
+      const int e = d.equation;
+      r[e] = held_mass_[static_cast<std::size_t>(e)] * ws * ws * (q[e] - d.angle(static_time_));
     }
     for (const Motor& m : p_.motors)
       r[m.equation] = held_mass_[static_cast<std::size_t>(m.equation)] * ws * ws * q[m.equation];

@@ -120,7 +120,6 @@ class DrivetrainSystem final : public transient::SecondOrderSystem {
                     Eigen::VectorXd& r) const;
   void add_loads(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                  const Eigen::VectorXd& a, Eigen::VectorXd& r) const;
-  double target_angle(std::size_t driver, double t) const;
 
   DrivetrainParts p_;
   std::vector<int> held_, held_static_;

@@ -16,6 +16,9 @@ std::string format_number(double value) {
   // back the very double that was computed; printf's %g would either lose digits or pad noise.
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  // Below 1e-300 in magnitude (subnormals such as 4.9e-324, and -0) is round-off of a zero:
+  // written as 0, which every CSV reader parses (std::stod throws out_of_range on subnormals).
+  if (std::abs(value) < kZeroBelow) return "0";
   std::array<char, 32> buffer{};
   const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
   return std::string(buffer.data(), result.ptr);

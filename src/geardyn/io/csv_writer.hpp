@@ -11,8 +11,12 @@
 
 namespace geardyn::io {
 
+/// Magnitudes below this are written as "0" by format_number.
+inline constexpr double kZeroBelow = 1e-300;
+
 /// Shortest decimal text that reads back to exactly `value` ("0.1", "1e-07", "12345.678").
-/// NaN is written as "nan" (whatever its sign bit), infinities as "inf" / "-inf".
+/// NaN is written as "nan" (whatever its sign bit), infinities as "inf" / "-inf"; a magnitude
+/// below kZeroBelow (subnormal round-off, -0) as "0".
 std::string format_number(double value);
 
 /// A speed in rpm to 12 significant digits, then in its shortest form: speeds are computed in
