@@ -293,23 +293,14 @@ std::vector<std::shared_ptr<const elements::ForceElement>> mesh_elements(const m
   return out;
 }
 
-void static_rows(const drivetrain::DrivetrainSystem& system, const Eigen::VectorXd& v0,
-                 DrivetrainTransientResult& r) {
-  const auto& p = system.parts();
-  for (std::size_t k = 0; k < p.elements.size(); ++k) {
-    const Eigen::VectorXd f = system.element_force(k, 0.0, r.equilibrium.q, v0);
-    for (Eigen::Index i = 0; i < f.size(); ++i) {
-      r.static_rows_element.push_back(p.elements[k].kind + " '" + p.elements[k].name + "'");
-      r.static_rows_quantity.push_back(fmt::format("force on coordinate {}", i));
-      r.static_rows_unit.push_back("N or N m");
-      r.static_rows_value.push_back(f[i]);
-    }
-  }
-  for (std::size_t k = 0; k < r.equilibrium.held_torques.size(); ++k) {
-    r.static_rows_element.push_back(r.held_names[k]);
-    r.static_rows_quantity.push_back("holding torque");
-    r.static_rows_unit.push_back("N m");
-    r.static_rows_value.push_back(r.equilibrium.held_torques[k]);
+void static_rows(const drivetrain::DrivetrainSystem& system, const fe::DofMap& dofs,
+                 const Eigen::VectorXd& v0, DrivetrainTransientResult& r) {
+  for (const drivetrain::StaticRow& row :
+       drivetrain::static_table(system, dofs, 0.0, v0, r.equilibrium, r.held_names)) {
+    r.static_rows_element.push_back(row.element);
+    r.static_rows_quantity.push_back(row.quantity);
+    r.static_rows_unit.push_back(row.unit);
+    r.static_rows_value.push_back(row.value);
   }
 }
 
@@ -351,8 +342,10 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   const Eigen::VectorXd v0 = drivetrain::rigid_spin(sys, bo.initial_reference_speed);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(system.size());
   if (s.static_start) {
-    r.equilibrium = drivetrain::solve_static(system, 0.0, q, v0);
-    static_rows(system, v0, r);
+    drivetrain::StaticOptions options;
+    options.equation_names = drivetrain::equation_names(sys.dofs);
+    r.equilibrium = drivetrain::solve_static(system, 0.0, q, v0, options);
+    static_rows(system, sys.dofs, v0, r);
     if (r.equilibrium.status != Status::Ok) {
       r.status = r.equilibrium.status;
       r.message = r.equilibrium.message;
