@@ -386,19 +386,21 @@ void project(SpiderSystem& out, const solid::SolidSystem& sys, const Constraints
     out.dofs[static_cast<std::size_t>(e.n_free + k)] = con.row_info[static_cast<std::size_t>(k)];
 }
 
-/// Masters and points: spiders in order, then sensor sets.
-void add_points(SpiderSystem& out, const model::Solid& solid, const fe::DofMap& rotor,
-                const SpiderPoints& sp, const std::vector<SensorSet>& sensor_sets,
-                const Constraints& con, const Elimination& e) {
+/// Masters and points: spiders in order, then sensor sets. `position`: coordinate of each solid
+/// DOF (rigid masters), `u_offset`: coordinate of constraint row 0.
+void add_points(std::vector<int>& masters, std::vector<fe::SuperelementPoint>& points,
+                const model::Solid& solid, const fe::DofMap& rotor, const SpiderPoints& sp,
+                const std::vector<SensorSet>& sensor_sets, const Constraints& con,
+                const std::vector<int>& position, int u_offset) {
   for (std::size_t k = 0; k < solid.spiders.size(); ++k) {
     fe::SuperelementPoint point;
     point.node = solid.spiders[k].node;
-    out.points.push_back(point);
+    points.push_back(point);
     for (int c = 0; c < 6; ++c)
-      out.masters.push_back(
+      masters.push_back(
           solid.spiders[k].kind == model::SpiderKind::Rigid
-              ? e.position[static_cast<std::size_t>(con.rigid_x[k][static_cast<std::size_t>(c)])]
-              : e.n_free + con.first_row[k] + c);
+              ? position[static_cast<std::size_t>(con.rigid_x[k][static_cast<std::size_t>(c)])]
+              : u_offset + con.first_row[k] + c);
   }
   double common_ratio = rotor.node(sp.rotor_node.front()).speed_ratio;
   for (int node : sp.rotor_node)
@@ -410,8 +412,8 @@ void add_points(SpiderSystem& out, const model::Solid& solid, const fe::DofMap& 
     point.position = con.sensor_position[s];
     point.speed_ratio = common_ratio;
     point.components = {true, true, true, false, false, false};
-    out.points.push_back(point);
-    for (int c = 0; c < 3; ++c) out.masters.push_back(e.n_free + con.sensor_first_row[s] + c);
+    points.push_back(point);
+    for (int c = 0; c < 3; ++c) masters.push_back(u_offset + con.sensor_first_row[s] + c);
   }
 }
 
@@ -422,84 +424,160 @@ bool has_joined_solids(const model::Model& model) {
                      [](const model::Solid& s) { return !s.spiders.empty(); });
 }
 
-SpiderSystem spider_system(const model::Model& model, const model::Solid& solid,
-                           const SolidComponent& built, Progress& progress) {
-  const std::string base = fmt::format("solids[{}]", index_of(model, solid));
+namespace {
+
+/// Everything both coupling paths start from: the solid assembled with its spider elements,
+/// the constraint rows (checked independent) and the rigid masters.
+struct Coupling {
+  std::string base;
+  fe::DofMap rotor;
+  SpiderPoints sp;
+  std::vector<SensorSet> sensor_sets;
+  solid::SolidSystem system;
+  Constraints con;
+  UsedColumns used;
+  Pivots pivots;
+};
+
+Coupling coupling_of(const model::Model& model, const model::Solid& solid,
+                     const SolidComponent& built, Progress& progress) {
+  Coupling c;
+  c.base = fmt::format("solids[{}]", index_of(model, solid));
   if (!built.has_mesh())
-    throw InputError(solid.where, base + ".spiders",
+    throw InputError(solid.where, c.base + ".spiders",
                      "a solid with a mesh (type mesh, annular_plate or gear_sector)",
                      fmt::format("a solid of type \"{}\"", built.kind()),
                      "join the mesh the component was reduced from");
   if (solid.spiders.empty())
     throw std::logic_error("spider_system: solid '" + solid.name + "' has no spiders");
-  const fe::DofMap rotor = fe::DofMap::build(model);
-
-  SpiderSystem out;
+  c.rotor = fe::DofMap::build(model);
   // Spider reference nodes and their rigid elements; the sensor sets of this solid.
-  const SpiderPoints sp = spider_points(solid, built, rotor, base);
-  const std::vector<SensorSet> sensor_sets = sensor_sets_of(model, solid, sp.mesh);
+  c.sp = spider_points(solid, built, c.rotor, c.base);
+  c.sensor_sets = sensor_sets_of(model, solid, c.sp.mesh);
 
   solid::AssemblyOptions options;
   options.threads = 0;
   options.progress = &progress;
-  out.system = solid::assemble(sp.mesh, options);
-  const solid::SolidSystem& sys = out.system;
+  c.system = solid::assemble(c.sp.mesh, options);
+  const solid::SolidSystem& sys = c.system;
   const int n = sys.num_dofs();
   const RowSparse recovery = sys.recovery;
 
-  Constraints con;
-  con.rigid_x.resize(solid.spiders.size());
-  con.first_row.assign(solid.spiders.size(), -1);
-  add_spider_rows(con, solid, sp, sys, recovery, base);
-  add_sensor_rows(con, sensor_sets, sp, sys, recovery);
-
-  // Change of variables x = S z, z = [x_F; u]: pivots D among the non-master columns of A.
-  const UsedColumns used = used_columns_of(con, n);
-  const Pivots pivots = pivot_columns(con, used, n, solid, sensor_sets, base);
-  Elimination e = eliminate(con, used, pivots, n);
-  out.transform = std::move(e.transform);
-  project(out, sys, con, e);
-  add_points(out, solid, rotor, sp, sensor_sets, con, e);
-
-  const Eigen::Vector3d p = sp.mesh.coords[static_cast<std::size_t>(sp.reference.front())];
-  const Eigen::MatrixXd R = rigid_modes(out.dofs, p);
-  out.rigid_mass = R.transpose() * (out.M * R);
-  return out;
+  c.con.rigid_x.resize(solid.spiders.size());
+  c.con.first_row.assign(solid.spiders.size(), -1);
+  add_spider_rows(c.con, solid, c.sp, sys, recovery, c.base);
+  add_sensor_rows(c.con, c.sensor_sets, c.sp, sys, recovery);
+  // The rows must be independent on the non-master columns (else: which point is redundant).
+  c.used = used_columns_of(c.con, n);
+  c.pivots = pivot_columns(c.con, c.used, n, solid, c.sensor_sets, c.base);
+  return c;
 }
 
-CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
-                          const SolidComponent& built, Progress& progress) {
-  const std::string base = fmt::format("solids[{}]", index_of(model, solid));
-  SpiderSystem ss = spider_system(model, solid, built, progress);
-  const int n_interior = static_cast<int>(ss.dofs.size() - ss.masters.size());
+/// Mass matrix of the rigid body about point p from the rigid-body motions of `dofs`.
+Eigen::Matrix<double, 6, 6> rigid_mass_of(const Eigen::SparseMatrix<double>& M,
+                                          const std::vector<solid::DofInfo>& dofs,
+                                          const Eigen::Vector3d& p) {
+  const Eigen::MatrixXd R = rigid_modes(dofs, p);
+  return R.transpose() * (M * R);
+}
+
+/// The joined solid reduced by Craig-Bampton with the constraint rows kept as constraints
+/// (reduce::craig_bampton with InterfaceConstraints): coordinates [x; u], no elimination.
+struct ConstrainedReduction {
+  reduce::ReducedComponent reduced;
+  std::vector<fe::SuperelementPoint> points;
+  Eigen::SparseMatrix<double> transform;  ///< x = [I 0] [x; u]
+  Eigen::Matrix<double, 6, 6> rigid_mass;
+};
+
+/// The constraint rows as InterfaceConstraints, the masters as indices into [x; u] and the points.
+reduce::InterfaceConstraints constraints_of(const Coupling& c, const model::Solid& solid,
+                                            std::vector<int>& masters,
+                                            std::vector<fe::SuperelementPoint>& points) {
+  const int n = c.system.num_dofs();
+  reduce::InterfaceConstraints constraints;
+  constraints.A.resize(c.con.n_rows, n);
+  constraints.A.setFromTriplets(c.con.a.begin(), c.con.a.end());
+  constraints.dofs = c.con.row_info;
+  std::vector<int> identity(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) identity[static_cast<std::size_t>(j)] = j;
+  add_points(masters, points, solid, c.rotor, c.sp, c.sensor_sets, c.con, identity, n);
+  return constraints;
+}
+
+ConstrainedReduction reduce_constrained(const model::Model& model, const model::Solid& solid,
+                                        const SolidComponent& built, Progress& progress) {
+  const Coupling c = coupling_of(model, solid, built, progress);
+  const solid::SolidSystem& sys = c.system;
+  const int n = sys.num_dofs();
+  ConstrainedReduction out;
+  std::vector<int> masters;
+  const reduce::InterfaceConstraints constraints = constraints_of(c, solid, masters, out.points);
+
+  const int n_interior = n - static_cast<int>(masters.size());
   if (solid.coupling_modes > n_interior)
-    throw InputError(solid.where, base + ".coupling_modes",
+    throw InputError(solid.where, c.base + ".coupling_modes",
                      fmt::format("at most {} (the DOFs of the solid that are not spider or "
                                  "sensor points)",
                                  n_interior),
                      std::to_string(solid.coupling_modes));
   reduce::CraigBamptonOptions options;
   options.n_modes = solid.coupling_modes;
-  CoupledSolid out;
-  out.name = solid.name;
   try {
-    out.reduced = reduce::craig_bampton(ss.K, ss.M, ss.dofs, ss.masters, options,
+    out.reduced = reduce::craig_bampton(sys.K, sys.M, sys.dofs, constraints, masters, options,
                                         built.source_sha256, {}, progress);
   } catch (const InputError& e) {
     // The masters are the spider points: a free interior is a solid the spiders do not hold.
-    throw InputError(solid.where, base + ".spiders",
+    throw InputError(solid.where, c.base + ".spiders",
                      "spiders that hold every rigid-body motion of the solid and of each of its "
                      "parts",
                      e.found(),
                      "join every part of the solid through node sets that fix its motion (a set "
                      "of at least 3 nodes not on one line), or fix it with fixed_sets");
   }
-  out.transform = std::move(ss.transform);
-  out.rigid_mass = ss.rigid_mass;
+  std::vector<Eigen::Triplet<double>> t;
+  for (int j = 0; j < n; ++j) t.emplace_back(j, j, 1.0);
+  out.transform.resize(n, n + c.con.n_rows);
+  out.transform.setFromTriplets(t.begin(), t.end());
+  const Eigen::Vector3d p = c.sp.mesh.coords[static_cast<std::size_t>(c.sp.reference.front())];
+  out.rigid_mass = rigid_mass_of(sys.M, sys.dofs, p);
+  return out;
+}
+
+}  // namespace
+
+SpiderSystem spider_system(const model::Model& model, const model::Solid& solid,
+                           const SolidComponent& built, Progress& progress) {
+  Coupling c = coupling_of(model, solid, built, progress);
+  SpiderSystem out;
+  std::vector<fe::SuperelementPoint> points;
+  out.constraints = constraints_of(c, solid, out.constrained_masters, points);
+  out.system = std::move(c.system);
+  const solid::SolidSystem& sys = out.system;
+  const int n = sys.num_dofs();
+  // Change of variables x = S z, z = [x_F; u]: pivots D among the non-master columns of A.
+  Elimination e = eliminate(c.con, c.used, c.pivots, n);
+  out.transform = std::move(e.transform);
+  project(out, sys, c.con, e);
+  add_points(out.masters, out.points, solid, c.rotor, c.sp, c.sensor_sets, c.con, e.position,
+             e.n_free);
+  const Eigen::Vector3d p = c.sp.mesh.coords[static_cast<std::size_t>(c.sp.reference.front())];
+  out.rigid_mass = rigid_mass_of(out.M, out.dofs, p);
+  return out;
+}
+
+CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
+                          const SolidComponent& built, Progress& progress) {
+  ConstrainedReduction cr = reduce_constrained(model, solid, built, progress);
+  CoupledSolid out;
+  out.name = solid.name;
+  out.reduced = std::move(cr.reduced);
+  out.transform = std::move(cr.transform);
+  out.rigid_mass = cr.rigid_mass;
 
   fe::Superelement& body = out.body;
   body.name = solid.name;
-  body.points = ss.points;
+  body.points = cr.points;
   body.n_generalized = out.reduced.n_modal;
   body.K = 0.5 * (out.reduced.K + out.reduced.K.transpose());
   body.M = 0.5 * (out.reduced.M + out.reduced.M.transpose());
@@ -525,7 +603,7 @@ CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
                                    rotation.transpose();
   }
 
-  const int n_sensors = static_cast<int>(ss.points.size() - solid.spiders.size());
+  const int n_sensors = static_cast<int>(cr.points.size() - solid.spiders.size());
   out.description = fmt::format(
       "joined to the rotor by {} spider{}{}: {} fixed-interface mode{}{}, mass {:.6g} kg, "
       "polar inertia {:.6g} kg m^2{}",

@@ -11,14 +11,18 @@
 //                                (solid/assembly.hpp). The set keeps its own flexibility.
 //   sensor set s:                u_s = A_s x = sum_{i in set} u_i / n (translations, global).
 //
-// The constraint rows A (averaging spiders and sensors, stacked) are made coordinates by a change
-// of variables: r pivot DOFs D of the solid (column-pivoted QR of A, rigid masters excluded) are
-// eliminated, x_D = A_D^-1 (u - A_F x_F), so that z = [x_F; u] describes every motion and u
-// is exact: x = S z. Craig-Bampton then reduces (S^T K S, S^T M S) with the masters
+// The constraint rows A (averaging spiders and sensors, stacked, r in all) stay constraints:
+// couple_solid reduces (K, M) of the solid by Craig-Bampton with interface constraints
+// (reduce::craig_bampton with InterfaceConstraints, docs/theory.md §9) with the masters
 //   q = [u_r1 (6), ..., u_rk (6), u_s1 (3), ...; eta (coupling_modes fixed-interface modes)],
-// fixed-interface meaning all spider and sensor points held. With all masters free the
-// constraint modes contain the six rigid-body motions, so the body's inertia is exact for any
-// number of modes; an averaging spider does not stiffen the set.
+// fixed-interface meaning all spider and sensor points held, using sparse factorisations only.
+// With all masters free the constraint modes contain the six rigid-body motions, so the body's
+// inertia is exact for any number of modes; an averaging spider does not stiffen the set.
+// spider_system builds the equivalent eliminated form: r pivot DOFs D of the solid (column-
+// pivoted QR of A, rigid masters excluded) are eliminated, x_D = A_D^-1 (u - A_F x_F), so that
+// z = [x_F; u] describes every motion, x = S z. Its S^T K S is the exact unreduced body, but
+// every pivot depends on its whole node set, so it fills in set x set (90 % dense on the
+// benchmark housing): it serves checks, not the reduction.
 //
 // Rotor side: spider points join the rotor node's 6 DOFs (rotated from global axes into the node
 // frame), sensor points become new nodes "<solid>/<node_set>" (translations only, global axes),
@@ -36,13 +40,14 @@
 #include "geardyn/core/progress.hpp"
 #include "geardyn/fe/superelement.hpp"
 #include "geardyn/model/model.hpp"
+#include "geardyn/reduce/craig_bampton.hpp"
 #include "geardyn/reduce/reduced_component.hpp"
 #include "geardyn/solid/mesh.hpp"
 
 namespace geardyn::assembly {
 
-/// A solid's matrices in the coupling coordinates z = [x_F; u] (see the file comment), before
-/// Craig-Bampton: what the reduction starts from, and the exact (unreduced) body for checks.
+/// A solid's matrices in the eliminated coordinates z = [x_F; u] (see the file comment): the
+/// exact (unreduced) body for checks. Dense in set x set for averaging spiders on large sets.
 struct SpiderSystem {
   Eigen::SparseMatrix<double> K, M;  ///< S^T K S, S^T M S (symmetric)
   std::vector<solid::DofInfo> dofs;  ///< of z (u entries: the reference / sensor node ids)
@@ -51,6 +56,10 @@ struct SpiderSystem {
   std::vector<fe::SuperelementPoint> points;  ///< spider points, then sensor points
   Eigen::SparseMatrix<double> transform;      ///< S: solid DOFs (SolidSystem) x = S z
   solid::SolidSystem system;                  ///< the solid assembled with its spiders
+  /// The same without elimination: A x = u on the solid DOFs x (averaging spiders and sensors)
+  /// and the masters as indices into [x; u] (what couple_solid reduces).
+  reduce::InterfaceConstraints constraints;
+  std::vector<int> constrained_masters;
   /// Mass matrix of the rigid body about the first spider point in global axes,
   /// [m I, -m S(c); m S(c), J] (c: centre of mass from the point).
   Eigen::Matrix<double, 6, 6> rigid_mass = Eigen::Matrix<double, 6, 6>::Zero();
@@ -59,9 +68,11 @@ struct SpiderSystem {
 /// A joined solid, reduced.
 struct CoupledSolid {
   std::string name;
-  fe::Superelement body;                  ///< what fe::assemble adds to the rotor system
-  reduce::ReducedComponent reduced;       ///< the Craig-Bampton reduction of SpiderSystem (z = T q)
-  Eigen::SparseMatrix<double> transform;  ///< S: solid DOFs x = S z
+  fe::Superelement body;  ///< what fe::assemble adds to the rotor system
+  /// Craig-Bampton with interface constraints: full coordinates z = [x; u] (solid DOFs, then
+  /// the constrained spider and sensor coordinates), z = T q.
+  reduce::ReducedComponent reduced;
+  Eigen::SparseMatrix<double> transform;  ///< S = [I 0]: solid DOFs x = S z
   Eigen::Matrix<double, 6, 6> rigid_mass = Eigen::Matrix<double, 6, 6>::Zero();
   double polar_inertia = 0;  ///< Ip used for the gyroscopic matrix [kg m^2] (0: none added)
   std::string description;   ///< one line: points, modes, mass, highest kept mode

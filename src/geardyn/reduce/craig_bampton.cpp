@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -13,6 +14,7 @@
 #include "geardyn/core/units.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
+#include "geardyn/reduce/constrained_modes.hpp"
 
 namespace geardyn::reduce {
 
@@ -196,15 +198,19 @@ std::string describe_motion(const Eigen::VectorXd& phi, const std::vector<solid:
                      describe_dof(info[static_cast<std::size_t>(peak)]));
 }
 
+// The fixed-interface eigen-solve: eig::solve_symmetric on (K_ii, M_ii), or solve_constrained
+// with the interface constraints.
+using EigenSolve = std::function<eig::SymmetricEigenResult(const eig::SymmetricEigenOptions&)>;
+
 // Builds the error for a singular (or indefinite) K_ii from the lowest fixed-interface modes.
-[[noreturn]] void throw_free_motion(const SparseMatrix& Kii, const SparseMatrix& Mii,
+[[noreturn]] void throw_free_motion(const EigenSolve& solve,
                                     const std::vector<solid::DofInfo>& info, double threshold,
                                     const CraigBamptonOptions& options) {
   eig::SymmetricEigenOptions eo;
-  eo.n_modes = static_cast<int>(std::min<Eigen::Index>(12, Kii.rows()));
+  eo.n_modes = static_cast<int>(std::min<std::size_t>(12, info.size()));
   eo.dense_limit = options.dense_limit;
   eo.krylov = options.krylov;
-  const auto r = eig::solve_symmetric(Kii, Mii, eo);
+  const auto r = solve(eo);
   const std::string hint =
       "make DOFs of the free part masters (or constrain them), or connect the part to the rest "
       "of the model";
@@ -303,7 +309,7 @@ DofPartition partition_dofs(Eigen::Index n, const std::vector<solid::DofInfo>& d
 
 // Fixed-interface modes (into lambda and Phi); with none wanted, the lowest one alone, to test
 // for free motions. Returns the free-motion threshold on the eigenvalues.
-double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
+double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp, const EigenSolve& solve,
                              const std::vector<solid::DofInfo>& interior_info,
                              const CraigBamptonOptions& options, ReducedComponent& rc,
                              Eigen::VectorXd& lambda, Eigen::MatrixXd& Phi) {
@@ -322,11 +328,11 @@ double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
     eo.n_modes = std::max(options.n_modes, 1);
   }
   const double threshold = options.mechanism_tolerance * spectrum_scale(Kp.ii, Mp.ii);
-  const auto er = eig::solve_symmetric(Kp.ii, Mp.ii, eo);
+  const auto er = solve(eo);
   // A free motion first: it also spoils convergence and residuals, and is the real cause.
   if (er.status == Status::Singular ||
       (er.eigenvalues.size() > 0 && er.eigenvalues[0] <= threshold))
-    throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+    throw_free_motion(solve, interior_info, threshold, options);
   if (er.status != Status::Ok)
     throw NumericalError(
         "craig_bampton",
@@ -336,10 +342,10 @@ double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
     eig::SymmetricEigenOptions check = eo;
     check.band_min = check.band_max = eig::kNaN;
     check.n_modes = 1;
-    const auto lowest = eig::solve_symmetric(Kp.ii, Mp.ii, check);
+    const auto lowest = solve(check);
     if (lowest.status == Status::Singular ||
         (lowest.eigenvalues.size() > 0 && lowest.eigenvalues[0] <= threshold))
-      throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+      throw_free_motion(solve, interior_info, threshold, options);
     if (lowest.status != Status::Ok)
       throw NumericalError("craig_bampton", "lowest fixed-interface mode (mechanism check): " +
                                                 lowest.brief_report());
@@ -355,7 +361,7 @@ double fixed_interface_modes(const Blocks& Kp, const Blocks& Mp,
 }
 
 // Constraint modes (into Psi): one Cholesky factorisation of K_ii, block solves.
-void constraint_modes(const Blocks& Kp, const Blocks& Mp,
+void constraint_modes(const Blocks& Kp, const EigenSolve& solve,
                       const std::vector<solid::DofInfo>& interior_info, double threshold,
                       const CraigBamptonOptions& options, Progress& progress,
                       Eigen::MatrixXd& Psi) {
@@ -363,7 +369,7 @@ void constraint_modes(const Blocks& Kp, const Blocks& Mp,
   linalg::SymmetricFactorization factorization;
   const Status fs = factorization.compute(Kp.ii);
   if (fs != Status::Ok || factorization.kind() != linalg::FactorizationKind::Cholesky)
-    throw_free_motion(Kp.ii, Mp.ii, interior_info, threshold, options);
+    throw_free_motion(solve, interior_info, threshold, options);
   const Eigen::Index bs = options.block_size;
   const auto n_blocks = static_cast<std::size_t>((nb + bs - 1) / bs);
   progress.start("craig_bampton: constraint modes", n_blocks);
@@ -406,72 +412,58 @@ Eigen::MatrixXd project(const Blocks& A, const Eigen::MatrixXd& Psi, const Eigen
 
 }  // namespace
 
-ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
-                               const std::vector<solid::DofInfo>& dofs,
-                               const std::vector<int>& master_dofs,
-                               const CraigBamptonOptions& options, const std::string& source_sha256,
-                               const std::string& geardyn_version, Progress& progress) {
-  check_input(K, M, dofs, options);
-  const Eigen::Index n = K.rows();
+namespace {
 
-  const DofPartition dp = partition_dofs(n, dofs, master_dofs);
-  const std::vector<bool>& is_master = dp.is_master;
-  const std::vector<int>& local = dp.local;
-  const std::vector<int>& interior = dp.interior;
-  const auto nb = static_cast<Eigen::Index>(master_dofs.size());
-  const auto ni = static_cast<Eigen::Index>(interior.size());
+// The fields every reduction sets before the solves: recovery indices and provenance.
+ReducedComponent start_component(const std::vector<solid::DofInfo>& dofs,
+                                 const std::vector<int>& master_dofs, const DofPartition& dp,
+                                 const CraigBamptonOptions& options,
+                                 const std::string& source_sha256,
+                                 const std::string& geardyn_version) {
   const bool band = !std::isnan(options.frequency_max_hz);
-  if (!band && options.n_modes > ni)
-    throw InputError({}, std::string(kKey) + ".n_modes",
-                     fmt::format("at most {} (the number of interior DOFs)", ni),
-                     std::to_string(options.n_modes));
-
-  const Blocks Kp = partition(K, local, is_master, nb, ni);
-  const Blocks Mp = partition(M, local, is_master, nb, ni);
-  std::vector<solid::DofInfo> interior_info;
-  interior_info.reserve(static_cast<std::size_t>(ni));
-  for (int g : interior) interior_info.push_back(dofs[static_cast<std::size_t>(g)]);
-
   ReducedComponent rc;
   rc.full_dofs = dofs;
   rc.master_index = master_dofs;
-  rc.interior_index = interior;
+  rc.interior_index = dp.interior;
   for (int g : master_dofs) rc.masters.push_back(dofs[static_cast<std::size_t>(g)]);
   rc.provenance.method = (band || options.n_modes > 0) ? "craig_bampton" : "guyan";
   rc.provenance.options_json = options.to_json();
   rc.provenance.source_sha256 = source_sha256;
   rc.provenance.geardyn_version = geardyn_version;
   rc.provenance.created_utc = utc_now();
+  return rc;
+}
 
-  Eigen::MatrixXd Psi = Eigen::MatrixXd::Zero(ni, nb);
-  Eigen::MatrixXd Phi(ni, 0);
-  Eigen::VectorXd lambda(0);
-  if (ni > 0) {
-    // A DOF without any stiffness cannot be held by any master: name it directly (the
-    // eigen-solve below could not even run when it has no mass either).
-    const Eigen::VectorXd kd = Kp.ii.diagonal();
-    for (Eigen::Index j = 0; j < ni; ++j)
-      if (!(kd[j] > 0.0))
-        throw InputError(
-            {}, std::string(kKey) + ".master_dofs",
-            "interior DOFs with positive diagonal stiffness",
-            fmt::format("interior DOF {} has K_jj = {:.6g}: it is connected to "
-                        "nothing (or has negative stiffness)",
-                        describe_dof(interior_info[static_cast<std::size_t>(j)]), kd[j]),
-            "make it a master, constrain it or remove it from the model");
+void check_mode_count(const CraigBamptonOptions& options, Eigen::Index available,
+                      const char* what) {
+  if (std::isnan(options.frequency_max_hz) && options.n_modes > available)
+    throw InputError({}, std::string(kKey) + ".n_modes",
+                     fmt::format("at most {} ({})", available, what),
+                     std::to_string(options.n_modes));
+}
 
-    const double threshold = fixed_interface_modes(Kp, Mp, interior_info, options, rc, lambda, Phi);
+// A DOF without any stiffness cannot be held by any master: name it directly (the eigen-solve
+// could not even run when it has no mass either).
+void check_interior_stiffness(const Blocks& Kp, const std::vector<solid::DofInfo>& interior_info) {
+  const Eigen::VectorXd kd = Kp.ii.diagonal();
+  for (Eigen::Index j = 0; j < kd.size(); ++j)
+    if (!(kd[j] > 0.0))
+      throw InputError({}, std::string(kKey) + ".master_dofs",
+                       "interior DOFs with positive diagonal stiffness",
+                       fmt::format("interior DOF {} has K_jj = {:.6g}: it is connected to "
+                                   "nothing (or has negative stiffness)",
+                                   describe_dof(interior_info[static_cast<std::size_t>(j)]), kd[j]),
+                       "make it a master, constrain it or remove it from the model");
+}
 
-    constraint_modes(Kp, Mp, interior_info, threshold, options, progress, Psi);
-  } else {
-    rc.provenance.solver_report = "no interior DOFs";
-  }
-
-  // K_r = T^T K T and M_r = T^T M T by blocks, T = [I 0; Psi Phi]:
-  //   K T = [K_bb + K_bi Psi,  K_bi Phi;  K_ib + K_ii Psi,  K_ii Phi]
-  //   T^T (K T) = [I Psi^T; 0 Phi^T] (K T)
-  // The interior row block of K T is formed a column block at a time, so no n_interior x m
-  // temporary beyond Psi itself is needed.
+// K_r = T^T K T and M_r = T^T M T by blocks, T = [I 0; Psi Phi]:
+//   K T = [K_bb + K_bi Psi,  K_bi Phi;  K_ib + K_ii Psi,  K_ii Phi]
+//   T^T (K T) = [I Psi^T; 0 Phi^T] (K T)
+// The interior row block of K T is formed a column block at a time, so no n_interior x m
+// temporary beyond Psi itself is needed.
+void finish(ReducedComponent& rc, const Blocks& Kp, const Blocks& Mp, Eigen::MatrixXd Psi,
+            Eigen::MatrixXd Phi, const Eigen::VectorXd& lambda,
+            const CraigBamptonOptions& options) {
   const Eigen::Index nm = Phi.cols();
   rc.K = project(Kp, Psi, Phi, options);
   rc.M = project(Mp, Psi, Phi, options);
@@ -481,6 +473,151 @@ ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
     rc.fixed_interface_hz[k] = std::sqrt(std::max(lambda[k], 0.0)) / units::kTwoPi;
   rc.Psi = std::move(Psi);
   rc.Phi = std::move(Phi);
+}
+
+// Constraint modes under interface constraints (into Psi): one factorisation of the saddle-point
+// matrix [K_ii A_i^T; A_i 0], block solves with right-hand sides [-K_ib; -A_b].
+void constrained_constraint_modes(const Blocks& Kp, const SparseMatrix& Ab, const SparseMatrix& Ai,
+                                  const EigenSolve& solve,
+                                  const std::vector<solid::DofInfo>& interior_info,
+                                  double threshold, const CraigBamptonOptions& options,
+                                  Progress& progress, Eigen::MatrixXd& Psi) {
+  const Eigen::Index nb = Psi.cols();
+  SaddlePointSolver saddle;
+  if (saddle.compute(Kp.ii, Ai) != Status::Ok)
+    throw_free_motion(solve, interior_info, threshold, options);
+  const Eigen::Index bs = options.block_size;
+  const auto n_blocks = static_cast<std::size_t>((nb + bs - 1) / bs);
+  progress.start("craig_bampton: constraint modes", n_blocks);
+  for (Eigen::Index c0 = 0, block = 0; c0 < nb; c0 += bs, ++block) {
+    const Eigen::Index w = std::min(bs, nb - c0);
+    const Eigen::MatrixXd B = -Eigen::MatrixXd(Kp.ib.middleCols(c0, w));
+    const Eigen::MatrixXd C = -Eigen::MatrixXd(Ab.middleCols(c0, w));
+    Psi.middleCols(c0, w) = saddle.solve(B, C);
+    progress.update(static_cast<std::size_t>(block + 1));
+  }
+  progress.finish();
+}
+
+// The constraint rows A x - u = 0 split into master columns A_b and interior columns A_i.
+std::pair<SparseMatrix, SparseMatrix> split_constraints(const SparseMatrix& A,
+                                                        const DofPartition& dp, Eigen::Index nb) {
+  const Eigen::Index n = A.cols(), r = A.rows();
+  const auto ni = static_cast<Eigen::Index>(dp.interior.size());
+  std::vector<Eigen::Triplet<double>> tb, ti;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c) {
+    const auto cu = static_cast<std::size_t>(c);
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it)
+      (dp.is_master[cu] ? tb : ti)
+          .emplace_back(static_cast<int>(it.row()), dp.local[cu], it.value());
+  }
+  for (Eigen::Index k = 0; k < r; ++k)
+    tb.emplace_back(static_cast<int>(k), dp.local[static_cast<std::size_t>(n + k)], -1.0);
+  SparseMatrix Ab(r, nb), Ai(r, ni);
+  Ab.setFromTriplets(tb.begin(), tb.end());
+  Ai.setFromTriplets(ti.begin(), ti.end());
+  return {std::move(Ab), std::move(Ai)};
+}
+
+}  // namespace
+
+ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
+                               const std::vector<solid::DofInfo>& dofs,
+                               const std::vector<int>& master_dofs,
+                               const CraigBamptonOptions& options, const std::string& source_sha256,
+                               const std::string& geardyn_version, Progress& progress) {
+  check_input(K, M, dofs, options);
+  const Eigen::Index n = K.rows();
+
+  const DofPartition dp = partition_dofs(n, dofs, master_dofs);
+  const auto nb = static_cast<Eigen::Index>(master_dofs.size());
+  const auto ni = static_cast<Eigen::Index>(dp.interior.size());
+  check_mode_count(options, ni, "the number of interior DOFs");
+
+  const Blocks Kp = partition(K, dp.local, dp.is_master, nb, ni);
+  const Blocks Mp = partition(M, dp.local, dp.is_master, nb, ni);
+  std::vector<solid::DofInfo> interior_info;
+  interior_info.reserve(static_cast<std::size_t>(ni));
+  for (int g : dp.interior) interior_info.push_back(dofs[static_cast<std::size_t>(g)]);
+
+  ReducedComponent rc =
+      start_component(dofs, master_dofs, dp, options, source_sha256, geardyn_version);
+  Eigen::MatrixXd Psi = Eigen::MatrixXd::Zero(ni, nb);
+  Eigen::MatrixXd Phi(ni, 0);
+  Eigen::VectorXd lambda(0);
+  if (ni > 0) {
+    check_interior_stiffness(Kp, interior_info);
+    const EigenSolve solve = [&](const eig::SymmetricEigenOptions& eo) {
+      return eig::solve_symmetric(Kp.ii, Mp.ii, eo);
+    };
+    const double threshold =
+        fixed_interface_modes(Kp, Mp, solve, interior_info, options, rc, lambda, Phi);
+    constraint_modes(Kp, solve, interior_info, threshold, options, progress, Psi);
+  } else {
+    rc.provenance.solver_report = "no interior DOFs";
+  }
+  finish(rc, Kp, Mp, std::move(Psi), std::move(Phi), lambda, options);
+  return rc;
+}
+
+ReducedComponent craig_bampton(const SparseMatrix& K, const SparseMatrix& M,
+                               const std::vector<solid::DofInfo>& dofs,
+                               const InterfaceConstraints& constraints,
+                               const std::vector<int>& master_dofs,
+                               const CraigBamptonOptions& options, const std::string& source_sha256,
+                               const std::string& geardyn_version, Progress& progress) {
+  const Eigen::Index r = constraints.A.rows();
+  if (r == 0)
+    return craig_bampton(K, M, dofs, master_dofs, options, source_sha256, geardyn_version,
+                         progress);
+  check_input(K, M, dofs, options);
+  const Eigen::Index n = K.rows();
+  if (constraints.A.cols() != n || static_cast<Eigen::Index>(constraints.dofs.size()) != r)
+    throw InputError({}, std::string(kKey) + ".constraints",
+                     "constraint rows A with one column per DOF and one DofInfo per row",
+                     fmt::format("A {}x{} for {} DOFs, {} DofInfo", r, constraints.A.cols(), n,
+                                 constraints.dofs.size()));
+  std::vector<solid::DofInfo> all = dofs;
+  all.insert(all.end(), constraints.dofs.begin(), constraints.dofs.end());
+  const DofPartition dp = partition_dofs(n + r, all, master_dofs);
+  for (Eigen::Index k = 0; k < r; ++k)
+    if (!dp.is_master[static_cast<std::size_t>(n + k)])
+      throw InputError({}, std::string(kKey) + ".master_dofs",
+                       "every constrained coordinate u among the masters",
+                       fmt::format("u {} ({}) missing", k,
+                                   describe_dof(constraints.dofs[static_cast<std::size_t>(k)])));
+  const auto nb = static_cast<Eigen::Index>(master_dofs.size());
+  const auto ni = static_cast<Eigen::Index>(dp.interior.size());
+  if (ni < r)
+    throw InputError({}, std::string(kKey) + ".constraints",
+                     fmt::format("at most {} constraint rows (the interior DOFs)", ni),
+                     std::to_string(r));
+  check_mode_count(options, ni - r, "the interior DOFs less the constraint rows");
+
+  // The coordinates u have no stiffness or mass of their own: K and M padded with zeros.
+  SparseMatrix Kx = K, Mx = M;
+  Kx.conservativeResize(n + r, n + r);
+  Mx.conservativeResize(n + r, n + r);
+  const Blocks Kp = partition(Kx, dp.local, dp.is_master, nb, ni);
+  const Blocks Mp = partition(Mx, dp.local, dp.is_master, nb, ni);
+  const auto [Ab, Ai] = split_constraints(constraints.A, dp, nb);
+  std::vector<solid::DofInfo> interior_info;
+  interior_info.reserve(static_cast<std::size_t>(ni));
+  for (int g : dp.interior) interior_info.push_back(all[static_cast<std::size_t>(g)]);
+
+  ReducedComponent rc =
+      start_component(all, master_dofs, dp, options, source_sha256, geardyn_version);
+  Eigen::MatrixXd Psi = Eigen::MatrixXd::Zero(ni, nb);
+  Eigen::MatrixXd Phi(ni, 0);
+  Eigen::VectorXd lambda(0);
+  check_interior_stiffness(Kp, interior_info);
+  const EigenSolve solve = [&](const eig::SymmetricEigenOptions& eo) {
+    return solve_constrained(Kp.ii, Mp.ii, Ai, eo);
+  };
+  const double threshold =
+      fixed_interface_modes(Kp, Mp, solve, interior_info, options, rc, lambda, Phi);
+  constrained_constraint_modes(Kp, Ab, Ai, solve, interior_info, threshold, options, progress, Psi);
+  finish(rc, Kp, Mp, std::move(Psi), std::move(Phi), lambda, options);
   return rc;
 }
 

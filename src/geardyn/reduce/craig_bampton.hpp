@@ -73,6 +73,34 @@ ReducedComponent craig_bampton(
     const CraigBamptonOptions& options = {}, const std::string& source_sha256 = {},
     const std::string& geardyn_version = {}, Progress& progress = null_progress());
 
+/// Linear interface constraints A x = u between the DOFs x of a component and r extra
+/// coordinates u (e.g. the reference points of averaging (RBE3) spiders and sensor points).
+struct InterfaceConstraints {
+  Eigen::SparseMatrix<double> A;     ///< r x n, full row rank on the interior DOFs
+  std::vector<solid::DofInfo> dofs;  ///< of each u (r entries)
+};
+
+/// Craig-Bampton with interface constraints (docs/theory.md §9): the full coordinates are
+/// [x; u] (n + r), `master_dofs` indexes them and must contain every u (n + k for row k); the
+/// interior i is every other x DOF. With the masters q_b given, the constraint modes are the
+/// minimum-energy shapes under A x = u,
+///   [K_ii A_i^T; A_i 0] [Psi; Mu] = [-K_ib; -A_b]      (A x - u = A_i x_i + A_b q_b),
+/// and the fixed-interface modes those of K_ii phi = lambda M_ii phi with A_i phi = 0 (q_b = 0),
+/// both by sparse factorisations of the saddle-point matrix (constrained_modes.hpp), which needs
+/// K_ii positive definite on {A_i x = 0} only: a body held by averaging spiders alone is fine.
+/// This is the reduction of (S^T K S, S^T M S) in coordinates x = S [x_F; u] that eliminate r
+/// pivot DOFs through the constraints, without the fill of S^T K S. The result is in the same
+/// form as above, with full_dofs = [x; u] (u with no stiffness or mass) and Psi, Phi over the
+/// interior x DOFs. With r = 0 it is the plain craig_bampton. Throws as that one, and
+/// InputError when A does not match, a u is not a master or there are more rows than interior
+/// DOFs.
+ReducedComponent craig_bampton(
+    const Eigen::SparseMatrix<double>& K, const Eigen::SparseMatrix<double>& M,
+    const std::vector<solid::DofInfo>& dofs, const InterfaceConstraints& constraints,
+    const std::vector<int>& master_dofs, const CraigBamptonOptions& options = {},
+    const std::string& source_sha256 = {}, const std::string& geardyn_version = {},
+    Progress& progress = null_progress());
+
 /// Components 0..5 (ux, uy, uz, rx, ry, rz) to select; all by default.
 using ComponentMask = std::array<bool, 6>;
 inline constexpr ComponentMask kAllComponents{true, true, true, true, true, true};
