@@ -275,12 +275,20 @@ void compute_frf(const model::Model& model, const fe::LinearSystem& sys,
   std::vector<double> f(static_cast<std::size_t>(s.frf_points));
   for (int i = 0; i < s.frf_points; ++i)
     f[static_cast<std::size_t>(i)] = f_min + (f_max - f_min) * i / (s.frf_points - 1.0);
-  r.frf = drivetrain::modal_frf(L, load, outputs, f, s.frf_modes);
+  r.frf = drivetrain::modal_frf(L, load, outputs, f, s.frf_modes, s.frf_static_correction);
   r.has_frf = true;
   if (r.frf.status != Status::Ok || outputs.empty()) return;
-  r.frf_check_hz = {0.5 * (f_min + f_max), f_max};
+  // At the lowest kept mode in the band (its resonance: the sum should hold there), the band's
+  // middle and its top.
+  for (std::size_t k = 0; k < kept; ++k)
+    if (L.modes[k].natural_frequency_hz >= f_min && L.modes[k].natural_frequency_hz <= f_max) {
+      r.frf_check_hz.push_back(L.modes[k].natural_frequency_hz);
+      break;
+    }
+  r.frf_check_hz.push_back(0.5 * (f_min + f_max));
+  r.frf_check_hz.push_back(f_max);
   const drivetrain::ModalFrf at =
-      drivetrain::modal_frf(L, load, outputs, r.frf_check_hz, s.frf_modes);
+      drivetrain::modal_frf(L, load, outputs, r.frf_check_hz, s.frf_modes, s.frf_static_correction);
   const Eigen::MatrixXcd direct = drivetrain::direct_frf(L, load, outputs, r.frf_check_hz);
   for (Eigen::Index i = 0; i < direct.rows(); ++i) {
     const double ref = direct.row(i).cwiseAbs().maxCoeff();

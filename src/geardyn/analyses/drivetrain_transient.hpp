@@ -57,7 +57,8 @@ struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettin
   std::string frf_excitation;
   std::vector<double> frf_band;  ///< [w_min, w_max] [rad/s] (key frf_band_hz); empty: default
   int frf_points = 400;
-  int frf_modes = 0;  ///< modes in the sum (0: all `modes`)
+  int frf_modes = 0;                  ///< modes in the sum (0: all `modes`)
+  bool frf_static_correction = true;  ///< add the truncated modes' static part
   FrfQuantity frf_quantity = FrfQuantity::Displacement;
 };
 
@@ -98,8 +99,8 @@ struct DrivetrainTransientResult {
   std::vector<double> closed_fraction;
   /// The modal FRF (settings.frf_excitation given): one output per recorded virtual sensor
   /// (frf_outputs, frf_output_units "m" or "rad"), the load's unit ("N" or "N m"); a direct
-  /// solve at two frequencies of the band as a check (frf_check_hz, frf_check_deviation: the
-  /// largest |modal - direct| / max_j |direct| there).
+  /// solve as a check at the lowest kept mode in the band, the band's middle and its top
+  /// (frf_check_hz, frf_check_deviation: the largest |modal - direct| / max_j |direct| there).
   bool has_frf = false;
   drivetrain::ModalFrf frf;
   std::vector<std::string> frf_outputs, frf_output_units;

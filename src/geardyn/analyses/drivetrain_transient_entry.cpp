@@ -108,6 +108,12 @@ std::vector<model::Field> keys() {
           .ge(0)
           .le(1000)
           .to_settings(&DrivetrainTransientSettings::frf_modes),
+      boolean("frf_static_correction",
+              "Add the truncated modes' static part K_t^-1 f - (the sum at 0 Hz) to the FRF at "
+              "every frequency (static correction, mode-acceleration method): exact at 0 Hz; "
+              "false: the plain modal sum. Needs K_t regular (no free spin).")
+          .def("true")
+          .to_settings(&DrivetrainTransientSettings::frf_static_correction),
       choice("frf_quantity", {"displacement", "velocity", "acceleration"},
              "Response per unit load in the FRF: receptance (m/N), mobility (i w x: m/s/N) or "
              "accelerance (-w^2 x: m/s^2/N); rad instead of m for rotation sensors, per N m for "

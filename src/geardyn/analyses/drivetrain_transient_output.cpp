@@ -190,11 +190,16 @@ void frf_notes(const DrivetrainTransientSettings& s, const DrivetrainTransientRe
       s.frf_excitation, F.frequency_hz.front(), f_max, F.frequency_hz.size()));
   if (F.static_checked)
     out.notes.push_back(fmt::format(
-        "FRF residual flexibility (modal truncation): at 0 Hz the sum misses the static "
-        "receptance K_t^-1 f by {:.2g} of the largest sensor's value: the static part of the "
-        "modes above {:.6g} Hz, which the table leaves out{}",
+        "FRF residual flexibility (modal truncation): at 0 Hz the exact static receptance "
+        "K_t^-1 f reaches {:.3g} {}/{} at the sensors, the modal sum {:.3g}, their largest "
+        "difference {:.3g} ({:.2g} of the exact): the static part of the modes above {:.6g} Hz, "
+        "{}",
+        F.static_exact.cwiseAbs().maxCoeff(), r.frf_output_units.front(), r.frf_load_unit,
+        F.static_modal.cwiseAbs().maxCoeff(),
+        (F.static_modal - F.static_exact.cast<std::complex<double>>()).cwiseAbs().maxCoeff(),
         F.static_truncation, F.highest_mode_hz,
-        F.static_truncation > 0.1 ? " (large: raise modes / frf_modes)" : ""));
+        F.static_corrected ? "added to the FRF at every frequency (frf_static_correction)"
+                           : "which the FRF leaves out (frf_static_correction = false)"));
   else
     out.notes.push_back(
         "FRF residual flexibility not measured: K_t is singular at the operating point (a "
@@ -202,7 +207,7 @@ void frf_notes(const DrivetrainTransientSettings& s, const DrivetrainTransientRe
   for (std::size_t i = 0; i < r.frf_check_hz.size(); ++i)
     out.notes.push_back(fmt::format(
         "FRF check against the direct solve (K_t - w^2 M + i w D)^-1 f at {:.6g} Hz: largest "
-        "deviation {:.2g} of the largest sensor's value (modal truncation)",
+        "deviation {:.2g} of the largest sensor's value (the truncated modes' dynamic part)",
         r.frf_check_hz[i], r.frf_check_deviation[i]));
   if (f_max > F.highest_mode_hz)
     out.notes.push_back(fmt::format(

@@ -67,7 +67,7 @@ void static_check(const Linearisation& lin, const EquationCombination& load,
 
 ModalFrf modal_frf(const Linearisation& lin, const EquationCombination& load,
                    const std::vector<EquationCombination>& outputs,
-                   const std::vector<double>& frequency_hz, int n_modes) {
+                   const std::vector<double>& frequency_hz, int n_modes, bool static_correction) {
   ModalFrf out;
   out.frequency_hz = frequency_hz;
   const auto n_out = static_cast<Eigen::Index>(outputs.size());
@@ -107,6 +107,12 @@ ModalFrf modal_frf(const Linearisation& lin, const EquationCombination& load,
     out.highest_mode_hz = std::max(out.highest_mode_hz, m.natural_frequency_hz);
   }
   static_check(lin, load, outputs, out);
+  if (static_correction && out.static_checked) {
+    const Eigen::RowVectorXcd residual =
+        (out.static_exact.cast<Complex>() - out.static_modal).transpose();
+    out.receptance.rowwise() += residual;
+    out.static_corrected = true;
+  }
   return out;
 }
 

@@ -8,7 +8,11 @@
 //     P(s)^-1 = sum over all 2n roots  x_k y_k^T / (s - lambda_k).
 // The sum here runs over the modes the linearisation computed (each with its conjugate): the
 // modes above them are truncated, which leaves out their (mostly static) residual flexibility;
-// ModalFrf::static_truncation measures it at 0 Hz against K_t^-1 f.
+// ModalFrf::static_truncation measures it at 0 Hz against K_t^-1 f. With static_correction the
+// missing static part K_t^-1 f - sum_k(0) is added at every frequency (the mode-acceleration or
+// static-correction method: R. R. Craig and A. J. Kurdila, "Fundamentals of Structural
+// Dynamics", 2nd ed., 2006, section 11.4): exact at 0 Hz, and the remaining error is the
+// truncated modes' dynamic part, small well below their frequencies.
 #include <Eigen/Dense>
 #include <string>
 #include <vector>
@@ -39,14 +43,17 @@ struct ModalFrf {
   Eigen::VectorXcd static_modal;
   /// max_j |static_modal_j - static_exact_j| / max_j |static_exact_j|.
   double static_truncation = 0.0;
+  bool static_corrected = false;  ///< the static residual was added to `receptance`
 };
 
 /// Receptance of every output to the load at the frequencies [Hz] by the modal sum over the
 /// lowest `n_modes` modes of `lin` (0: all). `lin` must carry the left eigenvectors (linearise
-/// with left = true); otherwise the result has Status::Failed and says why.
+/// with left = true); otherwise the result has Status::Failed and says why. With
+/// `static_correction` (and K_t regular) the truncated modes' static part is added.
 ModalFrf modal_frf(const Linearisation& lin, const EquationCombination& load,
                    const std::vector<EquationCombination>& outputs,
-                   const std::vector<double>& frequency_hz, int n_modes = 0);
+                   const std::vector<double>& frequency_hz, int n_modes = 0,
+                   bool static_correction = false);
 
 /// The direct solve (K_t - w^2 M + i w D)^-1 f at the outputs, one complex sparse LU per
 /// frequency (the low-rank damping by the Woodbury identity): the reference of the modal sum.
