@@ -440,7 +440,7 @@ std::optional<SettingsProblem> frf_settings_problem(const model::Model& model,
     if (!(lo >= 0.0) || !(hi > lo) || !std::isfinite(hi))
       return SettingsProblem{"frf_band_hz",
                              "a band [f_min, f_max] with 0 <= f_min < f_max",
-                             fmt::format("[{}, {}]", lo, hi),
+                             fmt::format("[{:.6g}, {:.6g}]", lo, hi),
                              {}};
   }
   if (s.frf_excitation.empty()) return std::nullopt;
