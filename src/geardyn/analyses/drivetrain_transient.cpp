@@ -457,6 +457,9 @@ std::optional<SettingsProblem> frf_settings_problem(const model::Model& model,
   if (sensor && mesh)
     return SettingsProblem{"frf_excitation", "a name that is not both a sensor and a mesh",
                            fmt::format("'{}' names both", s.frf_excitation), "rename one of them"};
+  if (model.virtual_sensors.empty())
+    return SettingsProblem{"frf_excitation", "a model with [[virtual_sensors]] (the FRF's outputs)",
+                           "no virtual sensors", "add a sensor where the response is wanted"};
   if (s.modes == 0)
     return SettingsProblem{
         "modes", "at least 1 with frf_excitation (the FRF sums the modes)", "0", {}};

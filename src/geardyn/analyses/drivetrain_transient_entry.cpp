@@ -79,7 +79,9 @@ std::vector<model::Field> keys() {
       names("sensors", model::Ref::None, "[[virtual_sensors]] recorded.")
           .note("all virtual sensors")
           .to_settings(&DrivetrainTransientSettings::sensors),
-      number("spectrum_start", kSecond, "Spectra are taken over [spectrum_start, duration].")
+      number("spectrum_start", kSecond,
+             "Spectra and orbits (two sensors on one node along different directions) are taken "
+             "over [spectrum_start, duration].")
           .def("0.0")
           .ge(0)
           .to_settings(&DrivetrainTransientSettings::spectrum_start),

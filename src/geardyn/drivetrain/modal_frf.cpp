@@ -44,7 +44,7 @@ int system_size(const Linearisation& lin) {
 
 void static_check(const Linearisation& lin, const EquationCombination& load,
                   const std::vector<EquationCombination>& outputs, ModalFrf& out) {
-  if (lin.rigid_body_modes > 0 || lin.free.empty()) return;
+  if (lin.rigid_body_modes > 0 || lin.free.empty() || outputs.empty()) return;
   linalg::SparseLU<double> lu;
   if (lu.compute(lin.K) != Status::Ok) return;
   const int n = system_size(lin);
@@ -74,6 +74,11 @@ ModalFrf modal_frf(const Linearisation& lin, const EquationCombination& load,
   const auto n_f = static_cast<Eigen::Index>(frequency_hz.size());
   out.receptance.setZero(n_f, n_out);
   out.static_modal.setZero(n_out);
+  if (lin.modes.empty()) {
+    out.status = Status::Failed;
+    out.message = fmt::format("modal FRF: the linearisation has no modes ({})", lin.message);
+    return out;
+  }
   if (!lin.has_left) {
     out.status = Status::Failed;
     out.message = fmt::format(
