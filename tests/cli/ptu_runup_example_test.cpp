@@ -13,14 +13,21 @@
 //   the share Phi = k_S / (k_S + k_P) of the external axial load F_A = F_S - F_P, i.e.
 //   F_S - F_V = Phi (F_S - F_P), in every sample of the run after the tightening and at every
 //   point of the sweep; with the external load compressive (F_A < 0) a stiffer bolt carries
-//   less force.
+//   less force;
+// - the FRF at the operating point by modal superposition (docs/theory.md §16.14): every
+//   sensor's largest accelerance peak sits at a natural frequency of the eigen table (a lightly
+//   damped mode's peak is within zeta^2 of it: D. J. Ewins, "Modal Testing", 2000, §2.2), and
+//   the sum agrees with the direct solve where it should (its own notes); bad FRF keys are
+//   located errors (exit code 2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -164,6 +171,62 @@ void check_sweep(const fs::path& dir) {
   EXPECT_NEAR(p1[1], 15844.2, 0.05);
 }
 
+// The FRF (accelerance of every sensor to a unit hypoid mesh force, 50-2000 Hz in 5 Hz steps,
+// 40 modes with the static correction).
+void check_frf(const fs::path& out) {
+  const fs::path dir = out / "runup";
+  auto eig = read_csv(dir / "eigen.csv");
+  const auto fn = col(eig, "undamped_natural_frequency_hz");
+  ASSERT_EQ(fn.size(), 40u);
+  auto frf = read_csv(dir / "frf.csv");
+  const auto f = col(frf, "frequency_hz");
+  ASSERT_EQ(f.size(), 391u);
+  // The largest peak of each sensor lies at a mode of the eigen table: within one grid step
+  // (5 Hz; the modes' damping ratios below 0.03 shift a peak by less than zeta^2 f_n = 2 Hz).
+  // README: seat_pinion 0.497 m/s^2/N at 1815 Hz (mode 18, 1812.8 Hz), seat_wheel_housing
+  // 0.454 m/s^2/N at 1805 Hz (mode 17, 1806.0 Hz).
+  const std::map<std::string, std::pair<double, double>> readme = {
+      {"seat_pinion", {1815.0, 0.497}}, {"seat_wheel_housing", {1805.0, 0.454}}};
+  for (const std::string s : {"seat_wheel_housing", "seat_wheel_cover", "seat_pinion",
+                              "seat_pinion_y", "bolt1_cover", "bolt2_cover"}) {
+    const auto a = col(frf, s + "_m_per_s2_per_n");
+    ASSERT_EQ(a.size(), f.size());
+    const auto top = std::max_element(a.begin(), a.end()) - a.begin();
+    const double f_peak = f[static_cast<std::size_t>(top)];
+    double nearest = 1e300;
+    for (double x : fn) nearest = std::min(nearest, std::abs(x - f_peak));
+    EXPECT_LE(nearest, 5.0) << s << " peak at " << f_peak << " Hz";
+    if (readme.count(s)) {
+      EXPECT_NEAR(f_peak, readme.at(s).first, 1e-6) << s;
+      EXPECT_NEAR(a[static_cast<std::size_t>(top)], readme.at(s).second,
+                  0.005 * readme.at(s).second)
+          << s;
+    }
+  }
+  // The notes' check against the direct solve: at the first mode (222.4 Hz) the truncated modes
+  // leave 4.6e-5 of the largest value, at the band's top 2.8e-2 (README).
+  bool first = false, top = false;
+  for (const std::string& n : notes_of(out, "runup")) {
+    const auto at = n.find("largest deviation ");
+    if (n.rfind("FRF check", 0) != 0 || at == std::string::npos) continue;
+    const double dev = std::stod(n.substr(at + 18));
+    if (n.find(" at 222.4") != std::string::npos) {
+      first = true;
+      EXPECT_LT(dev, 1e-3) << n;
+    }
+    if (n.find(" at 2000 Hz") != std::string::npos) {
+      top = true;
+      EXPECT_LT(dev, 0.05) << n;
+    }
+  }
+  EXPECT_TRUE(first && top);
+  // The orbit of the pinion seat (two sensors on seat_p1, z and y) is in the report.
+  std::ifstream report(out / "report.html");
+  std::stringstream html;
+  html << report.rdbuf();
+  EXPECT_NE(html.str().find("orbit_seat_pinion_m_seat_pinion_y_m"), std::string::npos);
+}
+
 TEST(PtuRunupExample, RunUpAndBoltStiffnessSweepGiveTheReadmeNumbers) {
   ProcessResult r;
   const fs::path out = run_example("ptu_runup", r);
@@ -171,6 +234,41 @@ TEST(PtuRunupExample, RunUpAndBoltStiffnessSweepGiveTheReadmeNumbers) {
   EXPECT_EQ(read_json(out / "manifest.json")["status"], "ok");
   check_runup(out / "runup");
   check_sweep(out / "bolt_stiffness_sweep");
+  check_frf(out);
+}
+
+// Bad FRF keys: a located error and exit code 2 from `geardyn check`, in the file (line of the
+// key) and through --set.
+TEST(PtuRunupExample, BadFrfKeysAreLocatedErrors) {
+  const fs::path dir = fresh_dir("ptu_runup_bad_frf");
+  fs::create_directories(dir);
+  for (const char* deck : {"housing.bdf", "cover.bdf"})
+    fs::copy_file(fs::path(kSource) / "examples/ptu_runup" / deck, dir / deck);
+  std::ifstream in(fs::path(kSource) / "examples/ptu_runup/model.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string model = text.str();
+  const std::string key = "frf_excitation = \"hypoid\"";
+  const auto at = model.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const auto line = std::count(model.begin(), model.begin() + static_cast<long>(at), '\n') + 1;
+  model.replace(at, key.size(), "frf_excitation = \"nowhere\"");
+  std::ofstream(dir / "model.toml") << model;
+  ProcessResult r = run("check " + (dir / "model.toml").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("model.toml:" + std::to_string(line) + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("analyses[0].frf_excitation"), std::string::npos) << r.err;
+
+  const std::string source = kSource + "/examples/ptu_runup/model.toml";
+  for (const auto& [set, key_path] : std::vector<std::pair<std::string, std::string>>{
+           {"analyses[0].frf_band_hz=[2000.0, 50.0]", "frf_band_hz"},  // f_min >= f_max
+           {"analyses[0].frf_band_hz=[100.0, 100.0]", "frf_band_hz"},  // empty band
+           {"analyses[0].frf_band_hz=[100.0]", "frf_band_hz"},         // one value
+           {"analyses[0].frf_modes=41", "frf_modes"}}) {               // above modes = 40
+    r = run("check " + source + " --set '" + set + "'");
+    EXPECT_EQ(r.exit_code, 2) << set << ": " << r.err;
+    EXPECT_NE(r.err.find("analyses[0]." + key_path), std::string::npos) << set << ": " << r.err;
+  }
 }
 
 }  // namespace

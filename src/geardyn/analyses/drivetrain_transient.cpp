@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <map>
 
 #include "geardyn/analyses/mesh_force_map.hpp"
 #include "geardyn/assembly/system_builder.hpp"
@@ -81,7 +82,8 @@ Projection sensor_projection(const model::VirtualSensorSpec& s, const fe::DofMap
 
 void add_sensor_channels(const model::Model& model, const DrivetrainTransientSettings& s,
                          const fe::DofMap& dofs, Recorder& rec,
-                         std::vector<std::pair<std::string, Projection>>& projections) {
+                         std::vector<std::pair<std::string, Projection>>& projections,
+                         std::vector<bool>& rotations) {
   for (const model::VirtualSensorSpec& vs : model.virtual_sensors) {
     if (!s.sensors.empty() &&
         std::find(s.sensors.begin(), s.sensors.end(), vs.name) == s.sensors.end())
@@ -90,6 +92,7 @@ void add_sensor_channels(const model::Model& model, const DrivetrainTransientSet
     const Projection p = sensor_projection(vs, dofs, rot);
     const std::string u = rot ? "rad" : "m";
     projections.emplace_back(vs.name, p);
+    rotations.push_back(rot);
     rec.add(vs.name + "_" + u, u, "displacement",
             [p](double, const Eigen::VectorXd& q, const Eigen::VectorXd&, const Eigen::VectorXd&) {
               return p.of(q);
@@ -221,6 +224,113 @@ void add_drive_channels(drivetrain::DrivetrainSystem& system, Recorder& rec) {
   }
 }
 
+/// The FRF's load: a virtual sensor's DOF or direction, or a mesh's line of action.
+drivetrain::EquationCombination frf_load(const model::Model& model, const fe::LinearSystem& sys,
+                                         const std::string& name, bool& moment) {
+  for (const model::VirtualSensorSpec& vs : model.virtual_sensors)
+    if (vs.name == name) {
+      bool rotation = false;
+      const Projection p = sensor_projection(vs, sys.dofs, rotation);
+      moment = rotation;
+      return {p.equations, p.coefficients};
+    }
+  for (std::size_t i = 0; i < model.gear_meshes.size(); ++i)
+    if (model.gear_meshes[i].name == name) {
+      const drivetrain::MeshRows rows = drivetrain::mesh_rows(model, sys, i);
+      moment = false;
+      return {rows.equations, rows.coefficients};
+    }
+  return {};
+}
+
+/// The modal FRF of every recorded sensor to the load, and a direct solve at the band's middle
+/// and top as a check of the truncation.
+void compute_frf(const model::Model& model, const fe::LinearSystem& sys,
+                 const DrivetrainTransientSettings& s,
+                 const std::vector<std::pair<std::string, Projection>>& projections,
+                 const std::vector<bool>& rotation, DrivetrainTransientResult& r) {
+  const drivetrain::Linearisation& L = r.linearisation;
+  static const std::string kForce = "N", kMoment = "N m", kMetre = "m", kRadian = "rad";
+  bool moment = false;
+  const drivetrain::EquationCombination load = frf_load(model, sys, s.frf_excitation, moment);
+  r.frf_load_unit = moment ? kMoment : kForce;
+  std::vector<drivetrain::EquationCombination> outputs;
+  for (std::size_t j = 0; j < projections.size(); ++j) {
+    outputs.push_back({projections[j].second.equations, projections[j].second.coefficients});
+    r.frf_outputs.push_back(projections[j].first);
+    r.frf_output_units.push_back(rotation[j] ? kRadian : kMetre);
+  }
+  const std::size_t kept = s.frf_modes > 0
+                               ? std::min(L.modes.size(), static_cast<std::size_t>(s.frf_modes))
+                               : L.modes.size();
+  double f_min = 0.0, f_max = 0.0;
+  if (s.frf_band.size() == 2) {
+    f_min = units::rad_per_s_to_hz(s.frf_band[0]);
+    f_max = units::rad_per_s_to_hz(s.frf_band[1]);
+  } else {
+    for (std::size_t k = 0; k < kept; ++k)
+      f_max = std::max(f_max, 1.25 * L.modes[k].natural_frequency_hz);
+    if (!(f_max > 0.0)) f_max = 1.0;
+  }
+  std::vector<double> f(static_cast<std::size_t>(s.frf_points));
+  for (int i = 0; i < s.frf_points; ++i)
+    f[static_cast<std::size_t>(i)] = f_min + (f_max - f_min) * i / (s.frf_points - 1.0);
+  r.frf = drivetrain::modal_frf(L, load, outputs, f, s.frf_modes, s.frf_static_correction);
+  r.has_frf = true;
+  if (r.frf.status != Status::Ok || outputs.empty()) return;
+  // At the lowest kept mode in the band (its resonance: the sum should hold there), the band's
+  // middle and its top.
+  for (std::size_t k = 0; k < kept; ++k)
+    if (L.modes[k].natural_frequency_hz >= f_min && L.modes[k].natural_frequency_hz <= f_max) {
+      r.frf_check_hz.push_back(L.modes[k].natural_frequency_hz);
+      break;
+    }
+  r.frf_check_hz.push_back(0.5 * (f_min + f_max));
+  r.frf_check_hz.push_back(f_max);
+  const drivetrain::ModalFrf at =
+      drivetrain::modal_frf(L, load, outputs, r.frf_check_hz, s.frf_modes, s.frf_static_correction);
+  const Eigen::MatrixXcd direct = drivetrain::direct_frf(L, load, outputs, r.frf_check_hz);
+  for (Eigen::Index i = 0; i < direct.rows(); ++i) {
+    const double ref = direct.row(i).cwiseAbs().maxCoeff();
+    r.frf_check_deviation.push_back(
+        ref > 0.0 ? (at.receptance.row(i) - direct.row(i)).cwiseAbs().maxCoeff() / ref : 0.0);
+  }
+}
+
+/// Pairs of sensors on the same node along different directions (translations with
+/// translations, rotations with rotations), in the order of [[virtual_sensors]].
+std::vector<std::pair<std::size_t, std::size_t>> orbit_pairs(
+    const model::Model& model, const std::vector<std::pair<std::string, Projection>>& projections,
+    const std::vector<bool>& rotation) {
+  auto spec = [&](const std::string& name) {
+    return std::find_if(model.virtual_sensors.begin(), model.virtual_sensors.end(),
+                        [&](const model::VirtualSensorSpec& v) { return v.name == name; });
+  };
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t a = 0; a < projections.size(); ++a)
+    for (std::size_t b = a + 1; b < projections.size(); ++b) {
+      const auto sa = spec(projections[a].first), sb = spec(projections[b].first);
+      if (sa->node != sb->node || rotation[a] != rotation[b]) continue;
+      const Projection& pa = projections[a].second;
+      const Projection& pb = projections[b].second;
+      // Different directions: the projections are not parallel.
+      std::map<int, double> ca, cb;
+      for (std::size_t k = 0; k < pa.equations.size(); ++k)
+        ca[pa.equations[k]] += pa.coefficients[k];
+      for (std::size_t k = 0; k < pb.equations.size(); ++k)
+        cb[pb.equations[k]] += pb.coefficients[k];
+      double dot = 0.0, na = 0.0, nb = 0.0;
+      for (const auto& [e, c] : ca) {
+        na += c * c;
+        if (cb.count(e)) dot += c * cb[e];
+      }
+      for (const auto& [e, c] : cb) nb += c * c;
+      if (na > 0.0 && nb > 0.0 && std::abs(dot) < (1.0 - 1e-9) * std::sqrt(na * nb))
+        out.emplace_back(a, b);
+    }
+  return out;
+}
+
 void validate(const model::Model& model, const DrivetrainTransientSettings& s,
               const Context& context) {
   auto fail = [&](const std::string& key, const std::string& expected, const std::string& found) {
@@ -243,6 +353,8 @@ void validate(const model::Model& model, const DrivetrainTransientSettings& s,
   if (model.drivers.empty())
     fail("type", "a model with at least one [[drivers]] entry (what turns the drivetrain)",
          "no drivers");
+  if (const auto p = frf_settings_problem(model, s))
+    throw context.error(p->key, p->expected, p->found, p->hint);
 }
 
 transient::AdaptiveOptions integrator_options(const DrivetrainTransientSettings& s) {
@@ -306,6 +418,48 @@ void static_rows(const drivetrain::DrivetrainSystem& system, const fe::DofMap& d
 
 }  // namespace
 
+std::optional<SettingsProblem> frf_settings_problem(const model::Model& model,
+                                                    const DrivetrainTransientSettings& s) {
+  if (!s.frf_band.empty()) {
+    const double lo = units::rad_per_s_to_hz(s.frf_band.front());
+    const double hi = units::rad_per_s_to_hz(s.frf_band.back());
+    if (s.frf_band.size() != 2)
+      return SettingsProblem{"frf_band_hz",
+                             "two frequencies [f_min, f_max] in Hz",
+                             fmt::format("{} values", s.frf_band.size()),
+                             {}};
+    if (!(lo >= 0.0) || !(hi > lo) || !std::isfinite(hi))
+      return SettingsProblem{"frf_band_hz",
+                             "a band [f_min, f_max] with 0 <= f_min < f_max",
+                             fmt::format("[{:.6g}, {:.6g}]", lo, hi),
+                             {}};
+  }
+  if (s.frf_excitation.empty()) return std::nullopt;
+  const bool sensor = std::any_of(model.virtual_sensors.begin(), model.virtual_sensors.end(),
+                                  [&](const auto& v) { return v.name == s.frf_excitation; });
+  const bool mesh = std::any_of(model.gear_meshes.begin(), model.gear_meshes.end(),
+                                [&](const auto& g) { return g.name == s.frf_excitation; });
+  if (!sensor && !mesh)
+    return SettingsProblem{"frf_excitation",
+                           "the name of a [[virtual_sensors]] or [[gear_meshes]] entry",
+                           fmt::format("'{}'", s.frf_excitation),
+                           "name the sensor at the node and along the direction to excite, or "
+                           "the mesh whose force excites"};
+  if (sensor && mesh)
+    return SettingsProblem{"frf_excitation", "a name that is not both a sensor and a mesh",
+                           fmt::format("'{}' names both", s.frf_excitation), "rename one of them"};
+  if (model.virtual_sensors.empty())
+    return SettingsProblem{"frf_excitation", "a model with [[virtual_sensors]] (the FRF's outputs)",
+                           "no virtual sensors", "add a sensor where the response is wanted"};
+  if (s.modes == 0)
+    return SettingsProblem{
+        "modes", "at least 1 with frf_excitation (the FRF sums the modes)", "0", {}};
+  if (s.frf_modes > s.modes)
+    return SettingsProblem{"frf_modes", fmt::format("at most modes = {}", s.modes),
+                           fmt::format("{}", s.frf_modes), "raise modes or lower frf_modes"};
+  return std::nullopt;
+}
+
 DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
                                                    const DrivetrainTransientSettings& s,
                                                    const Context& context) {
@@ -326,7 +480,11 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
 
   Recorder rec;
   std::vector<std::pair<std::string, Projection>> projections;
-  add_sensor_channels(model, s, sys.dofs, rec, projections);
+  std::vector<bool> rotations;
+  add_sensor_channels(model, s, sys.dofs, rec, projections, rotations);
+  // The sensors' displacement channels come first, three channels per sensor.
+  for (const auto& [a, b] : orbit_pairs(model, projections, rotations))
+    r.orbits.emplace_back(3 * a, 3 * b);
   add_element_channels(model, sys, system, rec, r.mesh_orders);
   add_drive_channels(system, rec);
   r.channels = rec.channels;
@@ -354,8 +512,9 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
     q = r.equilibrium.q;
   }
   if (s.modes > 0) {
-    r.linearisation = drivetrain::linearise(system, 0.0, q, v0, s.modes);
+    r.linearisation = drivetrain::linearise(system, 0.0, q, v0, s.modes, !s.frf_excitation.empty());
     r.linearised = true;
+    if (!s.frf_excitation.empty()) compute_frf(model, sys, s, projections, rotations, r);
     // Mode shapes at the virtual sensors, scaled to 1 at the largest sensor of each mode.
     const auto n_modes = static_cast<Eigen::Index>(r.linearisation.modes.size());
     r.shape_at_sensors.setZero(n_modes, static_cast<Eigen::Index>(projections.size()));

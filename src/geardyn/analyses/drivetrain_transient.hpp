@@ -16,6 +16,7 @@
 //        peaks, RMS and spectra.
 #include <Eigen/Dense>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/drivetrain/linearisation.hpp"
+#include "geardyn/drivetrain/modal_frf.hpp"
 #include "geardyn/drivetrain/static_equilibrium.hpp"
 #include "geardyn/model/model.hpp"
 #include "geardyn/transient/adaptive.hpp"
@@ -30,6 +32,8 @@
 namespace geardyn::analyses {
 
 enum class DrivetrainIntegrator { GeneralizedAlpha, Ida };
+/// What the FRF table gives per unit load: receptance, mobility (i w x) or accelerance (-w^2 x).
+enum class FrfQuantity { Displacement, Velocity, Acceleration };
 
 struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettings> {
   double duration = model::kNaN;  ///< [s]
@@ -46,6 +50,16 @@ struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettin
   int modes = 20;                    ///< linearised modes tabulated (0: no linearisation)
   std::vector<std::string> sensors;  ///< virtual sensors recorded (empty: all)
   double spectrum_start = 0.0;       ///< spectra over [spectrum_start, duration] [s]
+  /// FRF by modal superposition at the operating point (docs/theory.md §16.14): the load is a
+  /// [[virtual_sensors]] entry (a unit force or moment at its node along its DOF / direction) or
+  /// a [[gear_meshes]] entry (a unit pair of opposite forces along its line of action). Empty:
+  /// no FRF.
+  std::string frf_excitation;
+  std::vector<double> frf_band;  ///< [w_min, w_max] [rad/s] (key frf_band_hz); empty: default
+  int frf_points = 400;
+  int frf_modes = 0;                  ///< modes in the sum (0: all `modes`)
+  bool frf_static_correction = true;  ///< add the truncated modes' static part
+  FrfQuantity frf_quantity = FrfQuantity::Displacement;
 };
 
 /// One recorded quantity.
@@ -83,10 +97,30 @@ struct DrivetrainTransientResult {
   /// positive (closed / in contact).
   std::vector<std::string> switch_names;
   std::vector<double> closed_fraction;
+  /// The modal FRF (settings.frf_excitation given): one output per recorded virtual sensor
+  /// (frf_outputs, frf_output_units "m" or "rad"), the load's unit ("N" or "N m"); a direct
+  /// solve as a check at the lowest kept mode in the band, the band's middle and its top
+  /// (frf_check_hz, frf_check_deviation: the largest |modal - direct| / max_j |direct| there).
+  bool has_frf = false;
+  drivetrain::ModalFrf frf;
+  std::vector<std::string> frf_outputs, frf_output_units;
+  std::string frf_load_unit;
+  std::vector<double> frf_check_hz, frf_check_deviation;
+  /// Orbits: pairs of displacement channels of two sensors on the same node along different
+  /// directions (first against second).
+  std::vector<std::pair<std::size_t, std::size_t>> orbits;
   std::vector<std::string> static_rows_element, static_rows_quantity, static_rows_unit;
   std::vector<double> static_rows_value;
   double run_time_s = 0.0;
 };
+
+/// A problem of the FRF keys (frf_*) against the model: the key (relative to the analysis),
+/// what was expected and what was found; nullopt when they are fine or no FRF is asked for.
+struct SettingsProblem {
+  std::string key, expected, found, hint;
+};
+std::optional<SettingsProblem> frf_settings_problem(const model::Model& model,
+                                                    const DrivetrainTransientSettings& settings);
 
 /// Validates the settings against the model (InputError at the analysis keys), builds the
 /// drivetrain, solves the static equilibrium, linearises and integrates. A numerical failure
@@ -101,8 +135,9 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
 /// time_history.h5 for long records), "summary" (peak and RMS per channel), "spectrum",
 /// "orders_<mesh>" (the DTE amplitude at mesh orders 1-3 over gear 1's speed, by a least-squares
 /// fit in gear 1's angle over successive windows of the record),
-/// "contacts" (closed fraction per switch) and "integration"; plots of the time histories by
-/// group and the spectra; notes on the integration and trust.
+/// "contacts" (closed fraction per switch), "integration" and, with frf_excitation, "frf"
+/// (magnitude and phase per sensor over the band); plots of the time histories by group, the
+/// orbits of sensor pairs, the spectra and the FRF; notes on the integration and trust.
 AnalysisOutput drivetrain_transient_output(const model::Model& model,
                                            const DrivetrainTransientSettings& settings,
                                            const DrivetrainTransientResult& result,

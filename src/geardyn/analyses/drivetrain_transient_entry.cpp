@@ -21,6 +21,8 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   const auto& m = check.model();
   check.check_named(path + ".sensors", t.sensors, model::names_of(m.virtual_sensors),
                     "virtual sensor", "virtual_sensors");
+  if (const auto p = frf_settings_problem(m, t))
+    check.fail(path + "." + p->key, p->expected, p->found, p->hint);
   if (m.drivers.empty())
     check.fail(path + ".type", "a model with at least one [[drivers]] entry", "no [[drivers]]",
                "add a speed driver or a motor on the input shaft's node");
@@ -77,10 +79,51 @@ std::vector<model::Field> keys() {
       names("sensors", model::Ref::None, "[[virtual_sensors]] recorded.")
           .note("all virtual sensors")
           .to_settings(&DrivetrainTransientSettings::sensors),
-      number("spectrum_start", kSecond, "Spectra are taken over [spectrum_start, duration].")
+      number("spectrum_start", kSecond,
+             "Spectra and orbits (two sensors on one node along different directions) are taken "
+             "over [spectrum_start, duration].")
           .def("0.0")
           .ge(0)
           .to_settings(&DrivetrainTransientSettings::spectrum_start),
+      text("frf_excitation",
+           "FRF by modal superposition at the operating point (left and right eigenvectors of "
+           "the linearisation, docs/theory.md §16.14): the load, the name of a "
+           "[[virtual_sensors]] entry (a unit force at its node along its DOF or direction, a "
+           "unit moment for a rotation DOF or `rotation = true`) or of a [[gear_meshes]] entry "
+           "(a unit pair of opposite forces along its line of action, the dynamic mesh force). "
+           "Table frf: every recorded sensor's response per unit load, magnitude and phase.")
+          .note("no FRF")
+          .to_settings(&DrivetrainTransientSettings::frf_excitation),
+      numbers("frf_band_hz", kHertz, "FRF band [f_min, f_max], 0 <= f_min < f_max.")
+          .note("0 to 1.25 x the highest mode of the sum")
+          .to_settings(&DrivetrainTransientSettings::frf_band),
+      integer("frf_points", "FRF frequencies, evenly spaced over frf_band_hz.")
+          .def("400")
+          .ge(2)
+          .le(100000)
+          .to_settings(&DrivetrainTransientSettings::frf_points),
+      integer("frf_modes",
+              "Modes in the FRF's sum: the lowest of the linearisation, at most `modes` (0: all "
+              "`modes`). The modes above are truncated: the notes give the error this leaves at "
+              "0 Hz (residual flexibility) and against a direct solve in the band.")
+          .def("0")
+          .ge(0)
+          .le(1000)
+          .to_settings(&DrivetrainTransientSettings::frf_modes),
+      boolean("frf_static_correction",
+              "Add the truncated modes' static part K_t^-1 f - (the sum at 0 Hz) to the FRF at "
+              "every frequency (static correction, mode-acceleration method): exact at 0 Hz; "
+              "false: the plain modal sum. Needs K_t regular (no free spin).")
+          .def("true")
+          .to_settings(&DrivetrainTransientSettings::frf_static_correction),
+      choice("frf_quantity", {"displacement", "velocity", "acceleration"},
+             "Response per unit load in the FRF: receptance (m/N), mobility (i w x: m/s/N) or "
+             "accelerance (-w^2 x: m/s^2/N); rad instead of m for rotation sensors, per N m for "
+             "a moment.")
+          .def("\"displacement\"")
+          .to_settings_enum(
+              &DrivetrainTransientSettings::frf_quantity,
+              {FrfQuantity::Displacement, FrfQuantity::Velocity, FrfQuantity::Acceleration}),
   };
 }
 

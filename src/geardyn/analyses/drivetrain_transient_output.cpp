@@ -145,6 +145,154 @@ void add_history(const DrivetrainTransientSettings& s, const DrivetrainTransient
   }
 }
 
+/// Orbit plots: one displacement sensor against another on the same node, over the samples at
+/// t >= spectrum_start (the run's steady part when spectrum_start marks it), at most
+/// kMaxOrbitPoints points (every k-th sample).
+void add_orbits(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
+                AnalysisOutput& out) {
+  constexpr std::size_t kMaxOrbitPoints = 5000;
+  const auto first = static_cast<std::size_t>(
+      std::lower_bound(r.time.begin(), r.time.end(), s.spectrum_start - 1e-12) - r.time.begin());
+  if (first >= r.time.size()) return;
+  const std::size_t n = r.time.size() - first;
+  const std::size_t stride = (n + kMaxOrbitPoints - 1) / kMaxOrbitPoints;
+  for (const auto& [a, b] : r.orbits) {
+    const DrivetrainChannel& ca = r.channels[a];
+    const DrivetrainChannel& cb = r.channels[b];
+    Plot plot;
+    plot.name = "orbit_" + ca.name + "_" + cb.name;
+    plot.title =
+        fmt::format("Orbit: {} against {} (t >= {:.6g} s)", cb.name, ca.name, s.spectrum_start);
+    plot.x_label = ca.name + " [" + ca.unit + "]";
+    plot.y_label = cb.name + " [" + cb.unit + "]";
+    plot.equal_aspect = true;
+    Trace tr;
+    tr.name = "orbit";
+    for (std::size_t i = first; i < r.time.size(); i += stride) {
+      tr.x.push_back(r.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(a)));
+      tr.y.push_back(r.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(b)));
+    }
+    plot.traces.push_back(std::move(tr));
+    out.plots.push_back(std::move(plot));
+  }
+}
+
+/// The FRF's notes: what was summed, the truncation at 0 Hz and against the direct solve.
+void frf_notes(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
+               AnalysisOutput& out) {
+  const drivetrain::ModalFrf& F = r.frf;
+  const double f_max = F.frequency_hz.back();
+  out.notes.push_back(fmt::format(
+      "FRF by modal superposition at the operating point (right and left eigenvectors of the "
+      "linearised, non-symmetric pencil): {} modes up to {:.6g} Hz, each with its conjugate; "
+      "unit {} '{}' over [{:.6g}, {:.6g}] Hz, {} points",
+      F.modes_used, F.highest_mode_hz, r.frf_load_unit == "N" ? "force" : "moment",
+      s.frf_excitation, F.frequency_hz.front(), f_max, F.frequency_hz.size()));
+  if (F.static_checked)
+    out.notes.push_back(fmt::format(
+        "FRF residual flexibility (modal truncation): at 0 Hz the exact static receptance "
+        "K_t^-1 f reaches {:.3g} {}/{} at the sensors, the modal sum {:.3g}, their largest "
+        "difference {:.3g} ({:.2g} of the exact): the static part of the modes above {:.6g} Hz, "
+        "{}",
+        F.static_exact.cwiseAbs().maxCoeff(), r.frf_output_units.front(), r.frf_load_unit,
+        F.static_modal.cwiseAbs().maxCoeff(),
+        (F.static_modal - F.static_exact.cast<std::complex<double>>()).cwiseAbs().maxCoeff(),
+        F.static_truncation, F.highest_mode_hz,
+        F.static_corrected ? "added to the FRF at every frequency (frf_static_correction)"
+                           : "which the FRF leaves out (frf_static_correction = false)"));
+  else
+    out.notes.push_back(
+        "FRF residual flexibility not measured: K_t is singular at the operating point (a "
+        "rigid-body or free spin), whose roots the sum leaves out");
+  for (std::size_t i = 0; i < r.frf_check_hz.size(); ++i)
+    out.notes.push_back(fmt::format(
+        "FRF check against the direct solve (K_t - w^2 M + i w D)^-1 f at {:.6g} Hz: largest "
+        "deviation {:.2g} of the largest sensor's value (the truncated modes' dynamic part)",
+        r.frf_check_hz[i], r.frf_check_deviation[i]));
+  if (f_max > F.highest_mode_hz)
+    out.notes.push_back(fmt::format(
+        "the FRF band reaches {:.6g} Hz, above the highest mode in the sum ({:.6g} Hz): there "
+        "the truncated modes are missing; raise `modes` to cover the band",
+        f_max, F.highest_mode_hz));
+  if (r.linearisation.rigid_body_modes > 0)
+    out.notes.push_back(
+        fmt::format("the FRF leaves out {} rigid-body root(s) of the linearisation (a free spin)",
+                    r.linearisation.rigid_body_modes));
+}
+
+/// Table and plot "frf": magnitude and phase of every sensor's response per unit load.
+void add_frf(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
+             AnalysisOutput& out) {
+  if (!r.has_frf) return;
+  const drivetrain::ModalFrf& F = r.frf;
+  if (F.status != Status::Ok || F.frequency_hz.empty()) {
+    out.notes.push_back("no FRF: " + F.message);
+    return;
+  }
+  static const char* suffix[3] = {"", "_per_s", "_per_s2"};
+  static const char* unit_suffix[3] = {"", "/s", "/s^2"};
+  static const char* what[3] = {"receptance", "mobility", "accelerance"};
+  const auto q = static_cast<std::size_t>(s.frf_quantity);
+  const std::string load = r.frf_load_unit == "N" ? "n" : "nm";
+  Table t;
+  t.name = "frf";
+  t.title = fmt::format(
+      "FRF by modal superposition at the operating point: {} per unit {} '{}' "
+      "({} modes)",
+      what[q], r.frf_load_unit == "N" ? "force" : "moment", s.frf_excitation, F.modes_used);
+  t.add("frequency_hz", "Hz", F.frequency_hz);
+  Plot plot;
+  plot.name = "frf";
+  plot.title = fmt::format("FRF ({}) to '{}' by modal superposition; markers: linearised modes",
+                           what[q], s.frf_excitation);
+  plot.x_label = "frequency [Hz]";
+  plot.y_label = fmt::format("|{}| [{}{}/{}]", what[q],
+                             r.frf_output_units.empty() ? "m" : r.frf_output_units[0],
+                             unit_suffix[q], r.frf_load_unit);
+  plot.y_log = true;
+  Eigen::MatrixXd magnitude(F.receptance.rows(), F.receptance.cols());
+  for (Eigen::Index j = 0; j < F.receptance.cols(); ++j) {
+    const std::string& u = r.frf_output_units[static_cast<std::size_t>(j)];
+    std::vector<double> mag, phase;
+    for (Eigen::Index i = 0; i < F.receptance.rows(); ++i) {
+      const std::complex<double> iw(0.0, 2.0 * M_PI * F.frequency_hz[static_cast<std::size_t>(i)]);
+      std::complex<double> h = F.receptance(i, j);
+      for (std::size_t k = 0; k < q; ++k) h *= iw;
+      mag.push_back(std::abs(h));
+      phase.push_back(std::arg(h) * 180.0 / M_PI);
+      magnitude(i, j) = mag.back();
+    }
+    const std::string& name = r.frf_outputs[static_cast<std::size_t>(j)];
+    t.add(fmt::format("{}_{}{}_per_{}", name, u, suffix[q], load),
+          u + unit_suffix[q] + "/" + r.frf_load_unit, mag);
+    t.add(name + "_phase_deg", "deg", phase);
+    Trace tr;
+    tr.name = name;
+    tr.x = F.frequency_hz;
+    tr.y = std::move(mag);
+    plot.traces.push_back(std::move(tr));
+  }
+  // The modes in the band, marked at the largest sensor's magnitude at the nearest point.
+  Trace marks;
+  marks.name = "modes";
+  marks.mode = Trace::Mode::Markers;
+  const double df = F.frequency_hz.size() > 1 ? F.frequency_hz[1] - F.frequency_hz[0] : 1.0;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(F.modes_used); ++k) {
+    const drivetrain::LinearMode& m = r.linearisation.modes[k];
+    const double f = m.natural_frequency_hz;
+    if (f < F.frequency_hz.front() || f > F.frequency_hz.back() || magnitude.cols() == 0) continue;
+    const auto i = static_cast<Eigen::Index>(std::lround((f - F.frequency_hz.front()) / df));
+    marks.x.push_back(f);
+    marks.y.push_back(magnitude.row(std::min(i, magnitude.rows() - 1)).maxCoeff());
+    marks.hover.push_back(
+        fmt::format("mode {}: {:.6g} Hz, damping ratio {:.3g}", k + 1, f, m.damping_ratio));
+  }
+  if (!marks.x.empty()) plot.traces.push_back(std::move(marks));
+  out.tables.push_back(std::move(t));
+  if (magnitude.cols() > 0) out.plots.push_back(std::move(plot));
+  frf_notes(s, r, out);
+}
+
 void add_summary(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   Table t;
   t.name = "summary";
@@ -360,8 +508,10 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
   add_static(result, out);
   add_eigen(result, out);
   add_mode_shapes(result, out);
+  add_frf(settings, result, out);
   if (!result.time.empty()) {
     add_history(settings, result, context, out);
+    add_orbits(settings, result, out);
     add_summary(result, out);
     add_spectra(settings, result, out);
     add_orders(result, out);

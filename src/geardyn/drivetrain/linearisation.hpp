@@ -23,6 +23,11 @@ struct LinearMode {
   double damping_ratio = 0.0;
   double real_hz = 0.0, imag_hz = 0.0;  ///< lambda / 2 pi
   Eigen::VectorXcd shape;               ///< displacement part over all equations (held: 0)
+  /// With left eigenvectors asked for: y with y^T P(lambda) = 0, P(s) = s^2 M + s D + K_t,
+  /// scaled so that y^T P'(lambda) x = 1 (P' = 2 lambda M + D; x = shape), over all equations
+  /// (held: 0); the mode's term of the receptance is x y^T / (s - lambda) (docs/theory.md
+  /// §16.14). Empty without them.
+  Eigen::VectorXcd left;
 };
 
 struct Linearisation {
@@ -32,16 +37,26 @@ struct Linearisation {
   Eigen::MatrixXd low_rank_basis;  ///< modal damping B (free rows), c below
   Eigen::VectorXd low_rank_coefficients;
   std::vector<int> free;          ///< free equation -> system equation
+  int equations = 0;              ///< system equations (free and held)
   std::vector<LinearMode> modes;  ///< Im(lambda) >= 0, sorted by natural frequency; rigid-body
                                   ///< modes (|lambda| below the threshold) left out
   int rigid_body_modes = 0;
   double max_residual = 0.0;  ///< largest backward error of the eigen-solve
   std::string solver;         ///< the eigen-solver's brief report
   int unstable_modes = 0;     ///< Re(lambda) > 0 (beyond round-off)
+  bool has_left = false;      ///< every mode has its normalised left eigenvector
+  /// Modes whose left eigenvector was not found (the transposed pencil's solve returned no
+  /// matching eigenvalue); they have an empty `left`.
+  int unmatched_left = 0;
 };
 
-/// The tangents at (t, q, v) and the lowest `n_modes` modes (>= 1).
+/// The tangents at (t, q, v) and the lowest `n_modes` modes (>= 1); with `left`, also their
+/// left eigenvectors (a second solve on the transposed pencil), as the modal FRF needs.
 Linearisation linearise(DrivetrainSystem& system, double t, const Eigen::VectorXd& q,
-                        const Eigen::VectorXd& v, int n_modes = 20);
+                        const Eigen::VectorXd& v, int n_modes = 20, bool left = false);
+
+/// The modes of the pencil already in `lin` (M, C, K, the low-rank damping and `free` over a
+/// system of `n_equations`): what linearise does after forming the tangents.
+void solve_linear_modes(Linearisation& lin, int n_equations, int n_modes, bool left);
 
 }  // namespace geardyn::drivetrain
