@@ -71,7 +71,8 @@ ProcessResult run_ptu(const fs::path& dir, double torque) {
   return run("run -q " + (dir / "model.toml").string() + " -o " + (dir / "out").string() +
              " --only runup assembled --set analyses[1].enabled=true" +
              " --set loads[0].torque=" + std::to_string(-torque) +
-             " --set analyses[0].duration=0.002 --set analyses[0].modes=0" +
+             " --set analyses[0].duration=0.002 --set analyses[0].modes=0 --set "
+             "'analyses[0].frf_excitation=\"\"'" +
              " --set analyses[0].spectrum_start=0");
 }
 
@@ -133,7 +134,8 @@ TEST(StaticEquilibrium, AHypoidMeshWhosePitchPointMissesTheWheelIsALocatedError)
   const fs::path dir = ptu_copy("static_ptu_hypoid_off", unchanged);
   const ProcessResult r =
       run("run -q " + (dir / "model.toml").string() + " -o " + (dir / "out").string() +
-          " --only runup --set analyses[0].duration=0.002 --set analyses[0].modes=0" +
+          " --only runup --set analyses[0].duration=0.002 --set analyses[0].modes=0 --set "
+          "'analyses[0].frf_excitation=\"\"'" +
           " --set analyses[0].spectrum_start=0 --set shafts[1].origin=[0.0,0.0,-0.085]");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("model.toml:"), std::string::npos) << r.err;
