@@ -581,6 +581,14 @@ CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
   body.n_generalized = out.reduced.n_modal;
   body.K = 0.5 * (out.reduced.K + out.reduced.K.transpose());
   body.M = 0.5 * (out.reduced.M + out.reduced.M.transpose());
+  // The component's own modal damping (docs/theory.md §9, eq. 9.4): in the fixed-interface modal
+  // block, where M_eta = I and K_eta = Lambda, C_eta = diag(2 zeta sqrt(lambda_k)); the
+  // constraint-mode block is undamped.
+  if (solid.modal_damping_ratio > 0.0 && body.n_generalized > 0) {
+    body.C = Eigen::MatrixXd::Zero(body.size(), body.size());
+    for (int k = body.size() - body.n_generalized; k < body.size(); ++k)
+      body.C(k, k) = 2.0 * solid.modal_damping_ratio * std::sqrt(std::max(body.K(k, k), 0.0));
+  }
 
   // Gyroscopic matrix of the rigid body when every spider node spins at one speed about one
   // axis: the rigid-disk matrix (node frame) at the first spider point, rotated to global axes.

@@ -327,10 +327,23 @@ void place_meshes(const model::Model& m, const fe::LinearSystem& s, const BuildO
       element = std::make_shared<elements::GapContact>(
           "mesh " + g.name, elements::GapContact::Side{0.0, law}, back, LawSource{g.where, key});
     }
+    if (element->size() == 4) n_rows = 4;  // tooth friction: theta2 and the profile motion y
+    if (g.contact && g.contact->friction > 0.0 && n_rows != 4)
+      throw InputError(g.contact->where.line > 0 ? g.contact->where : g.where,
+                       key + ".contact.friction",
+                       "a mesh whose tooth contact carries friction (a force map from a "
+                       "[[gear_pairs]] entry, whose geometry gives the path of contact)",
+                       fmt::format("{} without tooth friction", element->describe()),
+                       "name the pair in [gear_meshes.contact] gear_pair, or set friction = 0");
     PlacementBuilder b(s.dofs, n_rows);
     for (std::size_t k = 0; k < rows.equations.size(); ++k)
       b.add(0, rows.equations[k], rows.coefficients[k]);
-    if (n_rows == 2) b.add(1, rows.pinion_spin, rows.pinion_sign);
+    if (n_rows >= 2) b.add(1, rows.pinion_spin, rows.pinion_sign);
+    if (n_rows == 4) {
+      b.add(2, rows.wheel_spin, rows.wheel_sign);
+      for (std::size_t k = 0; k < rows.profile_equations.size(); ++k)
+        b.add(3, rows.profile_equations[k], rows.profile_coefficients[k]);
+    }
     PlacedElement p = b.finish(element, "gear_mesh", g.name);
     check_placed(b, n_rows, p, s, g.where, key);
     parts.elements.push_back(std::move(p));
@@ -411,6 +424,29 @@ MeshRows mesh_rows(const model::Model& model, const fe::LinearSystem& system, st
   // theta1 advances with gear 1's working rotation: the sense of its lever arm on delta.
   rows.pinion_sign = v[5] >= 0.0 ? 1.0 : -1.0;
   rows.base_radius1 = g.base_radius1;
+  // The wheel turns in its working sense when it cancels the pinion's approach: v_11 theta2 has
+  // the opposite sign of v_5 theta1 at the kinematic speeds.
+  rows.wheel_spin = system.dofs.dof(n2, Component::Rz);
+  rows.wheel_sign = v[11] >= 0.0 ? -1.0 : 1.0;
+  // t: the pinion's contact-point velocity for theta1_dot > 0, without its components along the
+  // line of action and the axis.
+  const Eigen::Vector3d spin = rows.pinion_sign * a.frame.col(2);
+  Eigen::Vector3d t = spin.cross(geo.pitch_point - a.position);
+  t -= t.dot(geo.line_of_action) * geo.line_of_action + t.dot(geo.axial) * geo.axial;
+  t.normalize();
+  for (int k = 0; k < 3; ++k) {
+    const double c1 = -t.dot(a.frame.col(k)), c2 = t.dot(b.frame.col(k));
+    const int e1 = system.dofs.dof(n1, static_cast<Component>(k));
+    const int e2 = system.dofs.dof(n2, static_cast<Component>(k));
+    if (e1 >= 0 && c1 != 0.0) {
+      rows.profile_equations.push_back(e1);
+      rows.profile_coefficients.push_back(c1);
+    }
+    if (e2 >= 0 && c2 != 0.0) {
+      rows.profile_equations.push_back(e2);
+      rows.profile_coefficients.push_back(c2);
+    }
+  }
   return rows;
 }
 

@@ -3,9 +3,9 @@
 // meshes' linear springs) and the model's nonlinear elements, drivers, loads and clutches placed
 // on its equations. Gear meshes become tooth-contact elements: the caller passes one element per
 // [[gear_meshes]] entry on the coordinates (delta, theta1) — the approach along the line of
-// action and gear 1's spin angle — or null for a mesh without a map, which becomes a contact of
-// the mesh's constant stiffness and damping on delta (drive flank; back flank at -backlash when
-// the mesh's contact gives one).
+// action and gear 1's spin angle; with tooth friction (delta, theta1, theta2, y), MeshRows — or
+// null for a mesh without a map, which becomes a contact of the mesh's constant stiffness and
+// damping on delta (drive flank; back flank at -backlash when the mesh's contact gives one).
 #include <memory>
 #include <vector>
 
@@ -50,6 +50,15 @@ struct MeshRows {
   int pinion_spin = -1;              ///< gear 1's rz equation
   double pinion_sign = 1.0;          ///< theta1 = sign x q[pinion_spin]
   double base_radius1 = 0.0;
+  /// For tooth friction (elements/gear_mesh_contact.hpp): theta2 = wheel_sign x q[wheel_spin]
+  /// (the wheel's rotation in its working sense), and y = sum profile_coefficients[k]
+  /// q[profile_equations[k]], the wheel centre's displacement relative to the pinion's along
+  /// the profile direction t (perpendicular to the line of action in the transverse plane,
+  /// where the pinion's contact point moves for theta1_dot > 0).
+  int wheel_spin = -1;
+  double wheel_sign = 1.0;
+  std::vector<int> profile_equations;
+  std::vector<double> profile_coefficients;
 };
 MeshRows mesh_rows(const model::Model& model, const fe::LinearSystem& system, std::size_t index);
 

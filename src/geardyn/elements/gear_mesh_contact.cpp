@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <utility>
@@ -91,6 +92,26 @@ void check_mesh_force_map(const MeshForceMap& m, const LawSource& source) {
   }
 }
 
+ToothFriction spur_tooth_friction(double coefficient, double velocity, double base_radius1,
+                                  double base_radius2, double tip_radius1, double tip_radius2,
+                                  double centre_distance) {
+  ToothFriction f;
+  f.coefficient = coefficient;
+  f.velocity = velocity;
+  f.base_radius1 = base_radius1;
+  const double tan_alpha =
+      std::tan(std::acos(std::min(1.0, (base_radius1 + base_radius2) / centre_distance)));
+  f.pitch_arm1 = base_radius1 * tan_alpha;
+  f.pitch_arm2 = base_radius2 * tan_alpha;
+  const double g_a =
+      std::sqrt(tip_radius1 * tip_radius1 - base_radius1 * base_radius1) - f.pitch_arm1;
+  const double g_f =
+      std::sqrt(tip_radius2 * tip_radius2 - base_radius2 * base_radius2) - f.pitch_arm2;
+  f.path_start = -g_f;
+  f.path_length = g_f + g_a;
+  return f;
+}
+
 // ---- GearMeshContact ----------------------------------------------------------------------
 
 GearMeshContact::GearMeshContact(std::string name, std::shared_ptr<const MeshForceMap> map,
@@ -103,6 +124,30 @@ GearMeshContact::GearMeshContact(std::string name, std::shared_ptr<const MeshFor
     c.non_negative("backlash", options_.backlash,
                    "the total backlash along the line of action [m]");
   c.non_negative("damping", options_.damping);
+  const ToothFriction& fr = options_.friction;
+  c.non_negative("friction", fr.coefficient);
+  if (fr.coefficient > 0.0) {
+    c.positive("friction_velocity", fr.velocity,
+               "a small sliding speed of the smoothed sign [m/s]");
+    c.positive("gear_pair", fr.base_radius1, "the pinion's base radius for tooth friction [m]");
+    c.require(std::isfinite(fr.pitch_arm1) && fr.pitch_arm1 > 0.0 && std::isfinite(fr.pitch_arm2) &&
+                  fr.pitch_arm2 > 0.0,
+              "gear_pair", "arms r_b tan(alpha_w) > 0 at the pitch point for tooth friction [m]",
+              std::min(fr.pitch_arm1, fr.pitch_arm2));
+    c.require(
+        std::isfinite(fr.path_start) && fr.path_start <= 0.0 && -fr.path_start < fr.pitch_arm1,
+        "gear_pair",
+        "a path of contact starting between the pinion's base circle tangent "
+        "point and the pitch point (s_A <= 0) [m]",
+        fr.path_start);
+    c.require(std::isfinite(fr.path_length) && fr.path_length > 0.0 &&
+                  fr.path_start + fr.path_length < fr.pitch_arm2,
+              "gear_pair",
+              "a path of contact of length > 0 ending before the wheel's base "
+              "circle tangent point [m]",
+              fr.path_length);
+    c.finite("friction_phase", fr.phase);
+  }
   const double mean = map_->mean_stiffness();
   ratio_.resize(static_cast<std::size_t>(map_->angles()));
   for (int i = 0; i < map_->angles(); ++i)
@@ -158,7 +203,7 @@ MeshContactState GearMeshContact::state(const Eigen::VectorXd& u) const {
 
 double GearMeshContact::static_force(const Eigen::VectorXd& u) const {
   ElementForce out;
-  evaluate(u, Eigen::VectorXd::Zero(2), 0.0, out);
+  evaluate(u, Eigen::VectorXd::Zero(size()), 0.0, out);
   return out.force(0);
 }
 
@@ -209,8 +254,8 @@ GearMeshContact::FlankForce GearMeshContact::flank(const Grid& g, double p, doub
 
 void GearMeshContact::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double,
                                ElementForce& out) const {
-  assert(u.size() == 2 && v.size() == 2);
-  out.reset(2);
+  assert(u.size() == size() && v.size() == size());
+  out.reset(size());
   const Grid g = locate(u(1));
   const auto& e = map_->unloaded_te_m;
   const double e0 = e[static_cast<std::size_t>(g.i0)], e1 = e[static_cast<std::size_t>(g.i1)];
@@ -225,6 +270,7 @@ void GearMeshContact::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& 
     out.stiffness(0, 1) = f.d_theta - f.d_p * deg;
     out.damping(0, 0) = f.d_rate;
     out.damping(0, 1) = -f.d_rate * deg;
+    if (has_friction()) add_friction(u, v, out);
   } else if (has_backlash() && -p - options_.backlash > 0.0) {
     // p_b = -p - b, p_b_dot = -p_dot; force -F on delta.
     const FlankForce f = flank(g, -p - options_.backlash, -p_dot);
@@ -236,6 +282,48 @@ void GearMeshContact::evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& 
   }
 }
 
+std::vector<ToothPairContact> GearMeshContact::pairs(double theta1) const {
+  std::vector<ToothPairContact> out;
+  if (!has_friction()) return out;
+  const ToothFriction& fr = options_.friction;
+  const double pitch_angle = map_->period_rad / map_->mesh_cycles;  // one base pitch of theta1
+  const double base_pitch = fr.base_radius1 * pitch_angle;
+  const double x = (theta1 - fr.phase) / pitch_angle;
+  const double end = fr.path_start + fr.path_length;
+  // The newest pair entered at s_A; each older one is a base pitch further along the path.
+  for (double s = fr.path_start + (x - std::floor(x)) * base_pitch; s < end; s += base_pitch)
+    out.push_back({s, 0.0});
+  for (ToothPairContact& pair : out) pair.share = 1.0 / static_cast<double>(out.size());
+  return out;
+}
+
+void GearMeshContact::add_friction(const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                   ElementForce& out) const {
+  const double normal = out.force(0);
+  if (!(normal > 0.0)) return;  // a tension (damping-only) force carries no friction
+  const ToothFriction& fr = options_.friction;
+  const double rb1 = fr.base_radius1;
+  const Eigen::RowVectorXd dn_du = out.stiffness.row(0), dn_dv = out.damping.row(0);
+  for (const ToothPairContact& pair : pairs(u(1))) {
+    // Generalised direction a = d v_s / d v = (0, rho1, -rho2, -1); d a / d theta1 =
+    // (0, r_b1, r_b1, 0) since ds / d theta1 = r_b1.
+    Eigen::Vector4d a(0.0, fr.pitch_arm1 + pair.s, -(fr.pitch_arm2 - pair.s), -1.0);
+    const Eigen::Vector4d da(0.0, rb1, rb1, 0.0);
+    const double vs = a.dot(v);
+    const double sigma = std::tanh(vs / fr.velocity);
+    const double dsigma = (1.0 - sigma * sigma) / fr.velocity;
+    const double dvs_dtheta = da.dot(v);  // r_b1 (theta1_dot + theta2_dot)
+    const double g = fr.coefficient * pair.share;
+    for (int i = 1; i < 4; ++i) {
+      out.force(i) += g * normal * sigma * a(i);
+      out.stiffness.row(i) += g * sigma * a(i) * dn_du;
+      out.stiffness(i, 1) += g * normal * (dsigma * dvs_dtheta * a(i) + sigma * da(i));
+      out.damping.row(i) += g * sigma * a(i) * dn_dv;
+      for (int j = 0; j < 4; ++j) out.damping(i, j) += g * normal * dsigma * a(j) * a(i);
+    }
+  }
+}
+
 std::string GearMeshContact::describe() const {
   const MeshForceMap& m = *map_;
   std::string law =
@@ -244,11 +332,15 @@ std::string GearMeshContact::describe() const {
                 (options_.vary_stiffness ? ", stiffness scaled by k(theta) / mean k" : "")
           : fmt::format("map force-approach law, c = {} N s/m{}", format_number(options_.damping),
                         options_.tension == Tension::clipped ? ", clipped at 0" : "");
-  return fmt::format(
-      "gear mesh '{}' ({}; {} angles x {} forces over {} rad; {}; {})", name_, m.source, m.angles(),
-      m.forces_n.size(), format_number(m.period_rad),
-      has_backlash() ? "backlash " + format_number(options_.backlash) + " m" : "no back flank",
-      law);
+  return fmt::format("gear mesh '{}' ({}; {} angles x {} forces over {} rad; {}; {})", name_,
+                     m.source, m.angles(), m.forces_n.size(), format_number(m.period_rad),
+                     has_backlash() ? "backlash " + format_number(options_.backlash) + " m"
+                                    : "no back flank",
+                     law) +
+         (has_friction() ? fmt::format(", tooth friction mu = {} (v_eps = {} m/s)",
+                                       format_number(options_.friction.coefficient),
+                                       format_number(options_.friction.velocity))
+                         : std::string());
 }
 
 void GearMeshContact::switches(const Eigen::VectorXd& u, double, double* g) const {

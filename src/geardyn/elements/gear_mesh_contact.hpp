@@ -27,7 +27,24 @@
 //   * any ContactLaw on p (and p_b), optionally with its elastic part scaled by
 //     s(theta1) = k(theta1) / mean k of the map (vary_stiffness):
 //     F = F_law(p, p_dot) + (s - 1) F_law(p, 0), zero where the law clips the force to zero.
-// Tooth friction is not modelled.
+//
+// Tooth friction (optional, ToothFriction::coefficient > 0; docs/theory.md §16.6): the element
+// then has n = 4 coordinates u = (delta, theta1, theta2, y), theta2 the wheel's rotation in its
+// working sense and y the displacement of the wheel's centre relative to the pinion's along the
+// profile direction t (perpendicular to the line of action in the transverse plane, the
+// direction in which the pinion's contact point moves for theta1_dot > 0). A pair in contact at
+// distance s from the pitch point along the line of action (s > 0 towards the pinion's tip
+// contact, the recess) has the arms rho1 = rho1_p + s and rho2 = rho2_p - s (the flanks' radii of
+// curvature) and the sliding velocity v_s = rho1 theta1_dot - rho2 theta2_dot - y_dot
+// (= (omega1 + omega2) s at the kinematic speeds). Its friction force mu F_k sigma(v_s) with
+// sigma(v) = tanh(v / v_eps) acts against the pinion flank's sliding, so the generalised force is
+// mu F_k sigma(v_s) (0, rho1, -rho2, -1) and the dissipated power mu F_k sigma(v_s) v_s.
+// Pairs: the contact moves along the path of contact by r_b1 per radian of theta1; a pair enters
+// at the start of the active path s_A when theta1 = phase (mod the base pitch angle
+// period / mesh_cycles), and the next pair one base pitch behind; the pairs on the path
+// [s_A, s_A + g_alpha] share the normal force F equally (F_k = F / n_pairs: the rigid-tooth load
+// sharing of the classical tooth loss factor, Ohlendorf 1958). Only the drive flank carries
+// friction (a back-flank impact is short and its friction is neglected).
 #include <limits>
 #include <memory>
 #include <string>
@@ -72,6 +89,34 @@ void check_mesh_force_map(const MeshForceMap& map, const LawSource& source = {})
 /// Which flank touches.
 enum class MeshContactState { drive, separated, back };
 
+/// Tooth friction of a mesh (external spur or helical pair, in the transverse plane).
+struct ToothFriction {
+  double coefficient = 0.0;  ///< mu (0: no friction, n = 2)
+  double velocity = 1e-3;    ///< v_eps [m/s] of sigma(v) = tanh(v / v_eps)
+  double base_radius1 = std::numeric_limits<double>::quiet_NaN();  ///< r_b1 [m]
+  /// Arms at the pitch point rho_p = r_b tan(alpha_w) of pinion and wheel [m].
+  double pitch_arm1 = std::numeric_limits<double>::quiet_NaN();
+  double pitch_arm2 = std::numeric_limits<double>::quiet_NaN();
+  /// Start of the active path from the pitch point s_A (<= 0) and its length g_alpha [m].
+  double path_start = std::numeric_limits<double>::quiet_NaN();
+  double path_length = std::numeric_limits<double>::quiet_NaN();
+  double phase = 0.0;  ///< theta1 at which a pair enters at s_A [rad]
+};
+
+/// Tooth friction of an external involute pair from its base radii r_b1, r_b2, tip radii r_a1,
+/// r_a2 and working centre distance a (ISO 21771:2007, sec. 5.4): cos(alpha_w) = (r_b1 + r_b2) /
+/// a, rho_p = r_b tan(alpha_w), the recess (pinion tip) part g_a = sqrt(r_a1^2 - r_b1^2) - rho1_p
+/// and the approach part g_f = sqrt(r_a2^2 - r_b2^2) - rho2_p: s_A = -g_f, g_alpha = g_f + g_a.
+ToothFriction spur_tooth_friction(double coefficient, double velocity, double base_radius1,
+                                  double base_radius2, double tip_radius1, double tip_radius2,
+                                  double centre_distance);
+
+/// One tooth pair on the path of contact at pinion angle theta1.
+struct ToothPairContact {
+  double s = 0.0;      ///< position from the pitch point along the line of action [m]
+  double share = 0.0;  ///< its part of the normal force (1 / pairs in contact)
+};
+
 struct GearMeshContactOptions {
   /// Total backlash b along the line of action [m]; NaN: no back flank.
   double backlash = std::numeric_limits<double>::quiet_NaN();
@@ -82,6 +127,7 @@ struct GearMeshContactOptions {
   /// With the map's law: mesh viscous damping c [N s/m] (in contact only) and its tension.
   double damping = 0.0;
   Tension tension = Tension::allowed;
+  ToothFriction friction;  ///< coefficient 0: none
 };
 
 class GearMeshContact final : public ForceElement {
@@ -91,7 +137,7 @@ class GearMeshContact final : public ForceElement {
   GearMeshContact(std::string name, std::shared_ptr<const MeshForceMap> map,
                   GearMeshContactOptions options, const LawSource& source = {});
 
-  Eigen::Index size() const override { return 2; }
+  Eigen::Index size() const override { return has_friction() ? 4 : 2; }
   void evaluate(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double t,
                 ElementForce& out) const override;
   std::string describe() const override;
@@ -104,6 +150,10 @@ class GearMeshContact final : public ForceElement {
   const MeshForceMap& map() const { return *map_; }
   const GearMeshContactOptions& options() const { return options_; }
   bool has_backlash() const;
+  bool has_friction() const { return options_.friction.coefficient > 0.0; }
+  /// The tooth pairs on the path of contact at pinion angle theta1 (friction only; empty
+  /// without friction).
+  std::vector<ToothPairContact> pairs(double theta1) const;
 
   /// e_g(theta1) and its derivative (periodic linear interpolation) [m], [m/rad].
   double unloaded_te(double theta1) const;
@@ -130,6 +180,9 @@ class GearMeshContact final : public ForceElement {
   /// The map's elastic law at grid angle i and penetration p > 0: force and dF/dp.
   void node_law(int i, double p, double& force, double& slope) const;
   FlankForce flank(const Grid& g, double p, double p_dot) const;
+  /// Adds the drive flank's tooth friction for the normal force out.force(0) (with its tangents
+  /// in row 0) to rows 1..3.
+  void add_friction(const Eigen::VectorXd& u, const Eigen::VectorXd& v, ElementForce& out) const;
 
   std::string name_;
   std::shared_ptr<const MeshForceMap> map_;

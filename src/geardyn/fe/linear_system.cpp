@@ -275,15 +275,17 @@ struct Assembler {
       const std::string key = fmt::format("superelement '{}'", body.name);
       const auto n = static_cast<Eigen::Index>(body.size());
       if (body.K.rows() != n || body.K.cols() != n || body.M.rows() != n || body.M.cols() != n ||
-          (body.G.size() != 0 && (body.G.rows() != n || body.G.cols() != n))) {
-        throw InputError(
-            {}, key, fmt::format("K, M (and G) of size {} x {}", n, n),
-            fmt::format("K {} x {}, M {} x {}, G {} x {}", body.K.rows(), body.K.cols(),
-                        body.M.rows(), body.M.cols(), body.G.rows(), body.G.cols()));
+          (body.G.size() != 0 && (body.G.rows() != n || body.G.cols() != n)) ||
+          (body.C.size() != 0 && (body.C.rows() != n || body.C.cols() != n))) {
+        throw InputError({}, key, fmt::format("K, M (and G, C) of size {} x {}", n, n),
+                         fmt::format("K {} x {}, M {} x {}, G {} x {}, C {} x {}", body.K.rows(),
+                                     body.K.cols(), body.M.rows(), body.M.cols(), body.G.rows(),
+                                     body.G.cols(), body.C.rows(), body.C.cols()));
       }
       require_finite(body.K, {}, key + ".K");
       require_finite(body.M, {}, key + ".M");
       require_finite(body.G, {}, key + ".G");
+      require_finite(body.C, {}, key + ".C");
       std::vector<int> equations;
       const auto n_points = body.points.size();
       const Eigen::Index n_local =
@@ -319,6 +321,7 @@ struct Assembler {
       add(body.K, K);
       add(body.M, M);
       add(body.G, G);
+      add(body.C, C);
     }
   }
 

@@ -10,7 +10,8 @@
 // the node frame F (u_global = F u_node, for translations and rotations alike), or a new node
 // the body adds to the DofMap (frame = global axes; unlisted components get no equation).
 // With q = T u (T: the listed rows of blockdiag(F, F) per model-node point, identity for new
-// nodes and generalised coordinates) the body adds T^T K T, T^T M T and T^T G T to the system.
+// nodes and generalised coordinates) the body adds T^T K T, T^T M T, T^T G T and T^T C T to the
+// system (C: e.g. the component's own modal damping, added to the system's viscous C).
 #include <Eigen/Dense>
 #include <array>
 #include <string>
@@ -33,6 +34,7 @@ struct Superelement {
   Eigen::MatrixXd K;  ///< stiffness over q, symmetric
   Eigen::MatrixXd M;  ///< mass over q, symmetric
   Eigen::MatrixXd G;  ///< gyroscopic per unit reference speed over q (skew), or empty (0 x 0)
+  Eigen::MatrixXd C;  ///< viscous damping over q (symmetric), or empty (0 x 0)
 
   /// Number of physical coordinates (listed components of all points).
   int n_physical() const {

@@ -179,6 +179,8 @@ struct MeshContactSpec {
   /// With an IMPACT / penalty law: scale its stiffness by k(theta) / mean k of the map.
   bool vary_stiffness = true;
   double friction = 0.0;  ///< tooth friction coefficient mu (0: none)
+  /// v_eps [m/s] of the friction's smoothed sign tanh(v_s / v_eps) (docs/theory.md §16.6).
+  double friction_velocity = 1e-3;
   SourceLocation where;
 };
 

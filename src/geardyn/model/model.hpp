@@ -300,6 +300,9 @@ struct Solid {
   GearSectorSpec gear_sector;
   std::vector<Spider> spiders;  ///< joints to rotor nodes (non-empty: part of the rotor system)
   int coupling_modes = 20;      ///< fixed-interface modes kept when joined to the rotor
+  /// Viscous ratio zeta of every fixed-interface mode when joined to the rotor (docs/theory.md
+  /// §9, eq. 9.4): C_eta = diag(2 zeta omega_k); the constraint modes stay undamped. 0: none.
+  double modal_damping_ratio = 0.0;
   SourceLocation where;
 };
 

@@ -21,6 +21,7 @@ constexpr Unit kTorque{"N m", 1.0};
 constexpr Unit kRadPerSecond{"rad/s", 1.0};
 constexpr Unit kDragCoefficient{"N m s^2/rad^2", 1.0};
 constexpr Unit kHuntCrossley{"s/m", 1.0};
+constexpr Unit kMetrePerSecond{"m/s", 1.0};
 
 const std::vector<std::string> kLawTypes = {"linear", "hertz", "impact", "penalty"};
 const std::vector<std::string> kDirections = {"x", "y", "z", "rx", "ry", "rz"};
@@ -868,11 +869,22 @@ Section mesh_contact_section() {
                   "of the map, so the mesh stiffness varies over the mesh cycle.")
               .def("true")
               .to(&MeshContactSpec::vary_stiffness),
-          number("friction", kNoUnit, "Tooth friction coefficient mu (0: none).")
+          number("friction", kNoUnit,
+                 "Tooth friction coefficient mu (0: none): the force mu F_n along the profile, "
+                 "against the sliding, which reverses at the pitch point; its moments about "
+                 "both shafts follow the contact's position on the path of contact, taken from "
+                 "the mesh's [[gear_pairs]] geometry (docs/theory.md §16.6).")
               .def("0.0")
               .ge(0)
               .le(1)
               .to(&MeshContactSpec::friction),
+          number("friction_velocity", kMetrePerSecond,
+                 "Sliding speed v_eps of the friction's smoothed sign tanh(v_s / v_eps): "
+                 "smaller is closer to dry friction at the pitch point and stiffer to "
+                 "integrate.")
+              .def("1e-3")
+              .gt(0)
+              .to(&MeshContactSpec::friction_velocity),
       })
       .sections({mesh_contact_law_section()});
 }

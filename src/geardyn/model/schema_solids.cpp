@@ -36,6 +36,11 @@ void finish_solid(Solid& s, const TableContext& t) {
                               (s.source == SolidSource::MeshFile && s.mesh.ends_with(".msh"));
   if (needs_material && s.material.empty())
     t.fail("material", "a material name (Gmsh and generated meshes carry no material)", "nothing");
+  if (s.spiders.empty() && s.modal_damping_ratio > 0.0)
+    t.fail("modal_damping_ratio",
+           "0 for a solid not joined to the rotor by [[solids.spiders]] (it damps the modes of "
+           "the joined component)",
+           value_text(s.modal_damping_ratio));
   if (!s.spiders.empty() && s.sectors > 1)
     t.fail("sectors", "1 for a solid joined to the rotor by [[solids.spiders]] (the whole body)",
            std::to_string(s.sectors));
@@ -159,6 +164,18 @@ std::vector<Field> solid_fields_1() {
           .le(10000)
           .only_in({"mesh", "annular_plate", "gear_sector"})
           .to(&Solid::coupling_modes),
+      number("modal_damping_ratio", kNoUnit,
+             "Viscous damping ratio zeta of every fixed-interface mode of the solid joined to "
+             "the rotor, independent of [damping]: C_eta = diag(2 zeta omega_k) in its modal "
+             "coordinates (docs/theory.md §9, eq. 9.4); the spider and sensor points' constraint "
+             "modes "
+             "stay undamped. Reaches every analysis of the rotor system (modal, frf, transient, "
+             "drivetrain_transient).")
+          .def("0.0")
+          .ge(0)
+          .lt(1)
+          .only_in({"mesh", "annular_plate", "gear_sector"})
+          .to(&Solid::modal_damping_ratio),
       choice("unsupported_cards", {"warn", "error"},
              "Nastran cards geardyn does not read: listed as warnings, or an error.")
           .def("\"warn\"")
