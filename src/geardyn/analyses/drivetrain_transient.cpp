@@ -10,6 +10,7 @@
 #include <map>
 
 #include "geardyn/analyses/mesh_force_map.hpp"
+#include "geardyn/analyses/pair_model.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/drivetrain/builder.hpp"
@@ -381,6 +382,32 @@ double initial_speed(const model::Model& model, const fe::LinearSystem& sys) {
 
 /// The tooth-contact element of every [[gear_meshes]] entry: its pair's force map (or the
 /// constant stiffness), backlash, law and the mesh damping.
+/// Tooth friction of a mesh whose contact names an external cylindrical pair (the path of
+/// contact from its tip geometry, docs/theory.md §16.6); a located error for other pairs.
+elements::ToothFriction tooth_friction(const model::Model& m, const model::GearMesh& g,
+                                       const std::string& key) {
+  const model::MeshContactSpec& c = *g.contact;
+  const SourceLocation where = c.where.line > 0 ? c.where : g.where;
+  if (c.gear_pair.empty())
+    throw InputError(where, key + ".contact.friction",
+                     "a contact that names its [[gear_pairs]] entry (gear_pair): the path of "
+                     "contact comes from the pair's tip geometry",
+                     fmt::format("friction = {} without gear_pair", c.friction),
+                     "set gear_pair, or friction = 0");
+  const PairModel pm = build_pair_model(m, pair_index(m, c.gear_pair));
+  const gear::GearPairGeometry& geo = pm.geometry;
+  const bool cylindrical =
+      geo.spec.type == gear::GearType::Spur || geo.spec.type == gear::GearType::Helical;
+  if (!cylindrical || geo.spec.mesh != gear::MeshType::External)
+    throw InputError(where, key + ".contact.friction",
+                     "tooth friction on an external spur or helical pair",
+                     fmt::format("pair '{}', not an external cylindrical pair", c.gear_pair),
+                     "set friction = 0 for bevel, hypoid and internal pairs");
+  return elements::spur_tooth_friction(c.friction, c.friction_velocity, geo.pinion.base_radius_m,
+                                       geo.wheel.base_radius_m, geo.pinion.tip_radius_m,
+                                       geo.wheel.tip_radius_m, geo.centre_distance_m);
+}
+
 std::vector<std::shared_ptr<const elements::ForceElement>> mesh_elements(const model::Model& m) {
   std::vector<std::shared_ptr<const elements::ForceElement>> out;
   for (std::size_t i = 0; i < m.gear_meshes.size(); ++i) {
@@ -394,6 +421,7 @@ std::vector<std::shared_ptr<const elements::ForceElement>> mesh_elements(const m
       where = g.contact->where.line > 0 ? g.contact->where : g.where;
       o.backlash = g.contact->backlash;
       o.vary_stiffness = g.contact->vary_stiffness;
+      if (g.contact->friction > 0.0) o.friction = tooth_friction(m, g, key);
       if (g.contact->law)
         o.law = drivetrain::make_contact_law(
             *g.contact->law,
