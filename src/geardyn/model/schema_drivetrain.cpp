@@ -873,7 +873,9 @@ Section mesh_contact_section() {
                  "Tooth friction coefficient mu (0: none): the force mu F_n along the profile, "
                  "against the sliding, which reverses at the pitch point; its moments about "
                  "both shafts follow the contact's position on the path of contact, taken from "
-                 "the mesh's [[gear_pairs]] geometry (docs/theory.md §16.6).")
+                 "the mesh's [[gear_pairs]] geometry (docs/theory.md §16.6). Needs gear_pair "
+                 "naming an external spur or helical pair (tooth pairs share the load "
+                 "equally).")
               .def("0.0")
               .ge(0)
               .le(1)
