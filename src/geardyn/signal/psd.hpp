@@ -6,10 +6,12 @@
 // segment are not used). Each segment is multiplied by the window w and transformed, and the
 // one-sided densities are averaged:
 //   P_k = c_k / (fs S2) * (1/K) sum_segments |X_k|^2,   S2 = sum_j w_j^2,   f_k = k fs / L
-// with c_k = 1 for DC and (L even) Nyquist, 2 otherwise. Dividing by S2 (the window's power, the
-// equivalent noise bandwidth ENBW = fs S2 / S1^2 times S1^2) makes the PSD integrate to the mean
-// square: sum_k P_k fs/L = (1/K) sum_segments sum_j (w_j x_j)^2 / S2, which for a rectangular
-// window and non-overlapping segments is exactly the mean square of the samples used. The unit is
+// with c_k = 1 for DC and (L even) Nyquist, 2 otherwise. Dividing by S2, the window's power
+// (equivalently: by the equivalent noise bandwidth ENBW = fs S2 / S1^2 after the coherent-gain
+// correction 1/S1^2), makes the PSD integrate to the mean square:
+//   sum_k P_k fs/L = (1/K) sum_segments sum_j (w_j x_j)^2 / S2,
+// which for a rectangular window and non-overlapping segments is exactly the mean square of the
+// samples used, and for any window its expectation for stationary noise. The unit is
 // (unit of the signal)^2 / Hz. A sinusoid of amplitude A contributes A^2/2 summed over its
 // leakage bins.
 // References: P. D. Welch, "The use of fast Fourier transform for the estimation of power
