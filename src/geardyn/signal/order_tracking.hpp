@@ -30,8 +30,8 @@ Eigen::VectorXd tacho_pulse_times(const Eigen::Ref<const Eigen::VectorXd>& time_
 
 /// Shaft angle [rad] at the times t from pulse times (pulse i at angle 2 pi i / ppr). Samples
 /// before the first or after the last pulse are extrapolated with the cubic of the end interval;
-/// use angle_range_of_pulses to keep to the covered part. Throws for fewer than 2 pulses,
-/// non-increasing pulse times or t, or ppr < 1.
+/// keep to the samples between the first and the last pulse for analysis. Throws for fewer than 2
+/// pulses, non-increasing pulse times or t, or ppr < 1.
 Eigen::VectorXd angle_from_pulse_times(const Eigen::Ref<const Eigen::VectorXd>& time_s,
                                        const Eigen::Ref<const Eigen::VectorXd>& pulse_times_s,
                                        int pulses_per_revolution);
