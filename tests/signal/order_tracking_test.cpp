@@ -129,6 +129,26 @@ TEST(OrderTracking, RunUpFromATachoColumnRecoversEachOrderAmplitude) {
   expect_orders_recovered(record, 2e-3);
 }
 
+TEST(OrderTracking, OncePerRevolutionPulsesGiveTheExactAngleOfAConstantAcceleration) {
+  // Pulse times of a once-per-revolution tacho from the profile itself (t of each whole
+  // revolution, exact). The cubic's slopes are the derivatives of the parabola through three
+  // pulses, and theta(t) is a parabola: the interpolated angle is exact to rounding, and the
+  // Fritsch-Carlson limit (slope <= 3 secants) is not active at this acceleration. 1e-9 rad
+  // covers the rounding of angles up to 3500 rad.
+  const RunUp r = run_up();
+  Eigen::VectorXd pulses(550);
+  for (Eigen::Index i = 0; i < pulses.size(); ++i) {
+    const double rev = static_cast<double>(i);
+    pulses[i] = (-kN0 + std::sqrt(kN0 * kN0 + 2 * kAcc * rev)) / kAcc;
+  }
+  const Eigen::VectorXd angle = angle_from_pulse_times(r.t, pulses, 1);
+  double max_error = 0.0;
+  for (Eigen::Index j = 0; j < r.t.size(); ++j)
+    if (r.t[j] <= pulses[pulses.size() - 1])
+      max_error = std::max(max_error, std::abs(angle[j] - r.angle[j]));
+  EXPECT_LT(max_error, 1e-9);
+}
+
 TEST(OrderTracking, StationarySineReadsItsAmplitude) {
   // 1500 rpm, x = 2.3 cos(3 theta + 0.2): order 3 reads 2.3 in every block, the other order
   // bins near zero. On-bin and resampled from 4096 Hz (82 samples per cycle of order 3):
