@@ -173,6 +173,36 @@ TEST(ExteriorSurface, ShellHasTwoSpheresAndCurvedQuadraticFaces) {
   }
 }
 
+TEST(ExteriorSurface, DofRowsOfTheSurfaceNodes) {
+  // DOFs listed node-major in reverse node order with a rotation in between: the rows must be
+  // found by node id and component, not by position.
+  const solid::Mesh mesh = unit_cube(ElementType::Hex8, 1);
+  std::vector<solid::DofInfo> dofs;
+  for (int n = mesh.num_nodes() - 1; n >= 0; --n)
+    for (int c : {3, 2, 1, 0})
+      dofs.push_back({mesh.node_ids[static_cast<std::size_t>(n)], c,
+                      mesh.coords[static_cast<std::size_t>(n)]});
+  const Surface s = exterior_surface(mesh, mesh.node_sets.at("xmax"));
+  const std::vector<int> rows = surface_dof_rows(mesh, s, dofs);
+  ASSERT_EQ(rows.size(), 3u * s.nodes.size());
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const solid::DofInfo& d =
+          dofs[static_cast<std::size_t>(rows[3 * i + static_cast<std::size_t>(c)])];
+      EXPECT_EQ(d.node_id, mesh.node_ids[static_cast<std::size_t>(s.nodes[i])]);
+      EXPECT_EQ(d.component, c);
+    }
+  dofs.erase(dofs.begin() + 2);  // node 8's uy (listed 3, 2, 1, 0): constrained away
+  try {
+    surface_dof_rows(mesh, s, dofs);
+    ADD_FAILURE() << "no error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("surface node 8 (mesh node index 7) has no uy"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(ErpOperator, PowerEqualsErpOfTheExpandedVelocities) {
   // W = R_n^T diag(A) R_n is an exact rewriting of the sum: agreement to round-off (1e-12).
   const solid::Mesh mesh = unit_cube(ElementType::Hex20, 2);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 namespace geardyn::acoustics {
@@ -343,6 +344,37 @@ Surface exterior_surface(const solid::Mesh& mesh, const std::vector<int>& node_s
     if (norm > 0) s.node_normal.col(i) /= norm;
   }
   return s;
+}
+
+std::vector<int> surface_dof_rows(const solid::Mesh& mesh, const Surface& s,
+                                  const std::vector<solid::DofInfo>& dofs) {
+  std::unordered_map<long, std::array<int, 3>> rows;
+  for (std::size_t k = 0; k < dofs.size(); ++k) {
+    const solid::DofInfo& d = dofs[k];
+    if (d.component < 0 || d.component > 2) continue;
+    auto [it, inserted] = rows.try_emplace(d.node_id, std::array<int, 3>{-1, -1, -1});
+    it->second[static_cast<std::size_t>(d.component)] = static_cast<int>(k);
+  }
+  std::vector<int> out;
+  out.reserve(3 * s.nodes.size());
+  for (int node : s.nodes) {
+    const long id = mesh.node_ids.empty() ? node : mesh.node_ids[static_cast<std::size_t>(node)];
+    const auto found = rows.find(id);
+    for (int c = 0; c < 3; ++c) {
+      const int row = found == rows.end() ? -1 : found->second[static_cast<std::size_t>(c)];
+      if (row < 0)
+        throw std::invalid_argument(fmt::format(
+            "surface node {} (mesh node index {}) has no {} among the {} DOFs given (constrained "
+            "or not part of the component?)",
+            id, node,
+            c == 0   ? "ux"
+            : c == 1 ? "uy"
+                     : "uz",
+            dofs.size()));
+      out.push_back(row);
+    }
+  }
+  return out;
 }
 
 }  // namespace geardyn::acoustics

@@ -63,4 +63,13 @@ struct Surface {
 /// mesh, or when the mesh has no exterior face; the caller turns it into a located InputError.
 Surface exterior_surface(const solid::Mesh& mesh, const std::vector<int>& node_set = {});
 
+/// Row indices into `dofs` (e.g. reduce::ReducedComponent::full_dofs, or an assembled solid's DOF
+/// list) of each surface node's ux, uy, uz: 3 per node, surface-node order, so that the rows
+/// rows[3 i + c] of a recovery matrix x = T q form the `recovery` of ErpOperator. A node's DOFs
+/// are matched by its external id (mesh.node_ids[i], or the index i when the mesh has no ids, as
+/// solid assembly numbers them) and component 0..2. Throws std::invalid_argument naming the first
+/// surface node without one of its translations in `dofs` (e.g. a constrained node).
+std::vector<int> surface_dof_rows(const solid::Mesh& mesh, const Surface& s,
+                                  const std::vector<solid::DofInfo>& dofs);
+
 }  // namespace geardyn::acoustics
