@@ -312,6 +312,7 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
   result.sensors = settings.sensors;
   std::vector<int> outputs;
   for (const RotorSensor& s : settings.sensors) outputs.push_back(s.equation);
+  outputs.insert(outputs.end(), settings.extra_outputs.begin(), settings.extra_outputs.end());
   const Eigen::MatrixXd load = mesh_load(model, system, mesh);
 
   std::unique_ptr<ModalRotorModel> modal;
@@ -328,8 +329,10 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
   }
 
   const Eigen::Index ns = settings.speeds.size();
-  const Eigen::Index nsens = static_cast<Eigen::Index>(outputs.size());
+  const auto nsens = static_cast<Eigen::Index>(settings.sensors.size());
+  const auto nextra = static_cast<Eigen::Index>(settings.extra_outputs.size());
   result.displacement.assign(settings.harmonics.size(), Eigen::MatrixXcd(ns, nsens));
+  result.extra.assign(settings.harmonics.size(), Eigen::MatrixXcd(ns, nextra));
   progress.start("mesh forced response", static_cast<std::size_t>(ns));
   for (Eigen::Index i = 0; i < ns; ++i) {
     const double speed = settings.speeds[i];
@@ -337,7 +340,9 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
       const double omega = settings.harmonics[h].order * result.mesh_frequency_per_speed * speed;
       const Eigen::MatrixXcd u =
           modal ? modal->response(speed, omega) : direct->response(speed, omega);
-      result.displacement[h].row(i) = settings.harmonics[h].amplitude * u.col(0).transpose();
+      const Complex f = settings.harmonics[h].amplitude;
+      result.displacement[h].row(i) = f * u.col(0).head(nsens).transpose();
+      result.extra[h].row(i) = f * u.col(0).tail(nextra).transpose();
     }
     progress.update(static_cast<std::size_t>(i + 1));
   }

@@ -135,6 +135,9 @@ struct RotorForcedSettings {
   int n_modes = 30;              ///< ModalReduced: modes at zero speed in the basis
   bool residual_vectors = true;  ///< ModalReduced: add the static correction (file comment)
   PeakOptions peaks;
+  /// Further equations whose response is kept (RotorForcedResult::extra), e.g. the coordinates
+  /// of a joined housing for its surface velocities; no peaks or tables.
+  std::vector<int> extra_outputs;
   std::vector<std::string> validate() const;
 };
 
@@ -148,6 +151,7 @@ struct RotorForcedResult {
   std::vector<MeshOrderForce> harmonics;
   std::vector<RotorSensor> sensors;
   std::vector<Eigen::MatrixXcd> displacement;  ///< per harmonic: speeds x sensors [m or rad]
+  std::vector<Eigen::MatrixXcd> extra;         ///< per harmonic: speeds x settings.extra_outputs
   Eigen::MatrixXd amplitude_sum;               ///< speeds x sensors: sum over orders of |u|
   Eigen::MatrixXd amplitude_rms;               ///< speeds x sensors: sqrt(sum |u|^2 / 2)
   std::vector<SpeedPeak> peaks;   ///< curve = harmonic index, -1 for the sum; by sensor
