@@ -7,11 +7,11 @@
 // every solution is the steady state Re(Q e^{i w t}), Q = D(w)^{-1} F v with
 // D = K(W) - w^2 M + i w (C(W) + W G + C_modal), plus free vibrations that decay when every mode
 // is damped (the frequency-response theorem of linear vibration; e.g. L. Meirovitch, Elements
-// of Vibration Analysis, 2nd ed., 1986, sec. 3.2 and 7.x). The time integration is the
-// trapezoidal rule (Newmark average acceleration; N. M. Newmark, "A method of computation for
-// structural dynamics", J. Eng. Mech. Div. ASCE 85 (1959) 67-94), run from rest until the free
-// vibration has decayed; the phasor is the least-squares fit of a cos + b sin over an integer
-// number of forcing periods.
+// of Vibration Analysis, 2nd ed., McGraw-Hill, 1986, on the harmonic excitation of damped
+// systems). The time integration is the trapezoidal rule (Newmark average acceleration;
+// N. M. Newmark, "A method of computation for structural dynamics", J. Eng. Mech. Div. ASCE 85
+// (1959) 67-94), run from rest until the free vibration has decayed; the phasor is the
+// least-squares fit of a cos + b sin over an integer number of forcing periods.
 //
 // Model: the two-shaft spur stage of examples/first_model (20/40 teeth, mesh stiffness 2e8
 // N/m, rigid-disk gears with gyroscopic terms) with damped bearings, one of them tabulated over
