@@ -188,24 +188,16 @@ TEST(GearWhine, RadiatedPowerEqualsExplicitExpansionToTheSurface) {
   const assembly::SolidComponent built = assembly::build_solid(r.model, spec);
   const assembly::CoupledSolid coupled = assembly::couple_solid(r.model, spec, built);
   const Eigen::SparseMatrix<double> B = fe::body_coordinates(r.system, coupled.body);
-  // The equations of the housing, in the analysis's order (ascending columns of B).
-  std::vector<int> equations;
-  for (Eigen::Index c = 0; c < B.outerSize(); ++c)
-    if (B.col(c).nonZeros() > 0) equations.push_back(static_cast<int>(c));
   const response::RotorForcedResult& f = r.result.response;
-  ASSERT_EQ(f.extra.front().cols(), static_cast<Eigen::Index>(equations.size()));
   const acoustics::Air air;
   for (Eigen::Index i : {Eigen::Index{5}, Eigen::Index{30}}) {
     for (std::size_t h = 0; h < f.harmonics.size(); ++h) {
       const double omega = f.harmonics[h].order * f.mesh_frequency_per_speed * f.speeds[i];
-      Eigen::VectorXcd u = Eigen::VectorXcd::Zero(r.system.size());
-      for (std::size_t e = 0; e < equations.size(); ++e)
-        u[equations[e]] = f.extra[h](i, static_cast<Eigen::Index>(e));
+      const Eigen::VectorXcd u = f.full_response(h, i);
       const Eigen::VectorXcd qb = B.cast<Complex>() * u;
       const Eigen::MatrixXd z_re = reduce::expand(coupled.reduced, qb.real());
       const Eigen::MatrixXd z_im = reduce::expand(coupled.reduced, qb.imag());
       const Eigen::SparseMatrix<double>& rec = coupled.solid_dofs.recovery;
-      const Eigen::VectorXd n_x = Eigen::VectorXd::Zero(rec.cols());
       const Eigen::VectorXd x_re = z_re.col(0).head(rec.cols()),
                             x_im = z_im.col(0).head(rec.cols());
       const Eigen::VectorXd all_re = rec * x_re, all_im = rec * x_im;

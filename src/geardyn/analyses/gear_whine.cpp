@@ -95,7 +95,9 @@ HousingSurface housing_surface(const model::Model& model, const GearWhineSetting
   return h;
 }
 
-/// Radiated power per speed and order from the housing's equations' response `extra`.
+/// Radiated power per speed and order from the modal coordinates of the response (q = Phi eta):
+/// the surface recovery composed with the housing's rows of the basis, so each speed and order
+/// costs O(basis^2).
 WhineRadiation radiate(const HousingSurface& h, const GearWhineSettings& s,
                        const response::RotorForcedResult& r, Progress& progress) {
   WhineRadiation out;
@@ -106,25 +108,30 @@ WhineRadiation radiate(const HousingSurface& h, const GearWhineSettings& s,
   out.surface_faces = static_cast<int>(h.surface.faces.size());
   out.area_m2 = h.surface.area();
   out.radiator_radius_m = std::isnan(s.radiator_radius)
-                              ? std::sqrt(out.area_m2 / (4.0 * units::kPi))
+                              ? acoustics::equivalent_sphere_radius(out.area_m2)
                               : s.radiator_radius;
   const acoustics::Air air{s.air_density, s.speed_of_sound};
-  const acoustics::ErpOperator erp(h.surface, h.recovery);
+  Eigen::MatrixXd rows(static_cast<Eigen::Index>(h.equations.size()), r.basis.cols());
+  for (std::size_t e = 0; e < h.equations.size(); ++e)
+    rows.row(static_cast<Eigen::Index>(e)) = r.basis.row(h.equations[e]);
+  const acoustics::ErpOperator erp(h.surface, h.recovery * rows);
   const Eigen::Index ns = r.speeds.size();
   const auto no = static_cast<Eigen::Index>(r.harmonics.size());
   out.erp_w.resize(ns, no);
   out.radiator_w.resize(ns, no);
   out.mean_velocity_ms.resize(ns, no);
+  const auto omega_of = [&](Eigen::Index i, Eigen::Index j) {
+    return r.harmonics[static_cast<std::size_t>(j)].order * r.mesh_frequency_per_speed *
+           r.speeds[i];
+  };
   progress.start("radiated power", static_cast<std::size_t>(ns));
   for (Eigen::Index i = 0; i < ns; ++i) {
     for (Eigen::Index j = 0; j < no; ++j) {
-      const double omega =
-          r.harmonics[static_cast<std::size_t>(j)].order * r.mesh_frequency_per_speed * r.speeds[i];
-      const Eigen::VectorXcd q = r.extra[static_cast<std::size_t>(j)].row(i).transpose();
-      out.erp_w(i, j) = erp.power(q, omega, air, s.radiation_efficiency);
-      out.mean_velocity_ms(i, j) = erp.mean_normal_velocity(q, omega);
-      out.radiator_w(i, j) = acoustics::spherical_radiator_power(out.mean_velocity_ms(i, j),
-                                                                 out.radiator_radius_m, omega, air);
+      const Eigen::VectorXcd eta = r.coordinates[static_cast<std::size_t>(j)].col(i);
+      out.erp_w(i, j) = erp.power(eta, omega_of(i, j), air, s.radiation_efficiency);
+      out.mean_velocity_ms(i, j) = erp.mean_normal_velocity(eta, omega_of(i, j));
+      out.radiator_w(i, j) = acoustics::spherical_radiator_power(
+          out.mean_velocity_ms(i, j), out.radiator_radius_m, omega_of(i, j), air);
     }
     progress.update(static_cast<std::size_t>(i + 1));
   }
@@ -132,25 +139,23 @@ WhineRadiation radiate(const HousingSurface& h, const GearWhineSettings& s,
   out.erp_total_w = out.erp_w.rowwise().sum();
   out.radiator_total_w = out.radiator_w.rowwise().sum();
   // Per-face maps at the asked speeds (the nearest computed speed), else at the loudest one.
-  std::vector<Eigen::Index> rows;
+  std::vector<Eigen::Index> map_rows;
   for (double w : s.map_speeds) {
     Eigen::Index best = 0;
     (r.speeds.array() - w).abs().minCoeff(&best);
-    rows.push_back(best);
+    map_rows.push_back(best);
   }
-  if (rows.empty()) {
+  if (map_rows.empty()) {
     Eigen::Index best = 0;
     out.erp_total_w.maxCoeff(&best);
-    rows.push_back(best);
+    map_rows.push_back(best);
   }
-  for (Eigen::Index i : rows) {
+  for (Eigen::Index i : map_rows) {
     Eigen::VectorXd faces =
         Eigen::VectorXd::Zero(static_cast<Eigen::Index>(h.surface.faces.size()));
     for (Eigen::Index j = 0; j < no; ++j) {
-      const double omega =
-          r.harmonics[static_cast<std::size_t>(j)].order * r.mesh_frequency_per_speed * r.speeds[i];
-      const Eigen::VectorXcd q = r.extra[static_cast<std::size_t>(j)].row(i).transpose();
-      faces += acoustics::face_erp(h.surface, erp.normal_velocity(q, omega), air,
+      const Eigen::VectorXcd eta = r.coordinates[static_cast<std::size_t>(j)].col(i);
+      faces += acoustics::face_erp(h.surface, erp.normal_velocity(eta, omega_of(i, j)), air,
                                    s.radiation_efficiency);
     }
     out.map_speeds.push_back(r.speeds[i]);
@@ -236,7 +241,7 @@ GearWhineResult run_gear_whine(const model::Model& model, const GearWhineSetting
   HousingSurface housing;
   if (!s.radiating_solid.empty()) {
     housing = housing_surface(model, s, system, context);
-    rs.extra_outputs = housing.equations;
+    rs.keep_coordinates = true;
   }
   g.response = response::run_mesh_forced_response(model, system, rs, context.progress());
   if (g.response.displacement.size() != g.response.harmonics.size())
