@@ -7,11 +7,12 @@
 //   - its fast form for a reduced model, ERP(q, w) = 1/2 rho c sigma w^2 q^H W q with the m x m
 //     matrix W = R_n^T diag(A) R_n precomputed once (R_n the normal-projected recovery rows);
 //   - the 0-order (pulsating sphere) radiator of Kinsler, Frey, Coppens and Sanders, "Fundamentals
-//     of Acoustics", 4th ed. 2000, §7.5: P = 2 pi R^2 v^2 rho c (kR)^2 / (1 + (kR)^2), k = w/c;
+//     of Acoustics", 4th ed. 2000, ch. 7: P = 2 pi R^2 v^2 rho c (kR)^2 / (1 + (kR)^2), k = w/c;
 //   - sound power and free-field pressure levels, re 1e-12 W and 20 uPa (ISO 1683):
 //     L_W = 10 lg(P / 1e-12 W), L_p = L_W + 10 lg(Q / (4 pi r^2 / 1 m^2)) for a point source of
-//     directivity factor Q at distance r in air (rho c ~ 400 Pa s/m, where the two references
-//     match to 0.1 dB).
+//     directivity factor Q at distance r, the usual engineering relation: it takes rho c =
+//     400 Pa s/m, where the two references match; with air at 20 degC (rho c = 413 Pa s/m) the
+//     exact 10 lg(rho c I / p0^2) is 10 lg(413 / 400) = 0.14 dB higher.
 // Velocities are complex amplitudes (0-peak), so |v|^2 / 2 is the mean square.
 #include <Eigen/Dense>
 #include <filesystem>
@@ -74,7 +75,7 @@ class ErpOperator {
 
 /// 0-order spherical radiator (pulsating sphere of radius R): P = 2 pi R^2 v^2 rho c
 /// (w/wK)^2 / (1 + (w/wK)^2), wK = c/R, v the normal velocity amplitude [m/s] (Kinsler et al.
-/// 2000, §7.5). Throws std::invalid_argument for R <= 0.
+/// 2000, ch. 7). Throws std::invalid_argument for R <= 0.
 double spherical_radiator_power(double velocity_amplitude, double radius, double omega,
                                 const Air& air);
 /// The radius of the sphere with the surface's area, sqrt(S / (4 pi)) [m].
