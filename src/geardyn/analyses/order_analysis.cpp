@@ -52,8 +52,12 @@ void analyse_channel(ChannelOrders& ch, const Eigen::VectorXd& t, const Eigen::V
     const Eigen::VectorXd seg = x.segment(b * ch.waterfall.step, o.block_length);
     ch.block_rms[b] = std::sqrt((seg.array() - seg.mean()).square().mean());
   }
+  // PSD segments: at least a quarter of the record (a power of 2, at most 16384 samples) for a
+  // resolution that resolves the low 1/3-octave bands; at least the waterfall block.
+  int psd_length = 1;
+  while (psd_length <= 8192 && 2 * psd_length <= x.size() / 4) psd_length *= 2;
   signal::WelchOptions wel;
-  wel.segment_length = o.block_length;
+  wel.segment_length = std::max(o.block_length, psd_length);
   wel.window = signal::Window::Hann;
   wel.overlap = 0.5;
   const signal::PowerSpectralDensity psd = signal::welch_psd(x.array() - x.mean(), fs, wel);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geardyn/analyses/order_analysis.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/signal/octave.hpp"
 #include "geardyn/signal/waterfall.hpp"
 
@@ -196,7 +197,9 @@ void add_bands_and_psd(AnalysisOutput& out, const OrderAnalysisResult& r,
   bands.add("mid_hz", "Hz", r.band_mid_hz);
   Table psd;
   psd.name = prefix + "psd";
-  psd.title = "Power spectral density of the analysed range (Welch, Hann, 50 % overlap)";
+  psd.title =
+      "Power spectral density of the analysed range (Welch, Hann, 50 % overlap, segments of a "
+      "quarter of the range up to 16384 samples)";
   psd.add("frequency_hz", "Hz", to_std(r.channels.front().psd_frequency_hz));
   Plot pp;
   pp.name = prefix + "psd";
@@ -206,9 +209,13 @@ void add_bands_and_psd(AnalysisOutput& out, const OrderAnalysisResult& r,
   pp.y_log = true;
   for (const ChannelOrders& ch : r.channels) {
     std::vector<double> lin, aw;
+    const double nyquist = 0.5 * r.sample_rate_hz;
     for (Eigen::Index b = 0; b < ch.band_power.size(); ++b) {
-      lin.push_back(level_db(ch.band_power[b], o.db_reference));
-      aw.push_back(level_db(ch.band_power_a[b], o.db_reference));
+      // A band reaching above fs/2 is not covered by the record: left blank.
+      const bool covered =
+          r.band_mid_hz[static_cast<std::size_t>(b)] * std::pow(10.0, 0.05) <= nyquist;
+      lin.push_back(covered ? level_db(ch.band_power[b], o.db_reference) : std::nan(""));
+      aw.push_back(covered ? level_db(ch.band_power_a[b], o.db_reference) : std::nan(""));
     }
     Plot p;
     p.name = prefix + "third_octave_" + ch.name;
@@ -270,9 +277,20 @@ void add_notes(AnalysisOutput& out, const OrderAnalysisResult& r, const OrderAna
       "lasts {:.3g} s. Amplitudes are 0-peak in the unit of each channel.",
       r.samples_per_revolution, o.revolutions_per_block, 1.0 / o.revolutions_per_block,
       m.speed_rpm.minCoeff(), o.revolutions_per_block * 60.0 / m.speed_rpm.minCoeff()));
+  // Four-point Lagrange interpolation of a sinusoid with omega h per sample loses up to
+  // 0.0234 (omega h)^4 of its amplitude (docs/theory.md §14): the highest order at the top speed.
+  const double f_top = top * m.speed_rpm.maxCoeff() / 60.0;
+  const double wh = units::kTwoPi * f_top / r.sample_rate_hz;
+  const double loss = 0.0234 * wh * wh * wh * wh;
+  out.notes.push_back(fmt::format(
+      "Order {:g} at {:.0f} rpm is {:.1f} Hz, {:.1f} samples per cycle of the record: the "
+      "resampling's interpolation may lose up to {:.2g} % of its amplitude there{}.",
+      top, m.speed_rpm.maxCoeff(), f_top, r.sample_rate_hz / f_top, 100 * std::min(loss, 1.0),
+      loss > 0.01 ? " (more than 1 %: record at a higher sample rate or cut lower orders)" : ""));
+  const double psd_df = r.channels.front().psd_frequency_hz[1];
   double lowest_band = 0.0;
   for (std::size_t i = 0; i < r.band_mid_hz.size(); ++i)
-    if (r.band_mid_hz[i] * (std::pow(10.0, 0.05) - std::pow(10.0, -0.05)) >= 8 * w.resolution_hz) {
+    if (r.band_mid_hz[i] * (std::pow(10.0, 0.05) - std::pow(10.0, -0.05)) >= 8 * psd_df) {
       lowest_band = r.band_nominal_hz[i];
       break;
     }
@@ -280,9 +298,10 @@ void add_notes(AnalysisOutput& out, const OrderAnalysisResult& r, const OrderAna
       "Levels in dB re {:g} (the unit of the channels: e.g. 1e-6 m/s^2 for acceleration, ISO "
       "1683; 2e-5 Pa for sound pressure; set db_reference). 1/3-octave bands (IEC 61260-1) by "
       "summing the Welch PSD (resolution {:.4g} Hz): bands from {:g} Hz up are at least 8 bins "
-      "wide and meet the class-1 filter mask (docs/theory.md §14); narrower bands are coarse. "
-      "A-weighting (IEC 61672-1) applied at each band's mid frequency.",
-      o.db_reference, w.resolution_hz, lowest_band));
+      "wide and meet the class-1 filter mask (docs/theory.md §14); narrower bands are coarse; "
+      "bands above fs/2 = {:.4g} Hz are blank. A-weighting (IEC 61672-1) applied at each band's "
+      "mid frequency.",
+      o.db_reference, psd_df, lowest_band, 0.5 * r.sample_rate_hz));
 }
 
 }  // namespace
