@@ -18,7 +18,8 @@
 //   sensor's largest accelerance peak sits at a natural frequency of the eigen table (a lightly
 //   damped mode's peak is within zeta^2 of it: D. J. Ewins, "Modal Testing", 2000, §2.2), and
 //   the sum agrees with the direct solve where it should (its own notes); bad FRF keys are
-//   located errors (exit code 2).
+//   located errors (exit code 2);
+// - the order analysis of the run-up (order_channels): block speeds against the driver's ramp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -227,6 +228,38 @@ void check_frf(const fs::path& out) {
   EXPECT_NE(html.str().find("orbit_seat_pinion_m_seat_pinion_y_m"), std::string::npos);
 }
 
+// The order analysis of the wheel-seat acceleration (order_channels): each one-revolution
+// block's mean speed is the driver's speed at the block's middle (exact for a linear ramp and a
+// hold; the block across the ramp's end at 0.28 s is skipped), and the README's largest order
+// cuts (this model's numbers: no closed form, held to 2 %).
+void check_order_analysis(const fs::path& dir) {
+  Csv cuts = read_csv(dir / "order_cuts.csv");
+  const std::vector<double> t = col(cuts, "time_s");
+  const std::vector<double> n = col(cuts, "speed_rpm");
+  const std::vector<double> a13 = col(cuts, "order_13_seat_wheel_housing_m_per_s2");
+  const std::vector<double> a26 = col(cuts, "order_26_seat_wheel_housing_m_per_s2");
+  ASSERT_EQ(n.size(), 14u);
+  int checked = 0;
+  for (std::size_t b = 0; b < n.size(); ++b) {
+    const double half = 30.0 / n[b];  // half a revolution [s]
+    if (t[b] + half < kHoldStart || t[b] - half > kHoldStart) {
+      const double ramp = 3000.0 * std::clamp((t[b] - 0.08) / 0.2, 0.0, 1.0);
+      EXPECT_NEAR(n[b], ramp, 0.1) << t[b];
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 12);  // two blocks touch the ramp's end at 0.28 s
+  const auto i13 = std::max_element(a13.begin(), a13.end()) - a13.begin();
+  EXPECT_NEAR(a13[static_cast<std::size_t>(i13)], 14.27, 0.02 * 14.27);
+  EXPECT_NEAR(n[static_cast<std::size_t>(i13)], 1618.0, 1.0);
+  const auto i26 = std::max_element(a26.begin(), a26.end()) - a26.begin();
+  EXPECT_NEAR(a26[static_cast<std::size_t>(i26)], 6.64, 0.02 * 6.64);
+  EXPECT_NEAR(n[static_cast<std::size_t>(i26)], 668.0, 1.0);
+  for (const char* f : {"waterfall_seat_wheel_housing_m_per_s2.csv", "levels.csv",
+                        "third_octave.csv", "psd.csv", "order_map_seat_wheel_housing_m_per_s2.csv"})
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+}
+
 TEST(PtuRunupExample, RunUpAndBoltStiffnessSweepGiveTheReadmeNumbers) {
   ProcessResult r;
   const fs::path out = run_example("ptu_runup", r);
@@ -235,6 +268,7 @@ TEST(PtuRunupExample, RunUpAndBoltStiffnessSweepGiveTheReadmeNumbers) {
   check_runup(out / "runup");
   check_sweep(out / "bolt_stiffness_sweep");
   check_frf(out);
+  check_order_analysis(out / "runup");
 }
 
 // Bad FRF keys: a located error and exit code 2 from `geardyn check`, in the file (line of the

@@ -392,6 +392,31 @@ TEST(RenderHtml, HeatMapsKeepTheirGridAndLabelTheColourBar) {
   EXPECT_EQ(count(html, "class=\"geardyn-plot\""), 1u);
 }
 
+// A bar trace (1/3-octave band levels of order_analysis): a plotly "bar" trace with its x and y,
+// no line style and no scatter mode.
+TEST(RenderHtml, BarTracesArePlotlyBars) {
+  AnalysisOutput out;
+  out.name = "bands";
+  out.type = "order_analysis";
+  Plot p;
+  p.name = "third_octave";
+  Trace t;
+  t.name = "A-weighted";
+  t.mode = Trace::Mode::Bars;
+  t.x = {100.0, 125.0, 160.0};
+  t.y = {60.0, 62.5, 58.0};
+  p.traces.push_back(t);
+  out.plots.push_back(p);
+  const nlohmann::json figs = figures_of(render_html(RunInfo{}, {out}));
+  ASSERT_EQ(figs.size(), 1u);
+  const nlohmann::json& d = figs[0]["data"][0];
+  EXPECT_EQ(d["type"], "bar");
+  EXPECT_EQ(d["x"], nlohmann::json({100.0, 125.0, 160.0}));
+  EXPECT_EQ(d["y"], nlohmann::json({60.0, 62.5, 58.0}));
+  EXPECT_FALSE(d.contains("mode"));
+  EXPECT_FALSE(d.contains("line"));
+}
+
 TEST(RenderHtml, NoAnalysesIsStillAPage) {
   const std::string html = render_html(RunInfo{}, {});
   EXPECT_NE(html.find("No analyses ran."), std::string::npos);

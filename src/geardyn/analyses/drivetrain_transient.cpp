@@ -444,6 +444,29 @@ void static_rows(const drivetrain::DrivetrainSystem& system, const fe::DofMap& d
   }
 }
 
+// The order analysis's channels and reference are columns of the record (known once the
+// channels are built, before anything is integrated).
+void check_order_channels(const DrivetrainTransientSettings& s,
+                          const std::vector<DrivetrainChannel>& channels, const Context& context) {
+  auto known = [&](const std::string& name) {
+    return std::any_of(channels.begin(), channels.end(),
+                       [&](const DrivetrainChannel& c) { return c.name == name; });
+  };
+  std::string angles;
+  for (const DrivetrainChannel& c : channels)
+    if (c.group == "angle") angles += (angles.empty() ? "" : ", ") + c.name;
+  for (const std::string& name : s.order_channels)
+    if (!known(name))
+      throw context.error("order_channels", "channels of the record (columns of time_history)",
+                          "\"" + name + "\"");
+  if (!s.order_channels.empty() && !known(s.order_reference))
+    throw context.error(
+        "order_reference",
+        fmt::format("an angle channel of the record ({})",
+                    angles.empty() ? "none: no mesh with a spinning gear 1" : angles),
+        "\"" + s.order_reference + "\"");
+}
+
 }  // namespace
 
 std::optional<SettingsProblem> frf_settings_problem(const model::Model& model,
@@ -516,6 +539,7 @@ DrivetrainTransientResult run_drivetrain_transient(const model::Model& model,
   add_element_channels(model, sys, system, rec, r.mesh_orders);
   add_drive_channels(system, rec);
   r.channels = rec.channels;
+  check_order_channels(s, r.channels, context);
   const double n_samples = std::floor(s.duration * s.sample_rate() + 1e-9) + 2.0;
   if (n_samples * static_cast<double>(rec.channels.size()) > kMaxRecordValues)
     throw context.error(

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "geardyn/analyses/context.hpp"
+#include "geardyn/analyses/order_analysis.hpp"
 #include "geardyn/core/status.hpp"
 #include "geardyn/core/table.hpp"
 #include "geardyn/drivetrain/linearisation.hpp"
@@ -60,6 +61,13 @@ struct DrivetrainTransientSettings : model::SettingsOf<DrivetrainTransientSettin
   int frf_modes = 0;                  ///< modes in the sum (0: all `modes`)
   bool frf_static_correction = true;  ///< add the truncated modes' static part
   FrfQuantity frf_quantity = FrfQuantity::Displacement;
+  /// Order analysis of the record (as the analysis order_analysis, docs/theory.md §14): the
+  /// channels analysed (columns of time_history; empty: none) against the angle channel
+  /// `order_reference` (e.g. a mesh's "<mesh>_pinion_angle_rad"), from the sample after which
+  /// that angle keeps increasing. order_options.orders are of that shaft.
+  std::vector<std::string> order_channels;
+  std::string order_reference;
+  OrderAnalysisOptions order_options;
 };
 
 /// One recorded quantity.

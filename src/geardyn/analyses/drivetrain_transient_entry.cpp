@@ -1,5 +1,7 @@
 // The `type = "drivetrain_transient"` analysis in the registry: its model-file keys and their
 // rules, its checks, how it runs and what it offers to sweeps.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -15,6 +17,7 @@ namespace {
 
 using namespace model::keys;  // NOLINT: the declaration table reads as a table
 using model::Analysis;
+using model::FieldValue;
 
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   const auto& t = a.settings_of<DrivetrainTransientSettings>();
@@ -23,6 +26,13 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
                     "virtual sensor", "virtual_sensors");
   if (const auto p = frf_settings_problem(m, t))
     check.fail(path + "." + p->key, p->expected, p->found, p->hint);
+  if (!t.order_channels.empty() && t.order_reference.empty())
+    check.fail(path + ".order_reference", "the angle channel of the order analysis's shaft", "none",
+               "e.g. order_reference = \"<mesh>_pinion_angle_rad\"");
+  if (!t.order_channels.empty() && t.order_options.orders.empty())
+    check.fail(path + ".orders", "the orders to cut (with order_channels)", "none");
+  for (double o : t.order_options.orders)
+    if (!(o > 0.0)) check.fail(path + ".orders", "positive orders", fmt::format("{:g}", o));
   if (m.drivers.empty())
     check.fail(path + ".type", "a model with at least one [[drivers]] entry", "no [[drivers]]",
                "add a speed driver or a motor on the input shaft's node");
@@ -124,6 +134,48 @@ std::vector<model::Field> keys() {
           .to_settings_enum(
               &DrivetrainTransientSettings::frf_quantity,
               {FrfQuantity::Displacement, FrfQuantity::Velocity, FrfQuantity::Acceleration}),
+      F("order_channels", model::FieldType::StringArray,
+        "Channels of the record (columns of time_history) to order-analyse as order_analysis "
+        "does: order cuts, order map, waterfall with order lines, levels, 1/3-octave bands, PSD "
+        "(empty: none).")
+          .unique()
+          .to_settings(&DrivetrainTransientSettings::order_channels),
+      text(
+          "order_reference",
+          "The angle channel [rad] of the order analysis's shaft, e.g. \"<mesh>_pinion_angle_rad\" "
+          "(needed with order_channels).")
+          .to_settings(&DrivetrainTransientSettings::order_reference),
+      numbers("orders", kNoUnit, "Orders of the order analysis (of order_reference's shaft).")
+          .to_settings_fn<DrivetrainTransientSettings>(
+              [](DrivetrainTransientSettings& s, const FieldValue& v) {
+                s.order_options.orders = v.numbers;
+              }),
+      integer("order_revolutions_per_block",
+              "Revolutions per order block of the order analysis (order resolution 1 / this).")
+          .def("1")
+          .ge(1)
+          .le(100000)
+          .to_settings_fn<DrivetrainTransientSettings>(
+              [](DrivetrainTransientSettings& s, const FieldValue& v) {
+                s.order_options.revolutions_per_block = static_cast<int>(v.integer);
+              }),
+      integer("order_block_length", "Samples per waterfall block of the order analysis.")
+          .def("256")
+          .ge(16)
+          .le(16777216)
+          .to_settings_fn<DrivetrainTransientSettings>(
+              [](DrivetrainTransientSettings& s, const FieldValue& v) {
+                s.order_options.block_length = static_cast<int>(v.integer);
+              }),
+      number("order_db_reference", kNoUnit,
+             "Reference of the order analysis's dB levels, in the unit of its channels (1e-6 for "
+             "m/s^2, ISO 1683).")
+          .def("1e-6")
+          .gt(0)
+          .to_settings_fn<DrivetrainTransientSettings>(
+              [](DrivetrainTransientSettings& s, const FieldValue& v) {
+                s.order_options.db_reference = v.number;
+              }),
   };
 }
 

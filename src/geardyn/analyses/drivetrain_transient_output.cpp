@@ -493,6 +493,49 @@ void add_integration(const DrivetrainTransientResult& r, AnalysisOutput& out) {
   out.tables.push_back(std::move(t));
 }
 
+// The order analysis of the record (order_channels): the shared order_analysis core on the
+// uniformly sampled samples from the one after which the reference angle keeps increasing (the
+// shaft turns). A record too short for its blocks gets a note, not an error: the run is done.
+void add_record_orders(const DrivetrainTransientSettings& s, const DrivetrainTransientResult& r,
+                       const Context& context, AnalysisOutput& out) {
+  auto column = [&](const std::string& name) {
+    for (std::size_t c = 0; c < r.channels.size(); ++c)
+      if (r.channels[c].name == name) return static_cast<Eigen::Index>(c);
+    return Eigen::Index{-1};
+  };
+  auto n = static_cast<Eigen::Index>(r.time.size());
+  if (n < 4) return;
+  const double dt = r.time[1] - r.time[0];
+  for (Eigen::Index j = 2; j < n; ++j)
+    if (std::abs(r.time[static_cast<std::size_t>(j)] - r.time[static_cast<std::size_t>(j - 1)] -
+                 dt) > 1e-6 * dt) {
+      n = j;  // a last, shorter step: not on the sample grid
+      break;
+    }
+  const Eigen::VectorXd t = Eigen::Map<const Eigen::VectorXd>(r.time.data(), n);
+  const Eigen::VectorXd angle = r.values.col(column(s.order_reference)).head(n);
+  Eigen::Index first = n - 1;
+  while (first > 0 && angle[first] > angle[first - 1]) --first;
+  Eigen::MatrixXd values(n, static_cast<Eigen::Index>(s.order_channels.size()));
+  for (std::size_t c = 0; c < s.order_channels.size(); ++c)
+    values.col(static_cast<Eigen::Index>(c)) = r.values.col(column(s.order_channels[c])).head(n);
+  try {
+    const OrderAnalysisResult orders =
+        analyse_orders(t, values, s.order_channels, angle, first, n - 1, s.order_options, context);
+    add_order_analysis_output(out, orders, s.order_options, "");
+    std::string names;
+    for (const std::string& c : s.order_channels) names += (names.empty() ? "" : ", ") + c;
+    out.notes.push_back(fmt::format(
+        "Order analysis of {} against the angle channel {} from t = {:.4g} s (the shaft turning "
+        "from there on), as the analysis order_analysis.",
+        names, s.order_reference, t[first]));
+  } catch (const std::exception& e) {
+    out.notes.push_back(fmt::format(
+        "Order analysis not done: {} (order_revolutions_per_block, order_block_length).",
+        e.what()));
+  }
+}
+
 }  // namespace
 
 AnalysisOutput drivetrain_transient_output(const model::Model&,
@@ -515,6 +558,7 @@ AnalysisOutput drivetrain_transient_output(const model::Model&,
     add_summary(result, out);
     add_spectra(settings, result, out);
     add_orders(result, out);
+    if (!settings.order_channels.empty()) add_record_orders(settings, result, context, out);
   }
   add_contacts(result, out);
   add_integration(result, out);

@@ -20,6 +20,7 @@ namespace geardyn::analyses {
   X(tooth_contact)                \
   X(mesh_force)                   \
   X(mesh_harmonics)               \
+  X(order_analysis)               \
   X(correlation)                  \
   X(cyclic_forced_response)       \
   X(gear_forced_response)         \

@@ -43,7 +43,8 @@ struct Table {
 
 /// One curve of a plot, or a heat map when `z` is given.
 struct Trace {
-  enum class Mode { Lines, Markers, LinesMarkers };
+  /// Bars: a bar chart (e.g. 1/3-octave band levels), one bar per (x[i], y[i]).
+  enum class Mode { Lines, Markers, LinesMarkers, Bars };
   std::string name;
   std::vector<double> x, y;
   Mode mode = Mode::Lines;

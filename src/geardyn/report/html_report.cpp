@@ -230,10 +230,15 @@ json plot_figure(const Plot& plot, const std::string& div_id, const ReportOption
       case Trace::Mode::LinesMarkers:
         trace["mode"] = "lines+markers";
         break;
+      case Trace::Mode::Bars:
+        trace["type"] = "bar";
+        break;
     }
-    json line = {{"width", 1.8}};
-    if (!t.dash.empty()) line["dash"] = t.dash;
-    trace["line"] = std::move(line);
+    if (t.mode != Trace::Mode::Bars) {
+      json line = {{"width", 1.8}};
+      if (!t.dash.empty()) line["dash"] = t.dash;
+      trace["line"] = std::move(line);
+    }
     if (t.mode == Trace::Mode::Markers) trace["marker"] = {{"size", 8}};
     if (t.mode == Trace::Mode::LinesMarkers) trace["marker"] = {{"size", 5}};
     if (!t.hover.empty()) {
