@@ -23,6 +23,7 @@ namespace geardyn::analyses {
   X(correlation)                  \
   X(cyclic_forced_response)       \
   X(gear_forced_response)         \
+  X(gear_whine)                   \
   X(damper_ring_response)         \
   X(drivetrain_transient)
 

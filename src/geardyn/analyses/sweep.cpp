@@ -159,6 +159,44 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
   return result;
 }
 
+namespace {
+
+/// Column name with its unit as a suffix ("value_N_m", "natural_frequency_1_Hz").
+std::string with_unit(const std::string& name, const std::string& unit) {
+  std::string suffix = unit.empty() ? "" : "_" + unit;
+  for (auto& ch : suffix)
+    if (ch == '/' || ch == ' ' || ch == '^' || ch == '*') ch = '_';
+  return name + suffix;
+}
+
+}  // namespace
+
+Table delta_table(const SweepResult& result, const SweepSettings& settings) {
+  std::size_t ref = 0;
+  for (std::size_t i = 0; i < result.values.size(); ++i)
+    if (std::abs(result.values[i] - settings.reference_value) <
+        std::abs(result.values[ref] - settings.reference_value))
+      ref = i;
+  Table t;
+  t.name = "sweep_deltas";
+  t.title = fmt::format(
+      "Each output minus its value at {} = {} (the reference variant); "
+      "levels in dB: the level difference",
+      settings.parameter, result.values[ref]);
+  t.add(with_unit("value", result.parameter_unit), result.parameter_unit, result.values);
+  for (std::size_t j = 0; j < result.outputs.size(); ++j) {
+    const double base = result.outputs[j][ref];
+    std::vector<double> delta, change;
+    for (double v : result.outputs[j]) {
+      delta.push_back(v - base);
+      change.push_back(base != 0.0 ? 100.0 * (v - base) / std::abs(base) : NAN);
+    }
+    t.add(with_unit(result.labels[j] + "_delta", result.units[j]), result.units[j], delta);
+    if (result.units[j] != "dB") t.add(result.labels[j] + "_change_pct", "%", change);
+  }
+  return t;
+}
+
 AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& settings,
                             const std::string& analysis_name) {
   AnalysisOutput out;
@@ -170,13 +208,6 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
   Table table;
   table.name = "sweep";
   table.title = fmt::format("Sweep of {} (analysis '{}')", settings.parameter, settings.analysis);
-  // Column names carry their unit ("value_N_m", "natural_frequency_1_Hz").
-  auto with_unit = [](const std::string& name, const std::string& unit) {
-    std::string suffix = unit.empty() ? "" : "_" + unit;
-    for (auto& ch : suffix)
-      if (ch == '/' || ch == ' ' || ch == '^' || ch == '*') ch = '_';
-    return name + suffix;
-  };
   table.add(with_unit("value", result.parameter_unit), result.parameter_unit, result.values);
   for (std::size_t j = 0; j < result.outputs.size(); ++j)
     table.add(with_unit(result.labels[j], result.units[j]), result.units[j], result.outputs[j]);
@@ -184,6 +215,7 @@ AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& sett
   for (auto s : result.point_status) status.emplace_back(to_string(s));
   table.add_text("status", status);
   out.tables.push_back(std::move(table));
+  if (!std::isnan(settings.reference_value)) out.tables.push_back(delta_table(result, settings));
 
   for (std::size_t j = 0; j < result.outputs.size(); ++j) {
     Plot plot;

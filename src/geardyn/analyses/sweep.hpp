@@ -38,8 +38,9 @@ struct SweepSettings : model::SettingsOf<SweepSettings> {
   std::vector<double> values;                  ///< in the units of the key
   std::string analysis;                        ///< name of the analysis run per point
   std::vector<SweepOutput> outputs;
-  bool log_x = false;  ///< plot with a log axis
-  int threads = 0;     ///< 0: all cores
+  bool log_x = false;                    ///< plot with a log axis
+  double reference_value = model::kNaN;  ///< deltas against this value's point (NaN: none)
+  int threads = 0;                       ///< 0: all cores
 };
 
 struct SweepResult {
@@ -70,6 +71,11 @@ double extract_scalar(const model::Analysis& analysis, const Outcome& outcome,
 
 AnalysisOutput sweep_output(const SweepResult& result, const SweepSettings& settings,
                             const std::string& analysis_name);
+
+/// Table "sweep_deltas" (settings.reference_value given): each output minus its value at the
+/// reference point (the swept value nearest reference_value), and for outputs that are not
+/// levels in dB also the change in percent.
+Table delta_table(const SweepResult& result, const SweepSettings& settings);
 
 /// The driver shape of every analysis: the sweep of the model document the context carries
 /// (NumericalError without one), and its output.

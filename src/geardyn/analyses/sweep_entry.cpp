@@ -18,6 +18,17 @@ using model::FieldValue;
 using model::Ref;
 using model::TableContext;
 
+/// reference_value, when given, is one of the swept values (the deltas are taken against it).
+void check_reference(const SweepSettings& s, const TableContext& t) {
+  if (!t.has("reference_value")) return;
+  for (double v : s.values)
+    if (std::abs(v - s.reference_value) <= 1e-9 * std::max(1.0, std::abs(v))) return;
+  std::string values;
+  for (double v : s.values) values += (values.empty() ? "" : ", ") + value_text(v);
+  t.fail("reference_value", fmt::format("one of the swept values ({})", values),
+         value_text(s.reference_value));
+}
+
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<SweepSettings>();
   const bool log = s.log_x;
@@ -25,6 +36,7 @@ void finish(Analysis& a, const TableContext& t) {
     if (log)
       for (double v : s.values)
         if (v <= 0.0) t.fail("values", "values > 0 for spacing = \"log\"", value_text(v));
+    check_reference(s, t);
     return;
   }
   const double start = t.at("start").number, stop = t.at("stop").number;
@@ -37,6 +49,7 @@ void finish(Analysis& a, const TableContext& t) {
     t.fail(start <= 0.0 ? "start" : "stop", "a value > 0 for spacing = \"log\"",
            value_text(start <= 0.0 ? start : stop));
   s.values = spaced(start, stop, static_cast<int>(t.at("count").integer), log);
+  check_reference(s, t);
 }
 
 /// Every scalar name offered by a registered type, in registry order, once.
@@ -269,6 +282,13 @@ std::vector<model::Field> keys() {
                 "a sweep).")
           .required()
           .to_settings(&SweepSettings::analysis),
+      number("reference_value", kNoUnit,
+             "The swept value the others are compared with (a model variant's baseline): the "
+             "table sweep_deltas gives each output's difference from its value there (for "
+             "levels in dB: the level difference, as in an SPL delta table).")
+          .unit_note("unit of the key")
+          .note("no delta table")
+          .to_settings(&SweepSettings::reference_value),
       integer("threads",
               "Worker threads (0: all cores); 1 when the system BLAS is a sequential OpenBLAS, "
               "which is not safe to call from several threads (the notes say so).")

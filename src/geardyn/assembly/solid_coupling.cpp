@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/fe/dof_map.hpp"
@@ -488,6 +489,7 @@ struct ConstrainedReduction {
   std::vector<fe::SuperelementPoint> points;
   Eigen::SparseMatrix<double> transform;  ///< x = [I 0] [x; u]
   Eigen::Matrix<double, 6, 6> rigid_mass;
+  solid::SolidSystem solid_dofs;  ///< the assembled solid without K and M (recovery of x)
 };
 
 /// The constraint rows as InterfaceConstraints, the masters as indices into [x; u] and the points.
@@ -507,7 +509,7 @@ reduce::InterfaceConstraints constraints_of(const Coupling& c, const model::Soli
 
 ConstrainedReduction reduce_constrained(const model::Model& model, const model::Solid& solid,
                                         const SolidComponent& built, Progress& progress) {
-  const Coupling c = coupling_of(model, solid, built, progress);
+  Coupling c = coupling_of(model, solid, built, progress);
   const solid::SolidSystem& sys = c.system;
   const int n = sys.num_dofs();
   ConstrainedReduction out;
@@ -541,6 +543,9 @@ ConstrainedReduction reduce_constrained(const model::Model& model, const model::
   out.transform.setFromTriplets(t.begin(), t.end());
   const Eigen::Vector3d p = c.sp.mesh.coords[static_cast<std::size_t>(c.sp.reference.front())];
   out.rigid_mass = rigid_mass_of(sys.M, sys.dofs, p);
+  out.solid_dofs = std::move(c.system);
+  out.solid_dofs.K = {};
+  out.solid_dofs.M = {};
   return out;
 }
 
@@ -574,6 +579,7 @@ CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
   out.reduced = std::move(cr.reduced);
   out.transform = std::move(cr.transform);
   out.rigid_mass = cr.rigid_mass;
+  out.solid_dofs = std::move(cr.solid_dofs);
 
   fe::Superelement& body = out.body;
   body.name = solid.name;
@@ -643,6 +649,43 @@ std::vector<CoupledSolid> couple_solids(const model::Model& model, const SolidCo
     out.push_back(couple_solid(model, solid, component, progress));
   }
   return out;
+}
+
+Eigen::MatrixXd node_translations(const CoupledSolid& solid, const std::vector<int>& nodes) {
+  const reduce::ReducedComponent& rc = solid.reduced;
+  const solid::SolidSystem& sys = solid.solid_dofs;
+  std::vector<int> master_of(static_cast<std::size_t>(rc.n_full()), -1);
+  std::vector<int> interior_of(static_cast<std::size_t>(rc.n_full()), -1);
+  for (std::size_t k = 0; k < rc.master_index.size(); ++k)
+    master_of[static_cast<std::size_t>(rc.master_index[k])] = static_cast<int>(k);
+  for (std::size_t j = 0; j < rc.interior_index.size(); ++j)
+    interior_of[static_cast<std::size_t>(rc.interior_index[j])] = static_cast<int>(j);
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> recovery = sys.recovery;
+  const Eigen::Index nm = rc.n_masters();
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * static_cast<Eigen::Index>(nodes.size()), rc.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i] < 0 || static_cast<std::size_t>(nodes[i]) >= sys.node_dofs.size())
+      throw std::invalid_argument(
+          fmt::format("node index {} is not a node of solid '{}'", nodes[i], solid.name));
+    for (int c = 0; c < 3; ++c) {
+      const int a = sys.all_dof(nodes[i], c);
+      if (a < 0)
+        throw std::invalid_argument(
+            fmt::format("node index {} of solid '{}' has no translations", nodes[i], solid.name));
+      const Eigen::Index row = 3 * static_cast<Eigen::Index>(i) + c;
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(recovery, a); it; ++it) {
+        const auto z = static_cast<std::size_t>(it.col());  // x_j = z_j (S = [I 0])
+        if (master_of[z] >= 0) {
+          R(row, master_of[z]) += it.value();
+        } else {
+          const auto j = static_cast<Eigen::Index>(interior_of[z]);
+          R.row(row).head(nm) += it.value() * rc.Psi.row(j);
+          R.row(row).tail(rc.n_modal) += it.value() * rc.Phi.row(j);
+        }
+      }
+    }
+  }
+  return R;
 }
 
 }  // namespace geardyn::assembly

@@ -73,6 +73,9 @@ struct CoupledSolid {
   /// the constrained spider and sensor coordinates), z = T q.
   reduce::ReducedComponent reduced;
   Eigen::SparseMatrix<double> transform;  ///< S = [I 0]: solid DOFs x = S z
+  /// The solid assembled with its spiders, without K and M: its DOF map x and the recovery of
+  /// every node's DOFs (those eliminated by rigid spiders too) from x.
+  solid::SolidSystem solid_dofs;
   Eigen::Matrix<double, 6, 6> rigid_mass = Eigen::Matrix<double, 6, 6>::Zero();
   double polar_inertia = 0;  ///< Ip used for the gyroscopic matrix [kg m^2] (0: none added)
   std::string description;   ///< one line: points, modes, mass, highest kept mode
@@ -95,6 +98,13 @@ CoupledSolid couple_solid(const model::Model& model, const model::Solid& solid,
 /// (or all, when it is null) are built here.
 std::vector<CoupledSolid> couple_solids(const model::Model& model, const SolidComponents* built,
                                         Progress& progress = null_progress());
+
+/// The translations (ux, uy, uz in global axes; 3 rows per node) of the mesh nodes `nodes`
+/// (indices into the solid's mesh) as a function of the body coordinates q of `solid`
+/// (body.size() columns): the Craig-Bampton recovery z = T q (constraint and fixed-interface
+/// modes) after the rigid spiders' recovery of the nodes they eliminate. Dense, 3 n x m. Throws
+/// std::invalid_argument for a node index outside the mesh or a node without translations.
+Eigen::MatrixXd node_translations(const CoupledSolid& solid, const std::vector<int>& nodes);
 
 /// True when some solid of the model has spiders (is part of the rotor system).
 bool has_joined_solids(const model::Model& model);

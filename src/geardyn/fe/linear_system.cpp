@@ -58,6 +58,35 @@ int require_node(const DofMap& dofs, const std::string& name, const SourceLocati
   return index;
 }
 
+// q = T u_local of a joined body: u_local the 6 equations of each point's node (in the node
+// frame; -1 where constrained) then its generalised coordinates (`equations`), T the listed rows
+// of blockdiag(F, F) per point and the identity on the generalised coordinates.
+Eigen::MatrixXd body_map(const DofMap& dofs, const Superelement& body,
+                         const std::vector<int>& point_nodes, int first_generalized,
+                         std::vector<int>& equations) {
+  const auto n_points = body.points.size();
+  const Eigen::Index n_local =
+      static_cast<Eigen::Index>(6 * n_points) + static_cast<Eigen::Index>(body.n_generalized);
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(body.size(), n_local);
+  equations.clear();
+  Eigen::Index row = 0;
+  for (std::size_t p = 0; p < n_points; ++p) {
+    const int node = point_nodes[p];
+    const auto eq = dofs.node_dofs(node);
+    equations.insert(equations.end(), eq.begin(), eq.end());
+    const Matrix6d R = node_rotation(dofs.node(node).frame);
+    for (int c = 0; c < 6; ++c) {
+      if (!body.points[p].components[static_cast<std::size_t>(c)]) continue;
+      T.block(row++, static_cast<Eigen::Index>(6 * p), 1, 6) = R.row(c);
+    }
+  }
+  for (int k = 0; k < body.n_generalized; ++k) {
+    equations.push_back(first_generalized + k);
+    T(row++, static_cast<Eigen::Index>(6 * n_points) + k) = 1.0;
+  }
+  return T;
+}
+
 void require_finite_non_negative(double value, const SourceLocation& where, const std::string& key,
                                  const char* what) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
@@ -287,25 +316,9 @@ struct Assembler {
       require_finite(body.G, {}, key + ".G");
       require_finite(body.C, {}, key + ".C");
       std::vector<int> equations;
-      const auto n_points = body.points.size();
-      const Eigen::Index n_local =
-          static_cast<Eigen::Index>(6 * n_points) + static_cast<Eigen::Index>(body.n_generalized);
-      Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n_local);
-      Eigen::Index row = 0;
-      for (std::size_t p = 0; p < n_points; ++p) {
-        const int node = point_nodes[b][p];
-        const auto eq = dofs().node_dofs(node);
-        equations.insert(equations.end(), eq.begin(), eq.end());
-        const Matrix6d R = node_rotation(dofs().node(node).frame);
-        for (int c = 0; c < 6; ++c) {
-          if (!body.points[p].components[static_cast<std::size_t>(c)]) continue;
-          T.block(row++, static_cast<Eigen::Index>(6 * p), 1, 6) = R.row(c);
-        }
-      }
-      for (int k = 0; k < body.n_generalized; ++k) {
-        equations.push_back(first_generalized[b] + k);
-        T(row++, static_cast<Eigen::Index>(6 * n_points) + k) = 1.0;
-      }
+      const Eigen::MatrixXd T =
+          body_map(dofs(), body, point_nodes[b], first_generalized[b], equations);
+      const Eigen::Index n_local = T.cols();
       auto add = [&](const Eigen::MatrixXd& A, Triplets& target) {
         if (A.size() == 0) return;
         const Eigen::MatrixXd local = T.transpose() * A * T;
@@ -610,6 +623,34 @@ ModeFamilies mode_families(const LinearSystem& system, const Eigen::VectorXcd& s
     f.body /= total;
   }
   return f;
+}
+
+SparseMatrix body_coordinates(const LinearSystem& system, const Superelement& body) {
+  const std::string key = fmt::format("superelement '{}'", body.name);
+  std::vector<int> point_nodes;
+  for (std::size_t p = 0; p < body.points.size(); ++p)
+    point_nodes.push_back(
+        require_node(system.dofs, body.points[p].node, {}, fmt::format("{}.points[{}]", key, p)));
+  int first = -1;
+  for (const GeneralizedRange& g : system.dofs.generalized())
+    if (g.name == body.name && g.count == body.n_generalized) first = g.first;
+  if (first < 0 && body.n_generalized > 0)
+    throw InputError(
+        {}, key, "a body joined to this system (its generalised coordinates)",
+        fmt::format("no range '{}' of {} generalised coordinates", body.name, body.n_generalized));
+  std::vector<int> equations;
+  const Eigen::MatrixXd T = body_map(system.dofs, body, point_nodes, first, equations);
+  Triplets triplets;
+  for (Eigen::Index c = 0; c < T.cols(); ++c) {
+    const int e = equations[static_cast<std::size_t>(c)];
+    if (e < 0) continue;
+    for (Eigen::Index r = 0; r < T.rows(); ++r)
+      if (T(r, c) != 0.0) triplets.emplace_back(static_cast<int>(r), e, T(r, c));
+  }
+  SparseMatrix B(body.size(), system.size());
+  B.setFromTriplets(triplets.begin(), triplets.end());
+  B.makeCompressed();
+  return B;
 }
 
 }  // namespace geardyn::fe

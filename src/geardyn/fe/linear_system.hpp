@@ -96,6 +96,12 @@ struct AssemblyOptions {
 LinearSystem assemble(const model::Model& model, const AssemblyOptions& options = {},
                       const std::vector<Superelement>& superelements = {});
 
+/// The coordinates q of a body joined to `system` (fe/superelement.hpp) as a linear function of
+/// the system's equations: q = B u, B sparse (body.size() x system.size()); a constrained node
+/// DOF contributes nothing. Throws InputError when the body is not part of the system (a point
+/// node, or its range of generalised coordinates, missing).
+SparseMatrix body_coordinates(const LinearSystem& system, const Superelement& body);
+
 /// Energy fractions of a mode shape by DOF family (uses diag(M)-weighted squares):
 /// lateral (ux, uy, rx, ry), axial (uz), torsional (rz) of node DOFs, and body: the generalised
 /// coordinates of joined bodies (the elastic deformation of reduced solids). They sum to 1.

@@ -221,7 +221,115 @@ std::string vtu_text(const solid::Mesh& mesh, const std::vector<Field>& fields) 
   return text;
 }
 
+// Checks a list of fields against `count` entities (points or cells); `what` names them.
+void check_field_sizes(const std::vector<Field>& fields, std::size_t count, const char* what,
+                       const char* key) {
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const Field& f = fields[i];
+    const std::string where = fmt::format("{}[{}]", key, i);
+    if (f.name.empty()) throw InputError({}, where + ".name", "a non-empty field name", "''");
+    if (!names.insert(f.name).second)
+      throw InputError({}, where + ".name", "a unique field name", fmt::format("'{}'", f.name));
+    if (f.num_components < 1)
+      throw InputError({}, where + ".num_components", ">= 1", fmt::format("{}", f.num_components));
+    const std::size_t expected = count * static_cast<std::size_t>(f.num_components);
+    if (f.values.size() != expected)
+      throw InputError(
+          {}, where + ".values",
+          fmt::format("{} values ({} {} x {} components)", expected, count, what, f.num_components),
+          fmt::format("{} values", f.values.size()), "field '" + f.name + "'");
+  }
+}
+
+void check_surface(const solid::Mesh& mesh, const SurfaceCells& s) {
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    if (s.points[i] < 0 || s.points[i] >= mesh.num_nodes())
+      throw InputError({}, fmt::format("points[{}]", i),
+                       fmt::format("a node index in [0, {})", mesh.num_nodes()),
+                       fmt::format("{}", s.points[i]));
+  for (std::size_t c = 0; c < s.cells.size(); ++c) {
+    const std::size_t n = s.cells[c].size();
+    if (n != 3 && n != 4 && n != 6 && n != 8)
+      throw InputError({}, fmt::format("cells[{}]", c), "3, 4, 6 or 8 nodes", fmt::format("{}", n));
+    for (int k : s.cells[c])
+      if (k < 0 || static_cast<std::size_t>(k) >= s.points.size())
+        throw InputError({}, fmt::format("cells[{}]", c),
+                         fmt::format("point indices in [0, {})", s.points.size()),
+                         fmt::format("{}", k));
+  }
+  if (!s.cell_ids.empty() && s.cell_ids.size() != s.cells.size())
+    throw InputError({}, "cell_ids", fmt::format("{} ids (one per cell) or none", s.cells.size()),
+                     fmt::format("{}", s.cell_ids.size()));
+}
+
+std::string surface_vtu_text(const solid::Mesh& mesh, const SurfaceCells& s,
+                             const std::vector<Field>& cell_fields,
+                             const std::vector<Field>& point_fields) {
+  fmt::memory_buffer b;
+  auto out = std::back_inserter(b);
+  AppendedData appended;
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+                 "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
+                 "<UnstructuredGrid>\n"
+                 "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                 s.points.size(), s.cells.size());
+  fmt::format_to(out, "<PointData>\n");
+  for (const Field& f : point_fields)
+    data_array(b, appended, "Float64", f.name, f.num_components, f.values);
+  std::vector<std::int64_t> node_id;
+  for (int n : s.points)
+    node_id.push_back(n < static_cast<int>(mesh.node_ids.size())
+                          ? mesh.node_ids[static_cast<std::size_t>(n)]
+                          : n + 1L);
+  data_array(b, appended, "Int64", "node_id", 1, node_id);
+  fmt::format_to(out, "</PointData>\n<CellData>\n");
+  for (const Field& f : cell_fields)
+    data_array(b, appended, "Float64", f.name, f.num_components, f.values);
+  if (!s.cell_ids.empty()) {
+    const std::vector<std::int64_t> ids(s.cell_ids.begin(), s.cell_ids.end());
+    data_array(b, appended, "Int64", "element_id", 1, ids);
+  }
+  fmt::format_to(out, "</CellData>\n<Points>\n");
+  std::vector<double> points;
+  points.reserve(3 * s.points.size());
+  for (int n : s.points) {
+    const Eigen::Vector3d& x = mesh.coords[static_cast<std::size_t>(n)];
+    points.insert(points.end(), {x.x(), x.y(), x.z()});
+  }
+  data_array(b, appended, "Float64", "", 3, points);
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  for (const std::vector<int>& cell : s.cells) {
+    connectivity.insert(connectivity.end(), cell.begin(), cell.end());
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+    // VTK_TRIANGLE 5, VTK_QUAD 9, VTK_QUADRATIC_TRIANGLE 22, VTK_QUADRATIC_QUAD 23.
+    types.push_back(cell.size() == 3 ? 5 : cell.size() == 4 ? 9 : cell.size() == 6 ? 22 : 23);
+  }
+  fmt::format_to(out, "</Points>\n<Cells>\n");
+  data_array(b, appended, "Int64", "connectivity", 1, connectivity);
+  data_array(b, appended, "Int64", "offsets", 1, offsets);
+  data_array(b, appended, "UInt8", "types", 1, types);
+  fmt::format_to(out,
+                 "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_");
+  std::string text = fmt::to_string(b);
+  text += appended.bytes();
+  text += "\n</AppendedData>\n</VTKFile>\n";
+  return text;
+}
+
 }  // namespace
+
+void write_surface_vtu(const std::filesystem::path& path, const solid::Mesh& mesh,
+                       const SurfaceCells& cells, const std::vector<Field>& cell_fields,
+                       const std::vector<Field>& point_fields) {
+  check_surface(mesh, cells);
+  check_field_sizes(cell_fields, cells.cells.size(), "cells", "cell_fields");
+  check_field_sizes(point_fields, cells.points.size(), "points", "point_fields");
+  write_file_atomically(path, surface_vtu_text(mesh, cells, cell_fields, point_fields));
+}
 
 void write_vtu(const std::filesystem::path& path, const solid::Mesh& mesh,
                const std::vector<Field>& fields) {

@@ -57,6 +57,25 @@ std::vector<std::filesystem::path> write_vtu_series(const std::filesystem::path&
                                                     const std::vector<std::vector<Field>>& states,
                                                     const std::vector<double>& times);
 
+/// Cells of a surface (or any 2D patch) on a subset of a mesh's nodes, e.g. the radiating
+/// surface of a housing (acoustics/surface.hpp).
+struct SurfaceCells {
+  std::vector<int> points;  ///< mesh node index of each output point
+  /// Indices into `points` in VTK node order: 3 (VTK_TRIANGLE), 6 (VTK_QUADRATIC_TRIANGLE),
+  /// 4 (VTK_QUAD) or 8 (VTK_QUADRATIC_QUAD) nodes: corners, then mid-edge nodes of (0,1) (1,2) ...
+  std::vector<std::vector<int>> cells;
+  std::vector<long> cell_ids;  ///< written as cell data "element_id" (one per cell, or empty)
+};
+
+/// Writes the surface `cells` of `mesh` with cell data `cell_fields` (values cell-major, one set
+/// per cell) and point data `point_fields` (one set per entry of cells.points), plus "node_id".
+/// Throws InputError for a field of the wrong size or a repeated/empty name, a point outside the
+/// mesh, a cell of another node count or with an index outside `points`; std::runtime_error if
+/// the file cannot be written.
+void write_surface_vtu(const std::filesystem::path& path, const solid::Mesh& mesh,
+                       const SurfaceCells& cells, const std::vector<Field>& cell_fields,
+                       const std::vector<Field>& point_fields);
+
 /// VTK cell type of an element type.
 int vtk_cell_type(solid::ElementType type);
 

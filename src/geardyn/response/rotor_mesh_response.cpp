@@ -1,4 +1,11 @@
-#include "geardyn/response/rotor_mesh_response.hpp"
+// GCC's -Wnull-dereference reports a false positive inside Eigen's SparseCompressedBase once it
+// is inlined into UmfPackLU's matrix reference (see linalg/sparse_factorization.cpp); the pragma
+// must precede the first Eigen include.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#include <Eigen/Sparse>
+#include <Eigen/UmfPackSupport>
+#pragma GCC diagnostic pop
 
 #include <fmt/format.h>
 
@@ -6,6 +13,8 @@
 #include <chrono>
 #include <cmath>
 #include <set>
+#include <stdexcept>
+#include <type_traits>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/peak_table.hpp"
@@ -13,6 +22,7 @@
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/fe/gear_mesh_element.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
+#include "geardyn/response/rotor_mesh_response.hpp"
 
 namespace geardyn::response {
 namespace {
@@ -194,22 +204,27 @@ ModalRotorModel::ModalRotorModel(const fe::LinearSystem& system, const Eigen::Ma
     Sr_.row(static_cast<Eigen::Index>(i)) = Phi_.row(outputs[i]);
 }
 
-Eigen::MatrixXcd ModalRotorModel::response(double speed, double omega) const {
-  Eigen::MatrixXd K = Kr_, C = Cr_;
-  if (!system_.speed_bearings.empty() && speed != 0.0) {
+ModalRotorModel::SpeedPoint::SpeedPoint(const ModalRotorModel& model, double speed)
+    : model_(&model), speed_(speed), K_(model.Kr_), C_(model.Cr_) {
+  const fe::LinearSystem& system = model.system_;
+  if (!system.speed_bearings.empty() && speed != 0.0) {
     // Speed-dependent bearings: the change from zero speed, projected (the difference is
     // non-zero only on the bearing equations, so the product is cheap).
-    fe::SparseMatrix dK = system_.K_at(speed) - system_.K_at(0.0);
-    fe::SparseMatrix dC = system_.C_at(speed) - system_.C_at(0.0);
+    fe::SparseMatrix dK = system.K_at(speed) - system.K_at(0.0);
+    fe::SparseMatrix dC = system.C_at(speed) - system.C_at(0.0);
     dK.prune(0.0);
     dC.prune(0.0);
-    K += project(dK, Phi_);
-    C += project(dC, Phi_);
+    K_ += project(dK, model.Phi_);
+    C_ += project(dC, model.Phi_);
   }
-  C += speed * Gr_;
-  const Eigen::MatrixXcd D = K.cast<Complex>() - Complex(omega * omega) * Mr_.cast<Complex>() +
-                             Complex(0.0, omega) * C.cast<Complex>() +
-                             Complex(0.0, 1.0) * Lr_.cast<Complex>();
+  C_ += speed * model.Gr_;
+}
+
+Eigen::MatrixXcd ModalRotorModel::SpeedPoint::coordinates(double omega) const {
+  const ModalRotorModel& m = *model_;
+  const Eigen::MatrixXcd D = K_.cast<Complex>() - Complex(omega * omega) * m.Mr_.cast<Complex>() +
+                             Complex(0.0, omega) * C_.cast<Complex>() +
+                             Complex(0.0, 1.0) * m.Lr_.cast<Complex>();
   const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(D);
   // PartialPivLU does not flag singularity; the reciprocal condition estimate does.
   const double rcond = lu.rcond();
@@ -218,53 +233,158 @@ Eigen::MatrixXcd ModalRotorModel::response(double speed, double omega) const {
         "mesh forced response (modal)",
         fmt::format("the reduced dynamic stiffness at speed {} rad/s, frequency {} rad/s is "
                     "singular (rcond {:.2e}): an undamped natural frequency was hit; add damping",
-                    speed, omega, rcond));
-  return Sr_.cast<Complex>() * lu.solve(Fr_.cast<Complex>());
+                    speed_, omega, rcond));
+  return lu.solve(m.Fr_.cast<Complex>());
+}
+
+Eigen::MatrixXcd ModalRotorModel::SpeedPoint::response(double omega) const {
+  return model_->Sr_.cast<Complex>() * coordinates(omega);
+}
+
+Eigen::MatrixXcd ModalRotorModel::SpeedPoint::full_response(double omega) const {
+  return model_->Phi_.cast<Complex>() * coordinates(omega);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Direct solver
 
+// The dynamic stiffness on one fixed sparsity pattern: the values of each matrix on it are
+// scattered once, and D(W, w) is a linear combination of value arrays. UMFPACK keeps a pointer
+// to the matrix it factorised (its refinement reads it again), so A lives here.
+struct DirectRotorSolver::Factorization {
+  fe::ComplexSparseMatrix A;      // the pattern; values set per (speed, frequency)
+  Eigen::VectorXd m, k, c, g, l;  // M, K, C, G, K_loss on the pattern
+  Eigen::UmfPackLU<fe::ComplexSparseMatrix> lu;
+  bool analysed = false;
+  int symbolic = 0, numeric = 0;
+
+  // Index of entry (row, col) in A's value array (it is in the pattern by construction).
+  Eigen::Index position(int row, int col) const {
+    const int* begin = A.innerIndexPtr() + A.outerIndexPtr()[col];
+    const int* end = A.innerIndexPtr() + A.outerIndexPtr()[col + 1];
+    const int* it = std::lower_bound(begin, end, row);
+    if (it == end || *it != row)
+      throw std::logic_error("DirectRotorSolver: an entry outside the dynamic stiffness pattern");
+    return static_cast<Eigen::Index>(it - A.innerIndexPtr());
+  }
+  Eigen::VectorXd values_of(const fe::SparseMatrix& X) const {
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(A.nonZeros());
+    for (Eigen::Index j = 0; j < X.outerSize(); ++j)
+      for (fe::SparseMatrix::InnerIterator it(X, j); it; ++it)
+        v[position(static_cast<int>(it.row()), static_cast<int>(it.col()))] += it.value();
+    return v;
+  }
+  void add_triplets(const std::vector<Eigen::Triplet<double>>& t, Eigen::VectorXd& v) const {
+    for (const Eigen::Triplet<double>& e : t) v[position(e.row(), e.col())] += e.value();
+  }
+};
+
 DirectRotorSolver::DirectRotorSolver(const fe::LinearSystem& system, const Eigen::MatrixXd& loads,
                                      const std::vector<int>& outputs)
     : system_(system), loads_(loads.cast<Complex>()), outputs_(outputs) {
-  if (loads.rows() != system.size())
-    input_error("forced.loads", fmt::format("{} rows (one per equation)", system.size()),
+  const int n = system.size();
+  if (loads.rows() != n)
+    input_error("forced.loads", fmt::format("{} rows (one per equation)", n),
                 std::to_string(loads.rows()));
-  check_outputs(outputs, system.size());
+  check_outputs(outputs, n);
+  // The pattern: every entry of K, M, C, G, K_loss and every pair of equations of a
+  // speed-dependent bearing (zero at some speeds, not at others).
+  std::vector<Eigen::Triplet<Complex>> entries;
+  for (const fe::SparseMatrix* X : {&system.K, &system.M, &system.C, &system.G, &system.K_loss}) {
+    if (is_empty(*X)) continue;
+    for (Eigen::Index j = 0; j < X->outerSize(); ++j)
+      for (fe::SparseMatrix::InnerIterator it(*X, j); it; ++it)
+        entries.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), 0.0);
+  }
+  for (const fe::SpeedDependentBearing& b : system.speed_bearings)
+    for (int row : b.equations)
+      for (int col : b.equations)
+        if (row >= 0 && col >= 0) entries.emplace_back(row, col, 0.0);
+  for (int i = 0; i < n; ++i) entries.emplace_back(i, i, 0.0);
+  lu_ = std::make_unique<Factorization>();
+  lu_->A.resize(n, n);
+  lu_->A.setFromTriplets(entries.begin(), entries.end());
+  lu_->A.makeCompressed();
+  const auto values = [&](const fe::SparseMatrix& X) {
+    return is_empty(X) ? Eigen::VectorXd(Eigen::VectorXd::Zero(lu_->A.nonZeros()))
+                       : lu_->values_of(X);
+  };
+  lu_->m = values(system.M);
+  lu_->k = values(system.K);
+  lu_->c = values(system.C);
+  lu_->g = values(system.G);
+  lu_->l = values(system.K_loss);
 }
 
-Eigen::MatrixXcd DirectRotorSolver::response(double speed, double omega) const {
-  using CS = fe::ComplexSparseMatrix;
-  const fe::SparseMatrix K = system_.K_at(speed);
-  fe::SparseMatrix C = system_.C_at(speed);
-  if (!is_empty(system_.G)) C = C + speed * system_.G;
-  CS A = K.cast<Complex>() - Complex(omega * omega) * system_.M.cast<Complex>() +
-         Complex(0.0, omega) * C.cast<Complex>();
-  if (!is_empty(system_.K_loss)) A = A + Complex(0.0, 1.0) * system_.K_loss.cast<Complex>();
-  A.makeCompressed();
-  linalg::SparseLU<Complex> lu;
-  if (lu.compute(A) != Status::Ok)
-    throw NumericalError("mesh forced response (direct)",
-                         fmt::format("the dynamic stiffness at speed {} rad/s, frequency {} rad/s "
-                                     "is singular: {}; add damping or move the speed",
-                                     speed, omega, lu.message()));
-  Eigen::MatrixXcd X = lu.solve(loads_);
+DirectRotorSolver::~DirectRotorSolver() = default;
+
+int DirectRotorSolver::symbolic_analyses() const { return lu_->symbolic; }
+int DirectRotorSolver::numeric_factorizations() const { return lu_->numeric; }
+
+DirectRotorSolver::SpeedPoint::SpeedPoint(const DirectRotorSolver& solver, double speed)
+    : solver_(&solver), speed_(speed) {
+  const Factorization& f = *solver.lu_;
+  k_ = f.k;
+  c_ = f.c + speed * f.g;
+  // K_at / C_at: the bearing blocks interpolated at this speed.
+  std::vector<Eigen::Triplet<double>> stiffness, damping;
+  for (const fe::SpeedDependentBearing& b : solver.system_.speed_bearings) {
+    b.add_tangent(speed, 1.0, 0.0, stiffness);
+    b.add_tangent(speed, 0.0, 1.0, damping);
+  }
+  f.add_triplets(stiffness, k_);
+  f.add_triplets(damping, c_);
+}
+
+Eigen::MatrixXcd DirectRotorSolver::SpeedPoint::full_response(double omega) const {
+  return solver_->solve(*this, omega);
+}
+
+Eigen::MatrixXcd DirectRotorSolver::SpeedPoint::response(double omega) const {
+  const Eigen::MatrixXcd X = solver_->solve(*this, omega);
+  const std::vector<int>& outputs = solver_->outputs_;
+  Eigen::MatrixXcd out(static_cast<Eigen::Index>(outputs.size()), X.cols());
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = X.row(outputs[i]);
+  return out;
+}
+
+Eigen::MatrixXcd DirectRotorSolver::solve(const SpeedPoint& point, double omega) const {
+  Factorization& f = *lu_;
+  // D = K(W) - w^2 M + i (w (C(W) + W G) + K_loss) on the pattern.
+  Complex* a = f.A.valuePtr();
+  for (Eigen::Index i = 0; i < f.A.nonZeros(); ++i)
+    a[i] = Complex(point.k_[i] - omega * omega * f.m[i], omega * point.c_[i] + f.l[i]);
+  const auto singular = [&](const std::string& what) {
+    return NumericalError("mesh forced response (direct)",
+                          fmt::format("the dynamic stiffness at speed {} rad/s, frequency {} "
+                                      "rad/s is singular: {}; add damping or move the speed",
+                                      point.speed(), omega, what));
+  };
+  if (!f.analysed) {
+    f.lu.analyzePattern(f.A);
+    ++f.symbolic;
+    if (f.lu.info() != Eigen::Success) throw singular("UMFPACK's symbolic analysis failed");
+    f.analysed = true;
+  }
+  f.lu.factorize(f.A);
+  ++f.numeric;
+  if (f.lu.info() != Eigen::Success)
+    throw singular(fmt::format("UMFPACK LU found the matrix singular (return code {})",
+                               f.lu.umfpackFactorizeReturncode()));
+  Eigen::MatrixXcd X = f.lu.solve(loads_);
   if (system_.has_modal_damping()) {
     // (A + B S B^T)^{-1} F = Z - Y (I + S B^T Y)^{-1} S B^T Z,  Z = A^{-1} F, Y = A^{-1} B,
     // S = i w diag(c) (Sherman-Morrison-Woodbury).
     const Eigen::MatrixXcd B = system_.modal_basis.cast<Complex>();
-    const Eigen::MatrixXcd Y = lu.solve(B);
+    const Eigen::MatrixXcd Y = f.lu.solve(B);
     const Eigen::VectorXcd s = Complex(0.0, omega) * system_.modal_coefficients.cast<Complex>();
     const Eigen::Index r = B.cols();
     const Eigen::MatrixXcd cap =
         Eigen::MatrixXcd::Identity(r, r) + s.asDiagonal() * (B.transpose() * Y);
     X -= Y * cap.partialPivLu().solve(s.asDiagonal() * (B.transpose() * X));
   }
-  Eigen::MatrixXcd out(static_cast<Eigen::Index>(outputs_.size()), X.cols());
-  for (std::size_t i = 0; i < outputs_.size(); ++i)
-    out.row(static_cast<Eigen::Index>(i)) = X.row(outputs_[i]);
-  return out;
+  return X;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -331,14 +451,40 @@ RotorForcedResult run_mesh_forced_response(const model::Model& model,
   const Eigen::Index nsens = static_cast<Eigen::Index>(outputs.size());
   result.displacement.assign(settings.harmonics.size(), Eigen::MatrixXcd(ns, nsens));
   progress.start("mesh forced response", static_cast<std::size_t>(ns));
-  for (Eigen::Index i = 0; i < ns; ++i) {
-    const double speed = settings.speeds[i];
+  if (settings.keep_coordinates) {
+    const Eigen::Index nc = modal ? modal->basis_size() : system.size();
+    result.coordinates.assign(settings.harmonics.size(), Eigen::MatrixXcd(nc, ns));
+    if (modal) result.basis = modal->basis();
+  }
+  // One setup per speed (the speed-dependent matrices), reused for every order.
+  const auto solve_speed = [&](const auto& point, Eigen::Index i) {
     for (std::size_t h = 0; h < settings.harmonics.size(); ++h) {
-      const double omega = settings.harmonics[h].order * result.mesh_frequency_per_speed * speed;
-      const Eigen::MatrixXcd u =
-          modal ? modal->response(speed, omega) : direct->response(speed, omega);
-      result.displacement[h].row(i) = settings.harmonics[h].amplitude * u.col(0).transpose();
+      const Complex F = settings.harmonics[h].amplitude;
+      const double omega =
+          settings.harmonics[h].order * result.mesh_frequency_per_speed * point.speed();
+      if (settings.keep_coordinates) {
+        Eigen::MatrixXcd x;
+        if constexpr (std::is_same_v<std::decay_t<decltype(point)>, ModalRotorModel::SpeedPoint>)
+          x = point.coordinates(omega);
+        else
+          x = point.full_response(omega);
+        result.coordinates[h].col(i) = F * x.col(0);
+        const Eigen::MatrixXd& basis = result.basis;
+        for (std::size_t k = 0; k < outputs.size(); ++k) {
+          const auto row = static_cast<Eigen::Index>(outputs[k]);
+          result.displacement[h](i, static_cast<Eigen::Index>(k)) =
+              modal ? F * (basis.row(row).cast<Complex>() * x.col(0)).value() : F * x(row, 0);
+        }
+      } else {
+        result.displacement[h].row(i) = F * point.response(omega).col(0).transpose();
+      }
     }
+  };
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    if (modal)
+      solve_speed(modal->at(settings.speeds[i]), i);
+    else
+      solve_speed(direct->at(settings.speeds[i]), i);
     progress.update(static_cast<std::size_t>(i + 1));
   }
   progress.finish();
@@ -429,6 +575,20 @@ std::string RotorForcedResult::brief_report() const {
           ? std::string()
           : fmt::format("{} vectors (modes up to {:.1f} Hz)", basis_size, highest_mode_hz),
       peaks.size(), seconds, to_string(status));
+}
+
+Eigen::VectorXcd RotorForcedResult::full_response(std::size_t harmonic, Eigen::Index speed) const {
+  if (coordinates.empty())
+    throw std::logic_error(
+        "RotorForcedResult::full_response: run with RotorForcedSettings::keep_coordinates");
+  if (harmonic >= coordinates.size() || speed < 0 || speed >= coordinates[harmonic].cols())
+    throw std::out_of_range(fmt::format(
+        "RotorForcedResult::full_response: harmonic {} of {}, "
+        "speed index {} of {}",
+        harmonic, coordinates.size(), speed, coordinates.empty() ? 0 : coordinates[0].cols()));
+  const Eigen::VectorXcd x = coordinates[harmonic].col(speed);
+  if (basis.size() == 0) return x;
+  return basis.cast<Complex>() * x;
 }
 
 }  // namespace geardyn::response

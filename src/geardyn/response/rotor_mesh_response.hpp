@@ -20,12 +20,19 @@
 //     contributes its symmetric part to the basis only), optionally with one residual vector,
 //     the static response (K(0) - sigma M)^{-1} v made M-orthonormal to Phi (static correction
 //     of the modes left out). Every matrix is projected once (K(0), C(0), G, K_loss, modal
-//     damping; speed-dependent bearings as Phi^T (K(W) - K(0)) Phi per speed), and each speed
-//     and order costs one dense n x n complex LU. The projection is a Galerkin approximation:
-//     it converges to the direct solution as n grows (tests/forced).
-//   Direct: one sparse complex LU (linalg::SparseLU, UMFPACK) of the sparse part of D per speed
-//     and order, modal damping added by the Sherman-Morrison-Woodbury identity (r extra solves).
-//     The reference for the modal path; cost grows with the model.
+//     damping). Per speed (ModalRotorModel::at) the speed-dependent part is set up once,
+//     K_r(W) = K_r(0) + Phi^T (K(W) - K(0)) Phi and C_r(W) + W G_r, and reused for every order;
+//     each order then costs one dense n x n complex LU. The projection is a Galerkin
+//     approximation: it converges to the direct solution as n grows (tests/response).
+//   Direct: one sparse complex LU (UMFPACK) of the sparse part of D per speed and order, modal
+//     damping added by the Sherman-Morrison-Woodbury identity (r extra solves). The sparsity
+//     pattern of D is the same for every speed and frequency (the union of those of K, M, C, G,
+//     K_loss and the speed-dependent bearing blocks), so the symbolic analysis (fill-reducing
+//     ordering) is done once for the whole run and each (speed, order) is a numeric
+//     factorisation only; the values of K(W), C(W) + W G are set up once per speed
+//     (DirectRotorSolver::at). The reference for the modal path; cost grows with the model.
+// Both give the full equation vector q on request (full_response), e.g. to expand a housing's
+// surface velocities from the rotor system's response.
 // Output per sensor, order and speed: complex amplitude of the physical response Re(u e^{i w t})
 // (amplitude |u|, cosine phase arg u), the sum over orders of |u| (upper bound of the peak of the
 // multi-order signal), the RMS sqrt(sum |u|^2 / 2), and the resonance peaks of each curve with
@@ -81,9 +88,39 @@ class ModalRotorModel {
   ModalRotorModel(const fe::LinearSystem& system, const Eigen::MatrixXd& loads,
                   const std::vector<int>& outputs, int n_modes, bool residual_vectors = false);
 
-  /// Response at the outputs (outputs x loads) at reference speed W [rad/s], frequency w [rad/s].
+  /// The reduced model at one reference speed W [rad/s]: K_r(W) and C_r(W) + W G_r assembled
+  /// once, reused for every frequency (mesh order) asked of it. Keeps a reference to the model.
+  class SpeedPoint {
+   public:
+    double speed() const { return speed_; }
+    /// Response at the outputs (outputs x loads) at frequency w [rad/s]. Throws NumericalError
+    /// when the reduced dynamic stiffness is singular.
+    Eigen::MatrixXcd response(double omega) const;
+    /// Reduced coordinates eta (basis_size x loads), q = basis() eta.
+    Eigen::MatrixXcd coordinates(double omega) const;
+    /// Full equation vector q = Phi eta (system size x loads).
+    Eigen::MatrixXcd full_response(double omega) const;
+
+   private:
+    friend class ModalRotorModel;
+    SpeedPoint(const ModalRotorModel& model, double speed);
+    const ModalRotorModel* model_;
+    double speed_;
+    Eigen::MatrixXd K_, C_;  // K_r(W), C_r(W) + W G_r
+  };
+
+  SpeedPoint at(double speed) const { return SpeedPoint(*this, speed); }
+
+  /// Response at the outputs (outputs x loads) at reference speed W [rad/s], frequency w [rad/s]
+  /// (= at(W).response(w): for several frequencies at one speed, use at()).
   /// Throws NumericalError when the reduced dynamic stiffness is singular.
-  Eigen::MatrixXcd response(double speed, double omega) const;
+  Eigen::MatrixXcd response(double speed, double omega) const { return at(speed).response(omega); }
+  /// Full equation vector q (system size x loads) at (W, w).
+  Eigen::MatrixXcd full_response(double speed, double omega) const {
+    return at(speed).full_response(omega);
+  }
+  /// The basis Phi (system size x basis_size), M-orthonormal.
+  const Eigen::MatrixXd& basis() const { return Phi_; }
 
   int basis_size() const { return static_cast<int>(Phi_.cols()); }
   int modes() const { return modes_; }
@@ -105,17 +142,55 @@ class ModalRotorModel {
 };
 
 /// The same by direct sparse solves (see the file comment). Keeps a reference to `system`.
+/// The symbolic analysis of the sparse LU is shared by all calls (the first factorisation does
+/// it): the solver is not safe to use from several threads at once.
 class DirectRotorSolver {
  public:
   DirectRotorSolver(const fe::LinearSystem& system, const Eigen::MatrixXd& loads,
                     const std::vector<int>& outputs);
-  /// Throws NumericalError when the dynamic stiffness is singular.
-  Eigen::MatrixXcd response(double speed, double omega) const;
+  ~DirectRotorSolver();
+  DirectRotorSolver(const DirectRotorSolver&) = delete;
+  DirectRotorSolver& operator=(const DirectRotorSolver&) = delete;
+
+  /// The values of K(W) and C(W) + W G on the solver's pattern at one reference speed W
+  /// [rad/s], reused for every frequency. Keeps a reference to the solver.
+  class SpeedPoint {
+   public:
+    double speed() const { return speed_; }
+    /// Response at the outputs (outputs x loads) at frequency w [rad/s]. Throws NumericalError
+    /// when the dynamic stiffness is singular.
+    Eigen::MatrixXcd response(double omega) const;
+    /// Full equation vector q (system size x loads).
+    Eigen::MatrixXcd full_response(double omega) const;
+
+   private:
+    friend class DirectRotorSolver;
+    SpeedPoint(const DirectRotorSolver& solver, double speed);
+    const DirectRotorSolver* solver_;
+    double speed_;
+    Eigen::VectorXd k_, c_;  // values of K(W), C(W) + W G on the pattern
+  };
+
+  SpeedPoint at(double speed) const { return SpeedPoint(*this, speed); }
+  /// = at(W).response(w). Throws NumericalError when the dynamic stiffness is singular.
+  Eigen::MatrixXcd response(double speed, double omega) const { return at(speed).response(omega); }
+  /// = at(W).full_response(w).
+  Eigen::MatrixXcd full_response(double speed, double omega) const {
+    return at(speed).full_response(omega);
+  }
+  /// Symbolic analyses done so far (1 after the first solve: shared by all speeds and orders).
+  int symbolic_analyses() const;
+  /// Numeric factorisations done so far (one per speed and frequency solved).
+  int numeric_factorizations() const;
 
  private:
+  struct Factorization;
+  Eigen::MatrixXcd solve(const SpeedPoint& point, double omega) const;
+
   const fe::LinearSystem& system_;
   Eigen::MatrixXcd loads_;
   std::vector<int> outputs_;
+  std::unique_ptr<Factorization> lu_;  // pattern, per-matrix values on it, UMFPACK LU
 };
 
 /// One mesh-order harmonic of the mesh force.
@@ -134,6 +209,10 @@ struct RotorForcedSettings {
   RotorForcedMethod method = RotorForcedMethod::ModalReduced;
   int n_modes = 30;              ///< ModalReduced: modes at zero speed in the basis
   bool residual_vectors = true;  ///< ModalReduced: add the static correction (file comment)
+  /// Keep the response coordinates of every speed and order (RotorForcedResult::coordinates):
+  /// the full equation vector q is then available by RotorForcedResult::full_response. Memory:
+  /// speeds x orders x basis_size (ModalReduced) or x system size (Direct) complex numbers.
+  bool keep_coordinates = false;
   PeakOptions peaks;
   std::vector<std::string> validate() const;
 };
@@ -154,6 +233,15 @@ struct RotorForcedResult {
   int basis_size = 0;             ///< ModalReduced: modes (+ residual vectors) used
   double highest_mode_hz = kNaN;  ///< ModalReduced: highest basis mode [Hz]
   double seconds = 0;
+  /// keep_coordinates only: per harmonic, coordinates x speeds, the response to F_p (amplitude
+  /// included): the reduced coordinates eta (ModalReduced, q = basis eta) or q itself (Direct).
+  std::vector<Eigen::MatrixXcd> coordinates;
+  Eigen::MatrixXd basis;  ///< keep_coordinates and ModalReduced: Phi (system size x basis_size)
+
+  /// Full equation vector q [m, rad] of harmonic `harmonic` at speed index `speed`: the complex
+  /// amplitude of Re(q e^{i w t}). std::logic_error unless run with keep_coordinates;
+  /// std::out_of_range for bad indices.
+  Eigen::VectorXcd full_response(std::size_t harmonic, Eigen::Index speed) const;
 
   /// "mesh_forced_response": speed_rpm, per order p and sensor <sensor>_p<p>_amplitude_<unit>
   /// and _phase_deg, <sensor>_sum_amplitude_<unit>, <sensor>_rms_<unit>.
