@@ -151,9 +151,10 @@ int command_run(const RunOptions& options, int argc, char** argv) {
   std::vector<AnalysisOutput> outputs;
   bool failed = false, build_failed = false;
   fe::LinearSystem system;
+  std::vector<assembly::CoupledSolid> coupled;
   try {
     if (!m.shafts.empty() || !m.nodes.empty())
-      system = assembly::build_system(m, &solids, *progress);
+      system = assembly::build_system(m, &solids, coupled, *progress);
   } catch (const NumericalError& e) {
     AnalysisOutput out;
     out.name = "build";
@@ -204,7 +205,8 @@ int command_run(const RunOptions& options, int argc, char** argv) {
                    a.type.c_str());
     analyses::Context context(m, a);
     context.with_document(&document).with_progress(progress.get()).with_solids(&solids);
-    if (!m.shafts.empty() || !m.nodes.empty()) context.with_system(&system);
+    if (!m.shafts.empty() || !m.nodes.empty())
+      context.with_system(&system).with_coupled_solids(&coupled);
     outputs.push_back(analyses::run_analysis(m, a, context).output);
     const AnalysisOutput& out = outputs.back();
     if (!tell_outcome(out, say)) failed = true;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "geardyn/assembly/solid_coupling.hpp"
+
 namespace geardyn::analyses {
 
 Context::Context(const model::Model& model, const model::Analysis& analysis)
@@ -33,6 +35,13 @@ const fe::LinearSystem& Context::system() const {
   if (system_ == nullptr)
     throw std::logic_error(fmt::format("analysis '{}' needs the rotor's linear system", name_));
   return *system_;
+}
+
+const assembly::CoupledSolid* Context::coupled_solid(const std::string& solid_name) const {
+  if (coupled_ == nullptr) return nullptr;
+  for (const assembly::CoupledSolid& c : *coupled_)
+    if (c.name == solid_name) return &c;
+  return nullptr;
 }
 
 const assembly::SolidComponent& Context::solid(const model::Model& model,

@@ -19,6 +19,9 @@
 namespace geardyn::model {
 class ModelDocument;
 }
+namespace geardyn::assembly {
+struct CoupledSolid;
+}
 
 namespace geardyn::analyses {
 
@@ -45,6 +48,9 @@ class Context {
   const fe::LinearSystem& system() const;
   bool has_system() const { return system_ != nullptr; }
   const assembly::SolidComponents* solids() const { return solids_; }
+  /// The reduction of joined solid `solid_name` that the system was built with, or null when
+  /// the runner kept none (the caller may rebuild it: assembly::couple_solid is deterministic).
+  const assembly::CoupledSolid* coupled_solid(const std::string& solid_name) const;
   /// The solid component `solid_name` of `model`: built before the run, or built here once.
   const assembly::SolidComponent& solid(const model::Model& model,
                                         const std::string& solid_name) const;
@@ -65,6 +71,11 @@ class Context {
     solids_ = s;
     return *this;
   }
+  /// The joined solids' reductions the system (with_system) was built with.
+  Context& with_coupled_solids(const std::vector<assembly::CoupledSolid>* c) {
+    coupled_ = c;
+    return *this;
+  }
 
  private:
   std::string name_;
@@ -74,6 +85,7 @@ class Context {
   const model::ModelDocument* document_ = nullptr;
   const fe::LinearSystem* system_ = nullptr;
   const assembly::SolidComponents* solids_ = nullptr;
+  const std::vector<assembly::CoupledSolid>* coupled_ = nullptr;
   /// Solids built on demand (not prebuilt): shared by copies of this context.
   struct Built {
     std::mutex mutex;

@@ -76,10 +76,13 @@ HousingSurface housing_surface(const model::Model& model, const GearWhineSetting
   const assembly::SolidComponent& built = context.solid(model, s.radiating_solid);
   HousingSurface h;
   h.surface = radiating_surface(built, s, context);
-  // The same reduction as the one joined to the system (deterministic): its recovery.
+  // The reduction joined to the system (kept by the runner; else rebuilt: it is deterministic).
+  const assembly::CoupledSolid* kept = context.coupled_solid(s.radiating_solid);
   const assembly::CoupledSolid coupled =
-      assembly::couple_solid(model, *spec, built, context.progress());
-  const Eigen::SparseMatrix<double> B = fe::body_coordinates(system, coupled.body);
+      kept != nullptr ? assembly::CoupledSolid{}
+                      : assembly::couple_solid(model, *spec, built, context.progress());
+  const assembly::CoupledSolid& used = kept != nullptr ? *kept : coupled;
+  const Eigen::SparseMatrix<double> B = fe::body_coordinates(system, used.body);
   std::vector<int> column_of(static_cast<std::size_t>(system.size()), -1);
   for (Eigen::Index c = 0; c < B.outerSize(); ++c)
     if (B.col(c).nonZeros() > 0) {
@@ -91,7 +94,7 @@ HousingSurface housing_surface(const model::Model& model, const GearWhineSetting
   for (Eigen::Index c = 0; c < B.outerSize(); ++c)
     for (Eigen::SparseMatrix<double>::InnerIterator it(B, c); it; ++it)
       Bsub(it.row(), column_of[static_cast<std::size_t>(c)]) = it.value();
-  h.recovery = assembly::node_translations(coupled, h.surface.nodes) * Bsub;
+  h.recovery = assembly::node_translations(used, h.surface.nodes) * Bsub;
   return h;
 }
 

@@ -54,12 +54,13 @@ Outcome run_variant(const model::Model& model, const model::Analysis& analysis,
   try {
     const bool needs_rotor = declaration_of(type_of(analysis)).needs_rotor;
     fe::LinearSystem variant_system;
-    if (needs_rotor) variant_system = assembly::build_system(variant_model);
+    std::vector<assembly::CoupledSolid> coupled;
+    if (needs_rotor) variant_system = assembly::build_system(variant_model, nullptr, coupled);
     Context variant_context(model, analysis);
     variant_context.with_progress(&context.progress())
         .with_document(&variant)
         .with_solids(changes_solids(analysis.overrides) ? nullptr : context.solids());
-    if (needs_rotor) variant_context.with_system(&variant_system);
+    if (needs_rotor) variant_context.with_system(&variant_system).with_coupled_solids(&coupled);
     Outcome out = run_analysis(variant_model, without_set, variant_context);
     out.output.notes.push_back(
         fmt::format("Model variant for this analysis: {}.", fmt::join(analysis.overrides, ", ")));

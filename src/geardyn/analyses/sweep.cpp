@@ -78,11 +78,12 @@ SweepResult run_sweep(const model::ModelDocument& document, const SweepSettings&
           throw std::runtime_error("analysis '" + settings.analysis + "' not found");
         // The rotor's system only for a target that uses it (a solid or gear analysis has none).
         fe::LinearSystem system;
+        std::vector<assembly::CoupledSolid> coupled;
         const bool needs_rotor = declaration_of(type_of(*a)).needs_rotor;
-        if (needs_rotor) system = assembly::build_system(m);
+        if (needs_rotor) system = assembly::build_system(m, nullptr, coupled);
         Context context(m, *a);
         context.with_document(&point);
-        if (needs_rotor) context.with_system(&system);
+        if (needs_rotor) context.with_system(&system).with_coupled_solids(&coupled);
         const Outcome outcome = run_analysis(m, *a, context);
         const AnalysisOutput& out = outcome.output;
         // An unstable system still has its numbers (a steady state that is never reached, or

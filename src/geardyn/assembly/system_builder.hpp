@@ -4,7 +4,10 @@
 // (component/solid_coupling.hpp), fe::assemble (DOF map, sparse M, C, K, G, the bodies joined) and
 // assembly::apply_modal_damping (the low-rank modal damping term from the undamped modes at zero
 // speed, when the model asks for it).
+#include <vector>
+
 #include "geardyn/assembly/solid_component.hpp"
+#include "geardyn/assembly/solid_coupling.hpp"
 #include "geardyn/core/progress.hpp"
 #include "geardyn/fe/linear_system.hpp"
 #include "geardyn/model/model.hpp"
@@ -17,6 +20,12 @@ namespace geardyn::assembly {
 /// be computed, and NumericalError("craig_bampton", ...) when a joined solid cannot be reduced.
 fe::LinearSystem build_system(const model::Model& model,
                               const assembly::SolidComponents* solids = nullptr,
+                              Progress& progress = null_progress());
+
+/// The same, keeping the joined solids' reductions in `coupled` (model order): what expands the
+/// system's response to the solids' nodes (e.g. a housing's surface velocities).
+fe::LinearSystem build_system(const model::Model& model, const assembly::SolidComponents* solids,
+                              std::vector<CoupledSolid>& coupled,
                               Progress& progress = null_progress());
 
 }  // namespace geardyn::assembly
