@@ -136,4 +136,41 @@ void check_master_sets(const Context& context, const std::string& solid_name,
   }
 }
 
+void check_mesh_excitation(const std::string& path, const model::ModelCheck& check,
+                           const std::string& type, const std::string& gear_mesh,
+                           const std::string& pair, const std::vector<std::string>& sensors) {
+  const model::Model& m = check.model();
+  if (m.gear_meshes.empty())
+    check.fail(path + ".type", "an analysis whose gear mesh exists in the model",
+               fmt::format("\"{}\", but the model has no [[gear_meshes]]", type));
+  const model::GearMesh* mesh = &m.gear_meshes.front();
+  if (!gear_mesh.empty()) {
+    check.check_name(path + ".gear_mesh", gear_mesh, model::names_of(m.gear_meshes), "gear mesh",
+                     "gear_meshes");
+    for (const auto& gm : m.gear_meshes)
+      if (gm.name == gear_mesh) mesh = &gm;
+  } else if (m.gear_meshes.size() > 1) {
+    check.fail(path + ".gear_mesh", "the name of the gear mesh excited (the model has several)",
+               "nothing");
+  }
+  if (mesh->teeth1 <= 0)
+    check.fail(path + ".gear_mesh",
+               fmt::format("a gear mesh with teeth1 (mesh '{}' has none, so its mesh frequency "
+                           "is unknown)",
+                           mesh->name),
+               "teeth1 = 0");
+  if (!pair.empty()) {
+    const model::GearPair& gp = *m.find_gear_pair(pair);
+    if (gp.teeth1 != mesh->teeth1 || (mesh->teeth2 > 0 && gp.teeth2 != mesh->teeth2))
+      check.fail(path + ".pair",
+                 fmt::format("a gear pair with the teeth of gear mesh '{}' ({} / {})", mesh->name,
+                             mesh->teeth1, mesh->teeth2),
+                 fmt::format("'{}' with {} / {} teeth", gp.name, gp.teeth1, gp.teeth2));
+  }
+  check.check_named(path + ".sensors", sensors, model::names_of(m.sensors), "sensor", "sensors");
+  if (m.sensors.empty())
+    check.fail(path + ".type", "an analysis whose response points exist in the model",
+               fmt::format("\"{}\", but the model has no [[sensors]]", type));
+}
+
 }  // namespace geardyn::analyses

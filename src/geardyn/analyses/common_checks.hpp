@@ -26,6 +26,14 @@ struct GearPairUse {
 void check_gear_pair_use(const model::Analysis& a, const std::string& path,
                          const model::ModelCheck& check, const GearPairUse& use);
 
+/// A rotor analysis excited at the mesh orders of a gear mesh (gear_forced_response,
+/// gear_whine): `gear_mesh` names a [[gear_meshes]] entry (empty: the model's only one) with
+/// teeth1 (its mesh frequency), a given `pair` has the same teeth, the `sensors` exist, and the
+/// model has sensors at all. `type` names the analysis type in the messages.
+void check_mesh_excitation(const std::string& path, const model::ModelCheck& check,
+                           const std::string& type, const std::string& gear_mesh,
+                           const std::string& pair, const std::vector<std::string>& sensors);
+
 /// `solid` names a [[solids]] entry; with `cyclic`, one sector of a cyclic body (sectors >= 2)
 /// whose nodal diameters fit. Returns the solid.
 const model::Solid& check_solid_use(const std::string& path, const std::string& solid,

@@ -32,39 +32,10 @@ void finish(Analysis& a, const TableContext& t) {
 
 void check(const Analysis& a, const std::string& path, const model::ModelCheck& check) {
   const auto& g = a.settings_of<GearWhineSettings>();
-  const model::Model& m = check.model();
   GearPairUse use;
   use.pair = &g.pair;
   check_gear_pair_use(a, path, check, use);
-  if (m.gear_meshes.empty())
-    check.fail(path + ".type", "an analysis whose gear mesh exists in the model",
-               "\"gear_whine\", but the model has no [[gear_meshes]]");
-  const model::GearMesh* mesh = &m.gear_meshes.front();
-  if (!g.gear_mesh.empty()) {
-    check.check_name(path + ".gear_mesh", g.gear_mesh, model::names_of(m.gear_meshes), "gear mesh",
-                     "gear_meshes");
-    for (const auto& gm : m.gear_meshes)
-      if (gm.name == g.gear_mesh) mesh = &gm;
-  } else if (m.gear_meshes.size() > 1) {
-    check.fail(path + ".gear_mesh", "the name of the gear mesh excited (the model has several)",
-               "nothing");
-  }
-  if (mesh->teeth1 <= 0)
-    check.fail(path + ".gear_mesh",
-               fmt::format("a gear mesh with teeth1 (mesh '{}' has none, so its mesh frequency "
-                           "is unknown)",
-                           mesh->name),
-               "teeth1 = 0");
-  const model::GearPair& gp = *m.find_gear_pair(g.pair);
-  if (gp.teeth1 != mesh->teeth1 || (mesh->teeth2 > 0 && gp.teeth2 != mesh->teeth2))
-    check.fail(path + ".pair",
-               fmt::format("a gear pair with the teeth of gear mesh '{}' ({} / {})", mesh->name,
-                           mesh->teeth1, mesh->teeth2),
-               fmt::format("'{}' with {} / {} teeth", gp.name, gp.teeth1, gp.teeth2));
-  check.check_named(path + ".sensors", g.sensors, model::names_of(m.sensors), "sensor", "sensors");
-  if (m.sensors.empty())
-    check.fail(path + ".type", "an analysis whose accelerometers exist in the model",
-               "\"gear_whine\", but the model has no [[sensors]]");
+  check_mesh_excitation(path, check, "gear_whine", g.gear_mesh, g.pair, g.sensors);
 }
 
 std::vector<model::Field> radiation_keys() {
