@@ -108,7 +108,8 @@ const ErrorCase kCases[] = {
      4, 1, "analyses[0].speed_count", "a key of [[analyses]] with type = \"modal\"",
      "the unknown key 'speed_count'",
      "type = \"campbell\", \"unbalance\", \"cyclic_modal\", \"mesh_force\", "
-     "\"cyclic_forced_response\", \"gear_forced_response\" and \"damper_ring_response\" only"},
+     "\"cyclic_forced_response\", \"gear_forced_response\", \"gear_whine\" and "
+     "\"damper_ring_response\" only"},
     {"KeyOfAnotherGearType",
      "[[gear_meshes]]\ngear1 = \"rotor.0\"\ngear2 = \"rotor.1\"\nbase_radius1 = 0.1\n"
      "base_radius2 = 0.1\nstiffness = 1e8\nhelix_angle_deg = 20\n",

@@ -2,6 +2,9 @@
 // checks and how it runs.
 #include <fmt/format.h>
 
+#include <cmath>
+#include <stdexcept>
+
 #include "geardyn/analyses/order_analysis.hpp"
 #include "geardyn/analyses/registry.hpp"
 #include "geardyn/model/schema_builder.hpp"
@@ -139,6 +142,20 @@ AnalysisType order_analysis_analysis() {
     check_order_analysis_inputs(m, a.settings_of<S>(), c);
   };
   type.run = runner(run_order_analysis, order_analysis_output);
+  type.scalars = {{"overall_rms",
+                   "",
+                   "RMS of channel `channel` over the analysed range (mean removed), in the "
+                   "channel's unit.",
+                   {"channel"}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) -> double {
+    const auto& r = result_of<OrderAnalysisResult>(o);
+    for (const ChannelOrders& c : r.channels)
+      if (c.name == q.sensor || q.sensor.empty()) {
+        unit = "";
+        return std::sqrt(c.variance);
+      }
+    throw std::runtime_error(fmt::format("the analysis has no channel '{}'", q.sensor));
+  };
   return type;
 }
 
