@@ -63,10 +63,7 @@ std::string run_up_csv() {
 
 std::string model_text(const std::string& extra) {
   return R"(version = 1
-# A model needs a structure (model/parse.cpp); a record analysis uses none: one free node.
-[[nodes]]
-name = "record"
-position = [0, 0, 0]
+# A model of record analyses only: no structure needed.
 [[analyses]]
 name = "runup"
 type = "order_analysis"
@@ -185,10 +182,7 @@ TEST(OrderAnalysis, ReadsGeardynsTimeHistoryH5) {
                             {{"pinion_angle_rad", "rad"}, {"acc_m_per_s2", "m/s^2"}}, values,
                             static_cast<std::size_t>(n), {});
   const model::Model m = load(dir, R"(version = 1
-# A model needs a structure (model/parse.cpp); a record analysis uses none: one free node.
-[[nodes]]
-name = "record"
-position = [0, 0, 0]
+# A model of record analyses only: no structure needed.
 [[analyses]]
 name = "h5"
 type = "order_analysis"

@@ -1010,7 +1010,13 @@ void Resolver::build_nodes() {
     shaft_stations_.push_back(stations);
   }
   for (const auto& n : m_.nodes) nodes_[n.name] = NodeInfo{-1, n.position};
-  if (m_.shafts.empty() && m_.nodes.empty() && m_.solids.empty() && m_.gear_pairs.empty())
+  // A model of record analyses only (order analysis of a measurement) needs no structure.
+  const bool records_only =
+      !m_.analyses.empty() &&
+      std::all_of(m_.analyses.begin(), m_.analyses.end(),
+                  [](const Analysis& a) { return a.type == "order_analysis"; });
+  if (m_.shafts.empty() && m_.nodes.empty() && m_.solids.empty() && m_.gear_pairs.empty() &&
+      !records_only)
     throw InputError({r_.doc().file_name(), 1, 1}, "shafts",
                      "a model with at least one [[shafts]], [[nodes]], [[solids]] or "
                      "[[gear_pairs]] table",
