@@ -27,11 +27,10 @@ void write_record(const fs::path& path, int bad_row, bool flat_tacho) {
 }
 
 void write_model(const fs::path& dir, const std::string& keys) {
-  std::ofstream(dir / "model.toml")
-      << "version = 1\n"
-         "[[analyses]]\nname = \"orders\"\n"
-         "type = \"order_analysis\"\nrecord_file = \"record.csv\"\n"
-      << keys;
+  std::ofstream(dir / "model.toml") << "version = 1\n"
+                                       "[[analyses]]\nname = \"orders\"\n"
+                                       "type = \"order_analysis\"\nrecord_file = \"record.csv\"\n"
+                                    << keys;
 }
 
 struct Case {
