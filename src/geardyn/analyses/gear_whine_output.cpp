@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "geardyn/acoustics/radiation.hpp"
@@ -198,7 +199,9 @@ void add_plots(AnalysisOutput& out, const GearWhineResult& g, const GearWhineSet
 void add_face_maps(AnalysisOutput& out, const model::Model& model, const GearWhineResult& g,
                    const Context& context) {
   const WhineRadiation& w = g.radiation;
-  const assembly::SolidComponent& built = context.solid(model, w.solid);
+  // The writer runs after the analysis, when a solid built on demand for a model variant is
+  // gone: the files keep their own copy of the mesh.
+  const auto mesh = std::make_shared<const solid::Mesh>(context.solid(model, w.solid).mesh);
   const acoustics::Surface& surface = w.surface;
   for (std::size_t m = 0; m < w.map_speeds.size(); ++m) {
     const double rpm = w.map_speeds[m] * kRpm;
@@ -212,7 +215,7 @@ void add_face_maps(AnalysisOutput& out, const model::Model& model, const GearWhi
         {file,
          fmt::format("ERP per face of '{}' at {:.0f} rpm (sum over the mesh orders), for ParaView",
                      w.solid, rpm),
-         [mesh = &built.mesh, surface, erp, density](const std::filesystem::path& path) {
+         [mesh, surface, erp, density](const std::filesystem::path& path) {
            acoustics::write_surface_vtu(path, *mesh, surface, {erp, density}, {});
          }});
     acoustics::ErpDensityMap map = acoustics::erp_density_map(surface, faces, 50);
