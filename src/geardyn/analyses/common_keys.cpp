@@ -40,6 +40,22 @@ F speed_count_key() {
   return integer("speed_count", "Number of speeds in the range.").def("51").ge(2).le(100000);
 }
 
+F excited_gear_mesh_key() {
+  return text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
+      .note("the model's only gear mesh");
+}
+
+F max_mesh_order_key() {
+  return integer("max_mesh_order", "Mesh orders 1 .. this are excited.").def("3").ge(1).le(100);
+}
+
+F residual_vectors_key() {
+  return boolean("residual_vectors",
+                 "Add the static response to the mesh load to the modal basis (static "
+                 "correction of the modes left out).")
+      .def("true");
+}
+
 F n_modes_key() {
   return integer("n_modes",
                  "Number of modes computed (cyclic_modal, cyclic_forced_response: per nodal "

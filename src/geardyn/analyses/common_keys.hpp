@@ -29,6 +29,11 @@ model::keys::F speed_stop_rpm_key();
 /// gear_forced_response, damper_ring_response).
 model::keys::F speed_count_key();
 
+/// `gear_mesh`, `max_mesh_order`, `residual_vectors` (used by gear_forced_response, gear_whine).
+model::keys::F excited_gear_mesh_key();
+model::keys::F max_mesh_order_key();
+model::keys::F residual_vectors_key();
+
 /// `n_modes` (used by modal, campbell, solid_modal, cyclic_modal, reduction,
 /// cyclic_forced_response, gear_forced_response, damper_ring_response).
 model::keys::F n_modes_key();

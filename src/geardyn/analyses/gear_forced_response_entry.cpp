@@ -72,19 +72,9 @@ std::vector<model::Field> keys() {
           .ge(0)
           .le(100000)
           .to_settings(&GearForcedResponseSettings::measured_mesh_order),
-      text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
-          .note("the model's only gear mesh")
-          .to_settings(&GearForcedResponseSettings::gear_mesh),
-      integer("max_mesh_order", "Mesh orders 1 .. this are excited.")
-          .def("3")
-          .ge(1)
-          .le(100)
-          .to_settings(&GearForcedResponseSettings::max_mesh_order),
-      boolean("residual_vectors",
-              "Add the static response to the mesh load to the modal basis (static "
-              "correction of the modes left out).")
-          .def("true")
-          .to_settings(&GearForcedResponseSettings::residual_vectors),
+      excited_gear_mesh_key().to_settings(&GearForcedResponseSettings::gear_mesh),
+      max_mesh_order_key().to_settings(&GearForcedResponseSettings::max_mesh_order),
+      residual_vectors_key().to_settings(&GearForcedResponseSettings::residual_vectors),
   };
 }
 

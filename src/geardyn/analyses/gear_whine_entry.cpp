@@ -102,19 +102,9 @@ std::vector<model::Field> keys() {
                 "k_mean e_p at each mesh order p.")
           .required()
           .to_settings(&GearWhineSettings::pair),
-      text("gear_mesh", "The [[gear_meshes]] entry of the rotor that is excited.")
-          .note("the model's only gear mesh")
-          .to_settings(&GearWhineSettings::gear_mesh),
-      integer("max_mesh_order", "Mesh orders 1 .. this are excited.")
-          .def("3")
-          .ge(1)
-          .le(100)
-          .to_settings(&GearWhineSettings::max_mesh_order),
-      boolean("residual_vectors",
-              "Add the static response to the mesh load to the modal basis (static "
-              "correction of the modes left out).")
-          .def("true")
-          .to_settings(&GearWhineSettings::residual_vectors),
+      excited_gear_mesh_key().to_settings(&GearWhineSettings::gear_mesh),
+      max_mesh_order_key().to_settings(&GearWhineSettings::max_mesh_order),
+      residual_vectors_key().to_settings(&GearWhineSettings::residual_vectors),
       number("acceleration_reference", kAcceleration,
              "0 dB of the acceleration levels (ISO 1683: 1e-6 m/s^2).")
           .def("1e-6")

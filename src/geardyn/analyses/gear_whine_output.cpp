@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "geardyn/acoustics/radiation.hpp"
@@ -32,6 +33,18 @@ std::string accel_suffix(const response::RotorSensor& s) {
 
 /// dB of an RMS acceleration re `ref` (ISO 1683: 1e-6 m/s^2).
 double level_db(double rms, double ref) { return 20.0 * std::log10(std::max(rms, 1e-300) / ref); }
+
+/// Sound power level and sound pressure level of the 0-order radiator at each speed [dB].
+std::pair<std::vector<double>, std::vector<double>> radiator_levels(const WhineRadiation& w,
+                                                                    const GearWhineSettings& s) {
+  std::vector<double> lw, lp;
+  for (Eigen::Index i = 0; i < w.radiator_total_w.size(); ++i) {
+    lw.push_back(acoustics::sound_power_level_db(w.radiator_total_w[i]));
+    lp.push_back(
+        acoustics::sound_pressure_level_db(w.radiator_total_w[i], s.distance, s.directivity));
+  }
+  return {lw, lp};
+}
 
 Table te_table(const GearWhineResult& g) {
   Table t;
@@ -143,12 +156,7 @@ Table radiation_table(const GearWhineResult& g, const GearWhineSettings& s,
   t.add("erp_w", "W", vec(w.erp_total_w));
   t.add("erp_level_db", "dB", vec(g.sound_power_level_db()));
   t.add("radiator_w", "W", vec(w.radiator_total_w));
-  std::vector<double> lw_rad, lp_rad;
-  for (Eigen::Index i = 0; i < w.radiator_total_w.size(); ++i) {
-    lw_rad.push_back(acoustics::sound_power_level_db(w.radiator_total_w[i]));
-    lp_rad.push_back(
-        acoustics::sound_pressure_level_db(w.radiator_total_w[i], s.distance, s.directivity));
-  }
+  const auto [lw_rad, lp_rad] = radiator_levels(w, s);
   t.add("radiator_level_db", "dB", lw_rad);
   t.add("spl_erp_db", "dB", vec(g.sound_pressure_level_db(s)));
   t.add("spl_radiator_db", "dB", lp_rad);
@@ -180,12 +188,7 @@ void add_plots(AnalysisOutput& out, const GearWhineResult& g, const GearWhineSet
   p.x_label = "speed [rpm]";
   p.y_label = "level [dB re 1e-12 W / 2e-5 Pa]";
   const Eigen::VectorXd lw = g.sound_power_level_db(), lp = g.sound_pressure_level_db(s);
-  std::vector<double> rad, rad_p;
-  for (Eigen::Index i = 0; i < w.radiator_total_w.size(); ++i) {
-    rad.push_back(acoustics::sound_power_level_db(w.radiator_total_w[i]));
-    rad_p.push_back(
-        acoustics::sound_pressure_level_db(w.radiator_total_w[i], s.distance, s.directivity));
-  }
+  const auto [rad, rad_p] = radiator_levels(w, s);
   p.traces.push_back(
       curve("L_W from ERP", rpm, std::vector<double>(lw.data(), lw.data() + lw.size())));
   p.traces.push_back(curve("L_W 0-order radiator", rpm, rad, "dash"));
