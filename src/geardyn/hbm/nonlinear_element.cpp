@@ -95,13 +95,21 @@ void PointwiseElement::harmonic_force(const HarmonicBasis& basis, const Eigen::V
   Eigen::MatrixXd dfdu, dfdv;
   if (J != nullptr) dfdu.resize(n, nc * nc);
   if (J != nullptr || df_domega != nullptr) dfdv.resize(n, nc * nc);
+  Eigen::MatrixXd direct;  // df/domega at fixed u, v per sample (n x nc)
+  if (df_domega != nullptr) direct.setZero(n, nc);
   ElementStep step;
+  Eigen::VectorXd d(nc);
   for (int j = 0; j < n; ++j) {
     step.force.setZero(nc);
     step.stiffness.setZero(nc, nc);
     step.damping.setZero(nc, nc);
     const double theta = units::kTwoPi * j / n;
-    pointwise(u.row(j).transpose(), v.row(j).transpose(), theta, step);
+    pointwise(u.row(j).transpose(), v.row(j).transpose(), theta, omega, step);
+    if (df_domega != nullptr) {
+      d.setZero();
+      pointwise_omega_derivative(u.row(j).transpose(), v.row(j).transpose(), theta, omega, d);
+      direct.row(j) = d.transpose();
+    }
     if (!step.force.allFinite())
       throw NumericalError(describe(), fmt::format("the force is not finite at phase {:.4g} rad "
                                                    "of the period (a non-finite motion?)",
@@ -129,6 +137,8 @@ void PointwiseElement::harmonic_force(const HarmonicBasis& basis, const Eigen::V
       df_domega->segment(i * s, s) += P * g / omega;
     }
   }
+  if (df_domega != nullptr)
+    for (int i = 0; i < nc; ++i) df_domega->segment(i * s, s) += P * direct.col(i);
 }
 
 ElementLoop PointwiseElement::loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,
@@ -144,7 +154,8 @@ ElementLoop PointwiseElement::loop(const HarmonicBasis& basis, const Eigen::Vect
     step.force.setZero(nc);
     step.stiffness.setZero(nc, nc);
     step.damping.setZero(nc, nc);
-    pointwise(r.displacement.row(j).transpose(), v.row(j).transpose(), units::kTwoPi * j / n, step);
+    pointwise(r.displacement.row(j).transpose(), v.row(j).transpose(), units::kTwoPi * j / n, omega,
+              step);
     r.force.row(j) = step.force.transpose();
   }
   r.energy_per_cycle = loop_energy(r.displacement, r.force);
@@ -157,7 +168,7 @@ void PointwiseElement::time_force(const Eigen::VectorXd& u, const Eigen::VectorX
   out.force.setZero(nc);
   out.stiffness.setZero(nc, nc);
   out.damping.setZero(nc, nc);
-  pointwise(u, v, theta, out);
+  pointwise(u, v, theta, omega, out);
   out.state.resize(0);
 }
 

@@ -76,32 +76,41 @@ class NonlinearElement {
   virtual int state_size() const { return 0; }
   /// The state of the element at rest at displacement u (a slider stuck there).
   virtual Eigen::VectorXd initial_state(const Eigen::VectorXd& u) const;
-  /// The law at one time step: displacement u, velocity v, phase theta = omega t [rad] (for
-  /// time-varying laws), from the committed state of the step's start.
+  /// The law at one time step: displacement u, velocity v, phase theta = omega t [rad] and
+  /// fundamental omega [rad/s] (for time-varying laws: their rate is d/dt = omega d/dtheta),
+  /// from the committed state of the step's start.
   virtual void time_force(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta,
-                          const Eigen::VectorXd& state, ElementStep& out) const = 0;
+                          double omega, const Eigen::VectorXd& state, ElementStep& out) const = 0;
 };
 
 /// An element without memory: f(u, v, theta) at every instant. harmonic_force and loop come
 /// from the pointwise law by the AFT:
 ///   f_c = P f(Q w, omega Q' w, theta_j),  J = P diag(df/du) Q + omega P diag(df/dv) Q',
-///   df/domega = P diag(df/dv) Q' w   (velocity-dependent laws),
+///   df/domega = P diag(df/dv) Q' w   (velocity-dependent laws)
+///               + P (df/domega at fixed u, v)   (pointwise_omega_derivative),
 /// with Q the sampling matrix, Q' its theta derivative and P the projection (harmonic_basis.hpp);
 /// exact for the samples taken.
 class PointwiseElement : public NonlinearElement {
  public:
-  /// f, df/du, df/dv at one instant (out sized n, n x n, n x n and zero on entry).
+  /// f, df/du, df/dv at one instant (out sized n, n x n, n x n and zero on entry) at phase
+  /// theta and fundamental omega.
   virtual void pointwise(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta,
-                         ElementStep& out) const = 0;
+                         double omega, ElementStep& out) const = 0;
   /// True when the law depends on the velocity (then df/domega is not zero).
   virtual bool velocity_dependent() const { return false; }
+  /// A law that depends on omega other than through v (a time-varying law whose rate
+  /// omega d/dtheta enters, e.g. a mesh's unloaded TE rate) overrides this: df/domega at fixed
+  /// u and v (out: n, zero on entry). Default: no such dependence.
+  virtual void pointwise_omega_derivative(const Eigen::VectorXd& /*u*/,
+                                          const Eigen::VectorXd& /*v*/, double /*theta*/,
+                                          double /*omega*/, Eigen::VectorXd& /*out*/) const {}
 
   void harmonic_force(const HarmonicBasis& basis, const Eigen::VectorXd& w, double omega,
                       Eigen::VectorXd& f, Eigen::MatrixXd* J,
                       Eigen::VectorXd* df_domega) const override;
   ElementLoop loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,
                    double omega) const override;
-  void time_force(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta,
+  void time_force(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta, double omega,
                   const Eigen::VectorXd& state, ElementStep& out) const override;
 };
 
