@@ -163,7 +163,8 @@ ElementLoop PointwiseElement::loop(const HarmonicBasis& basis, const Eigen::Vect
 }
 
 void PointwiseElement::time_force(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta,
-                                  const Eigen::VectorXd& /*state*/, ElementStep& out) const {
+                                  double omega, const Eigen::VectorXd& /*state*/,
+                                  ElementStep& out) const {
   const int nc = size();
   out.force.setZero(nc);
   out.stiffness.setZero(nc, nc);
