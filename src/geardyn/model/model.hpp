@@ -14,6 +14,7 @@
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/model/drivetrain_spec.hpp"
+#include "geardyn/model/nonlinear_element_spec.hpp"
 
 namespace geardyn::model {
 
@@ -534,6 +535,8 @@ struct Model {
   std::vector<LoadTorqueSpec> loads;
   std::vector<ClutchSpec> clutches;
   std::vector<VirtualSensorSpec> virtual_sensors;
+  // Nonlinear elements of harmonic balance (nonlinear_element_spec.hpp; nonlinear_response only).
+  std::vector<NonlinearElementSpec> nonlinear_elements;
   std::vector<Analysis> analyses;
 
   const Material* find_material(const std::string& name) const;

@@ -973,6 +973,7 @@ class Resolver final : public ModelCheck {
   void check_analyses();
   // The nonlinear drivetrain (drivetrain_spec.hpp): its nodes, DOFs and gear pairs.
   void check_drivetrain();
+  void check_nonlinear_elements() const;
   void check_element_ends(const std::string& path, const std::string& node1,
                           const std::string& node2, const char* key1, const char* key2) const;
   void check_bolt_bodies() const;
@@ -1420,6 +1421,23 @@ void Resolver::check_drivetrain() {
   }
 }
 
+// [[nonlinear_elements]]: ends, the gear mesh a mesh element uses, the friction contact's
+// directions (normal and tangents mutually orthogonal).
+void Resolver::check_nonlinear_elements() const {
+  check_unique(m_.nonlinear_elements, "nonlinear_elements");
+  std::set<std::string> meshes;
+  for (const GearMesh& g : m_.gear_meshes) meshes.insert(g.name);
+  for (std::size_t i = 0; i < m_.nonlinear_elements.size(); ++i) {
+    const NonlinearElementSpec& e = m_.nonlinear_elements[i];
+    const std::string path = fmt::format("nonlinear_elements[{}]", i);
+    if (e.kind == NonlinearElementKind::GearMesh) {
+      check_name(path + ".gear_mesh", e.gear_mesh, meshes, "gear mesh", "gear_meshes");
+      continue;
+    }
+    check_element_ends(path, e.node1, e.node2, "node1", "node2");
+  }
+}
+
 // An analysis's `set` entries are checked like --set, and the variant model they make is built
 // and validated here, so a bad value is reported before any computation. The variant's own
 // analyses are not checked again (that would recurse).
@@ -1509,6 +1527,7 @@ void Resolver::run() {
   resolve_disks();
   check_connections();
   check_drivetrain();
+  check_nonlinear_elements();
   check_damping();
   check_analyses();
 }

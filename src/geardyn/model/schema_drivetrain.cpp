@@ -206,6 +206,21 @@ Section mesh_contact_law_section() {
       .variants("type", law_variants());
 }
 
+}  // namespace
+
+Section nonlinear_contact_law_section() {
+  return S("law", SectionKind::Table, "[nonlinear_elements.law]",
+           "The contact law of a `type = \"contact\"` element (the same keys as "
+           "[contacts.law]).")
+      .in_table(&NonlinearElementSpec::law)
+      .located(&ContactLawSpec::where)
+      .only_in({"contact"})
+      .fields(law_fields(true))
+      .variants("type", law_variants());
+}
+
+namespace {
+
 // ---------------------------------------------------------------------------------------------
 // [[contacts]]
 

@@ -154,6 +154,7 @@ Section make_model_schema(const std::vector<AnalysisDeclaration>& analyses) {
                      loads_section(),
                      clutches_section(),
                      virtual_sensors_section(),
+                     nonlinear_elements_section(),
                      analyses_section(analyses)});
   root.object_type = typeid(Model);  // the root has no parent to append it to
   check_schema(root);

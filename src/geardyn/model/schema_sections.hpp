@@ -49,5 +49,9 @@ Section loads_section();
 Section clutches_section();
 Section virtual_sensors_section();
 Section mesh_contact_section();  ///< [gear_meshes.contact], a sub-table of [[gear_meshes]]
+/// [nonlinear_elements.law] (schema_drivetrain.cpp: the contact laws' keys).
+Section nonlinear_contact_law_section();
+// Harmonic balance (schema_nonlinear.cpp).
+Section nonlinear_elements_section();
 
 }  // namespace geardyn::model
