@@ -184,6 +184,10 @@ TEST(ElementLibrary, AftJacobianAndOmegaDerivativeMatchFiniteDifferences) {
   cases.push_back({std::make_shared<FrictionContactHb>("3d", contact(2)),
                    stack({generic_motion(b, 1.5e-4, 0.0, 1.1), generic_motion(b, 3e-4, 0.0, 0.2),
                           generic_motion(b, 2e-4, 0.0, 1.7)})});
+  // 3D contact in stick and 2D slip, variable normal load without lift-off.
+  cases.push_back({std::make_shared<FrictionContactHb>("3d stick-slip", contact(2)),
+                   stack({generic_motion(b, 5e-5, 0.0, 1.1), generic_motion(b, 1e-4, 0.0, 0.2),
+                          generic_motion(b, 5e-5, 0.0, 1.7)})});
   cases.push_back({std::make_shared<PolynomialSpring>(
                        "poly", std::map<int, double>{{1, 1e4}, {2, 3e7}, {3, 2e11}}),
                    w1});
@@ -276,12 +280,12 @@ TEST(ElementLibrary, TimeMarchReproducesTheAftLoop) {
        stack({generic_motion(b, 1.5e-4, 0.0, 1.1), generic_motion(b, 3e-4, 0.0, 0.2),
               generic_motion(b, 2e-4, 0.0, 1.7)}),
        3},
-      // 2D slip without lift-off: the memory fades by mu N / |T*| per slip sample; both the AFT
-      // (closure 1e-12) and 20 marched periods are steady far below round-off of the force.
+      // Stick and 2D slip without lift-off: the memory fades by mu N / |T*| per slip sample
+      // (here by ~1e-5 per period: the AFT closes to 1e-12 after 5 periods); 8 are marched.
       {std::make_shared<FrictionContactHb>("3d", contact(2)),
-       stack({generic_motion(b, 5e-5, 0.0, 1.1), generic_motion(b, 3e-4, 0.0, 0.2),
-              generic_motion(b, 2e-4, 0.0, 1.7)}),
-       20},
+       stack({generic_motion(b, 5e-5, 0.0, 1.1), generic_motion(b, 1e-4, 0.0, 0.2),
+              generic_motion(b, 5e-5, 0.0, 1.7)}),
+       8},
       {std::make_shared<UnilateralSpringHb>("gap", 2e5, 0.3 * X, 40.0), w1, 1},
       {std::make_shared<TanhCoulomb>("tanh", kSlip, 0.1 * omega * X), w1, 1},
   };
@@ -546,7 +550,8 @@ TEST(ElementLibrary, JenkinsOscillatorTendsToItsLinearLimits) {
     const double exact_peak = kF / d_min;
     const double drop = 0.5 * std::pow(2.0 * kM * w_p * 0.5 * peak.gap / d_min, 2);
     EXPECT_LE(peak.amplitude, exact_peak * (1.0 + 1e-9)) << "slip " << slip;
-    EXPECT_GE(peak.amplitude, exact_peak * (1.0 - 1.1 * drop)) << "slip " << slip;
+    // (1.1: the next order in delta; 1e-9: the Newton tolerance.)
+    EXPECT_GE(peak.amplitude, exact_peak * (1.0 - 1.1 * drop - 1e-9)) << "slip " << slip;
     EXPECT_LT(drop, 1e-2) << "the sweep is too coarse at the peak";
   }
 }
