@@ -3,7 +3,7 @@
 //   * circular centred orbit (CCO) of radius e = epsilon c and whirl rate w, pi film:
 //       F_r = -2 mu R L^3 epsilon^2 w / (c^2 (1 - epsilon^2)^2),
 //       F_t = -pi mu R L^3 epsilon w / (2 c^2 (1 - epsilon^2)^(3/2))
-//     (Vance, "Rotordynamics of Turbomachinery", Wiley (1988), ch. 6; San Andres, "Squeeze film
+//     (Vance, "Rotordynamics of Turbomachinery", Wiley (1988); San Andres, "Squeeze film
 //     dampers", Modern Lubrication Theory, Notes 13, Texas A&M (2010): F_r < 0 pulls the journal
 //     towards the centre, F_t < 0 opposes the whirl); 2 pi film: F_r = 0 and twice that F_t
 //     (the film's pressure is odd about the line of centres, so its radial part cancels);
@@ -26,6 +26,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <initializer_list>
 #include <memory>
 #include <numbers>
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/hbm/element_system.hpp"
 #include "geardyn/hbm/squeeze_film_element.hpp"
 
 namespace geardyn::hbm {
@@ -220,6 +222,47 @@ TEST(SqueezeFilmDamper, AftJacobianMatchesFiniteDifferences) {
     // A pure damper (f homogeneous of degree one in v = omega x'): df/domega = f / omega.
     EXPECT_LT((dfw - f / w).norm(), 1e-12 * scale / w);
   }
+}
+
+// In a harmonic balance: a journal of mass m on a centring spring k in the damper (the squirrel
+// cage), driven by a rotating unbalance force F_u (cos theta, sin theta). A CCO
+// z = x + i y = e exp(i (theta - phi)) is an exact periodic solution when
+//   (k - m w^2) e - F_r(e) - i F_t(e) = F_u exp(i phi)
+// (F_r, F_t the CCO film forces above): given e, this fixes F_u and phi. ElementHarmonicBalance
+// with the element must have that orbit as its root: the residual there vanishes to rounding
+// (1e-12 of the unbalance force; the AFT is exact, the film force of a CCO being a pure first
+// harmonic), and Newton from a guess 20 % off returns to it (1e-10 of e).
+TEST(SqueezeFilmDamper, CircularOrbitOfAnUnbalancedJournalIsAHarmonicBalanceRoot) {
+  const SqueezeFilmParameters p = damper(SqueezeFilm::pi);
+  const auto sfd = std::make_shared<const SqueezeFilmDamper>("sfd", p);
+  const double m = 10.0, k = 1e6, w = 300.0, eps = 0.4, e = eps * p.clearance;
+  const FilmForce F = cco_force(*sfd, eps, w, 0.0);
+  const std::complex<double> lhs((k - m * w * w) * e - F.radial, -F.tangential);
+  const double Fu = std::abs(lhs), phi = std::arg(lhs);
+  ElementSystem s;
+  s.M = m * Eigen::Matrix2d::Identity();
+  s.C = Eigen::Matrix2d::Zero();
+  s.K = k * Eigen::Matrix2d::Identity();
+  s.elements.push_back({sfd, "sfd", Eigen::Matrix2d::Identity()});
+  const int c1 = HarmonicBasis::cos_index(1), s1 = HarmonicBasis::sin_index(1);
+  s.excitation = vector_with(6, {{c1, Fu}, {3 + s1, Fu}});
+  s.excitation_harmonics = 1;
+  const ElementHarmonicBalance hb(s, HarmonicBasis(3, 64));
+  const int n = hb.basis().size();
+  // x = e cos(theta - phi), y = e sin(theta - phi).
+  const Eigen::VectorXd exact = vector_with(2 * n, {{c1, e * std::cos(phi)},
+                                                    {s1, e * std::sin(phi)},
+                                                    {n + c1, -e * std::sin(phi)},
+                                                    {n + s1, e * std::cos(phi)}});
+  EXPECT_LT(hb.residual(exact, w).norm(), 1e-12 * Fu);
+  Eigen::VectorXd X = 1.2 * exact;
+  Eigen::MatrixXd J;
+  for (int it = 0; it < 30; ++it) {
+    const Eigen::VectorXd R = hb.residual(X, w, &J);
+    if (R.norm() <= 1e-13 * Fu) break;
+    X -= J.partialPivLu().solve(R);
+  }
+  EXPECT_LT((X - exact).norm(), 1e-10 * e);
 }
 
 TEST(SqueezeFilmDamper, JournalTouchingTheHousingIsANumericalError) {

@@ -41,6 +41,13 @@ void check_table(const MeshCycleTable& table, const std::string& key, bool posit
   }
 }
 
+// The flank in contact for the drive-flank penetration p = delta - e and the backlash b.
+elements::MeshContactState contact(double p, double b) {
+  if (p > 0.0) return elements::MeshContactState::drive;
+  if (-p - b > 0.0) return elements::MeshContactState::back;
+  return elements::MeshContactState::separated;
+}
+
 }  // namespace
 
 double MeshCycleTable::value(double theta) const {
@@ -72,10 +79,7 @@ GearMeshBacklash::GearMeshBacklash(std::string name, GearMeshBacklashParameters 
 std::string GearMeshBacklash::describe() const { return fmt::format("gear mesh '{}'", name_); }
 
 elements::MeshContactState GearMeshBacklash::state(double delta, double theta) const {
-  const double p = delta - parameters_.unloaded_te.value(theta);
-  if (p > 0.0) return elements::MeshContactState::drive;
-  if (-p - parameters_.backlash > 0.0) return elements::MeshContactState::back;
-  return elements::MeshContactState::separated;
+  return contact(delta - parameters_.unloaded_te.value(theta), parameters_.backlash);
 }
 
 void GearMeshBacklash::pointwise(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta,
@@ -85,7 +89,7 @@ void GearMeshBacklash::pointwise(const Eigen::VectorXd& u, const Eigen::VectorXd
                                                  "phase {:.4g} rad",
                                                  u[0], v[0], theta));
   const double p = u[0] - parameters_.unloaded_te.value(theta);
-  const elements::MeshContactState s = state(u[0], theta);
+  const elements::MeshContactState s = contact(p, parameters_.backlash);
   if (s == elements::MeshContactState::separated) return;
   const double k = parameters_.stiffness.value(theta), c = parameters_.damping;
   const double rate = v[0] - omega * parameters_.unloaded_te.slope(theta);

@@ -52,7 +52,7 @@
 //
 // References: San Andres, "Squeeze film dampers: operation, models and technical issues",
 // Modern Lubrication Theory, Notes 13, Texas A&M University (2010); Vance, "Rotordynamics of
-// Turbomachinery", Wiley (1988), ch. 6 (the CCO forces); Booker, "A table of the journal-bearing
+// Turbomachinery", Wiley (1988) (the CCO forces); Booker, "A table of the journal-bearing
 // integral", J. Basic Eng. 87 (1965) 533-535 (the integrals and Sommerfeld's substitution).
 #include <string>
 
