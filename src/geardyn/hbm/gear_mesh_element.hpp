@@ -105,7 +105,9 @@ class GearMeshBacklash final : public PointwiseElement {
 
   /// Which flank touches at approach delta and phase theta.
   elements::MeshContactState state(double delta, double theta) const;
+  /// The parameters as given.
   const GearMeshBacklashParameters& parameters() const { return parameters_; }
+  /// True when the backlash is finite (a back flank exists).
   bool has_backlash() const {
     return parameters_.backlash < std::numeric_limits<double>::infinity();
   }

@@ -90,11 +90,13 @@ class SqueezeFilmDamper final : public PointwiseElement {
   /// not finite.
   void pointwise(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta, double omega,
                  ElementStep& out) const override;
+  /// True: the film force is homogeneous of degree one in the velocity.
   bool velocity_dependent() const override { return true; }
 
   /// The small-motion damping of the centred journal [N s/m]: pi mu R L^3 / c^3 (2 pi film), half
   /// of it (pi film).
   double centred_damping() const;
+  /// The parameters as given.
   const SqueezeFilmParameters& parameters() const { return parameters_; }
 
  private:
