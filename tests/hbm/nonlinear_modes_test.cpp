@@ -262,6 +262,43 @@ TEST(NonlinearModes, JenkinsOscillatorMatchesGriffin) {
   EXPECT_LT(r.points.back().damping_ratio, 0.5 * zeta_max);
 }
 
+// Linear limit: no element, Rayleigh damping C = 0.01 K and a structural loss K_loss = 0.02 K on
+// a 2-DOF system; the second mode. Its shape and frequency omega_1 stay those of the linear mode
+// at every amplitude, and the negative damping balances both: xi omega_1 = phi^T (omega_1 C +
+// K_loss) phi, i.e. zeta = 0.01 omega_1 / 2 + 0.02 / 2 (the structural loss counts eta / 2).
+// Newton at round-off: 1e-12 relative.
+TEST(NonlinearModes, LinearSystemKeepsItsModalFrequencyAndDamping) {
+  Eigen::MatrixXd M(2, 2), K(2, 2);
+  M << 1.0, 0.0, 0.0, 2.0;
+  K << 3.0, -1.0, -1.0, 1.0;
+  ElementSystem sys;
+  sys.M = M;
+  sys.K = K;
+  sys.C = 0.01 * K;
+  sys.K_loss = 0.02 * K;
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  const double w1 = std::sqrt(eig.eigenvalues()[1]);
+  const double zeta = 0.005 * w1 + 0.01;
+  NonlinearModeOptions o;
+  o.mode = 1;
+  o.amplitude_start = 1e-3;
+  o.amplitude_end = 1e3;
+  o.tolerance = 1e-12;
+  const NonlinearModeResult r = nonlinear_mode(sys, HarmonicBasis(3, 16), o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_NEAR(r.linear.omega, w1, 1e-12 * w1);
+  EXPECT_NEAR(r.linear.damping_ratio, zeta, 1e-12 * zeta);
+  ASSERT_GT(r.points.size(), 5u);
+  for (const auto& p : r.points) {
+    EXPECT_NEAR(p.omega, w1, 1e-12 * w1) << "a = " << p.amplitude;
+    EXPECT_NEAR(p.damping_ratio, zeta, 1e-12 * zeta) << "a = " << p.amplitude;
+    // W = xi pi omega a^2 for the fundamental alone (the higher harmonics are zero).
+    const double a = p.amplitude;
+    EXPECT_NEAR(p.energy_per_cycle, 2.0 * zeta * w1 * std::numbers::pi * w1 * a * a,
+                1e-11 * zeta * w1 * w1 * a * a);
+  }
+}
+
 // NLvib example 04, H = 9 (its harmonic order), first mode from a = 1e-2 to 10 (NLvib goes on
 // to a = 10^pi, through the internal-resonance loops that begin near log10(energy) = 2.4).
 TEST(NonlinearModes, NLvibTwoDofCubicSpringBackboneHardens) {

@@ -18,7 +18,7 @@
 //   phase       phi^T M X_s1 = 0   (the projection of the fundamental on the linear mode is a
 //               cosine: valid while the nonlinear mode keeps a component along phi)
 // From each point: the frequency omega, the modal damping ratio zeta = xi / (2 omega) (Krack
-// 2015, eq. 11: exact for a linear mode of proportional damping, where xi = 2 zeta_0 omega_0),
+// 2015: exact for a linear mode of proportional damping, where xi = 2 zeta_0 omega_0),
 // and the energy dissipated per cycle, which the negative damping feeds:
 //   W = xi int_0^T q'^T M q' dt = xi pi omega sum_{h=1..H} h^2 (X_ch^T M X_ch + X_sh^T M X_sh).
 //
@@ -91,7 +91,7 @@ class ExtendedPeriodicMotion final : public HarmonicSystem {
 struct NonlinearModeOptions {
   int mode = 0;                   ///< linear mode to start from (0: the lowest)
   double amplitude_start = 1e-3;  ///< modal amplitude a of the first point, > 0
-  double amplitude_end = 1.0;     ///< the curve ends at the first point with a >= this
+  double amplitude_end = 1.0;     ///< the curve ends at the first point at or past this
   /// Arc-length steps in (z, log10 a): z of order one, so 0.1 is a tenth of a decade of a where
   /// the frequency and the shape change little.
   double step = 0.02;
