@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <utility>
+#include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
@@ -53,43 +55,71 @@ Eigen::MatrixXd fundamental_block(const Eigen::MatrixXd& J, int n_dof, int s, in
   return B;
 }
 
-// The linear mode `mode` of the linearisation at rest (q = 0) of hb's system.
+// Mode `mode` of the oscillatory (complex) modes of M q'' + C q' + K q = 0, in ascending |lambda|:
+// omega_0 = |lambda| and xi = -2 Re lambda (exact for proportional damping), the shape psi (the
+// displacement half of the state eigenvector) with psi^H M psi = 1 and its largest entry real
+// and positive. Overdamped (real) and rigid-body modes are not counted.
+LinearModeStart complex_mode(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C,
+                             const Eigen::MatrixXd& K, int mode) {
+  const Eigen::Index n = M.rows();
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  if (llt.info() != Eigen::Success)
+    throw InputError({}, "mass", "a symmetric positive definite mass matrix",
+                     "a matrix whose Cholesky factorisation fails");
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomLeftCorner(n, n) = -llt.solve(K);
+  A.bottomRightCorner(n, n) = -llt.solve(C);
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(A);
+  if (es.info() != Eigen::Success)
+    throw NumericalError("nonlinear mode",
+                         "the eigenvalues of the linearisation at rest did not converge");
+  std::vector<Eigen::Index> oscillatory;
+  for (Eigen::Index i = 0; i < 2 * n; ++i) {
+    const std::complex<double> l = es.eigenvalues()[i];
+    if (l.imag() > 1e-12 * std::abs(l)) oscillatory.push_back(i);
+  }
+  std::sort(oscillatory.begin(), oscillatory.end(), [&es](Eigen::Index i, Eigen::Index j) {
+    return std::abs(es.eigenvalues()[i]) < std::abs(es.eigenvalues()[j]);
+  });
+  if (mode < 0 || mode >= static_cast<int>(oscillatory.size()))
+    throw InputError({}, "mode",
+                     fmt::format("an oscillatory linear mode index in [0, {}] (K plus the "
+                                 "elements' stiffness at rest; rigid-body and overdamped modes "
+                                 "are not counted)",
+                                 static_cast<int>(oscillatory.size()) - 1),
+                     fmt::format("{}", mode));
+  const Eigen::Index i = oscillatory[static_cast<std::size_t>(mode)];
+  const std::complex<double> lambda = es.eigenvalues()[i];
+  LinearModeStart L;
+  L.omega = std::abs(lambda);
+  L.xi = -2.0 * lambda.real();
+  L.damping_ratio = L.xi / (2.0 * L.omega);
+  Eigen::VectorXcd psi = es.eigenvectors().col(i).head(n);
+  psi /= std::sqrt(std::real(psi.dot(M.cast<std::complex<double>>() * psi)));
+  Eigen::Index imax = 0;
+  psi.cwiseAbs().maxCoeff(&imax);
+  psi *= std::conj(psi[imax]) / std::abs(psi[imax]);
+  L.shape = psi;
+  return L;
+}
+
+// The linear mode `mode` of the linearisation at rest (q = 0) of hb's system. The structural
+// loss, frequency-independent, enters as the viscous K_loss / omega at the mode's frequency
+// without it (exact for a loss proportional to the mode's stiffness).
 LinearModeStart linear_start(const ElementHarmonicBalance& hb, int mode) {
   const ElementSystem& sys = hb.system();
   const int n = sys.dofs(), s = hb.basis().size();
   const int c1 = HarmonicBasis::cos_index(1), s1 = HarmonicBasis::sin_index(1);
-  if (mode < 0 || mode >= n)
-    throw InputError({}, "mode", fmt::format("a linear mode index in [0, {}]", n - 1),
-                     fmt::format("{}", mode));
-  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(hb.size());
   Eigen::MatrixXd J;
-  // At omega = 1 the fundamental's cos-cos block is K_lin - M.
-  hb.residual(rest, 1.0, &J);
-  Eigen::MatrixXd K = fundamental_block(J, n, s, c1, c1) + sys.M;
-  K = 0.5 * (K + K.transpose()).eval();
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, sys.M);
-  if (eig.info() != Eigen::Success)
-    throw InputError({}, "mass", "a symmetric positive definite mass matrix",
-                     "the generalized eigenproblem (K, M) failed");
-  const double lambda = eig.eigenvalues()[mode];
-  if (!(lambda > 0.0))
-    throw InputError({}, "mode",
-                     "a linear mode of positive frequency (K plus the elements' stiffness at "
-                     "rest)",
-                     fmt::format("mode {} with omega^2 = {:.6g}", mode, lambda));
-  LinearModeStart L;
-  L.omega = std::sqrt(lambda);
-  L.shape = eig.eigenvectors().col(mode);
-  Eigen::Index imax = 0;
-  L.shape.cwiseAbs().maxCoeff(&imax);
-  if (L.shape[imax] < 0.0) L.shape = -L.shape;
-  // At omega_0 the fundamental's cos-sin block is omega_0 C_lin + K_loss: the modal damping
-  // force per unit modal velocity is phi^T (that) phi / omega_0 = xi.
-  hb.residual(rest, L.omega, &J);
-  const Eigen::MatrixXd Cw = fundamental_block(J, n, s, c1, s1);
-  L.xi = L.shape.dot(Cw * L.shape) / L.omega;
-  L.damping_ratio = L.xi / (2.0 * L.omega);
-  return L;
+  // At omega = 1 the fundamental's cos-cos block is K_lin - M, its cos-sin block C_lin + K_loss.
+  hb.residual(Eigen::VectorXd::Zero(hb.size()), 1.0, &J);
+  const Eigen::MatrixXd K = fundamental_block(J, n, s, c1, c1) + sys.M;
+  Eigen::MatrixXd C = fundamental_block(J, n, s, c1, s1);
+  if (sys.K_loss.size() == 0) return complex_mode(sys.M, C, K, mode);
+  C -= sys.K_loss;
+  const double omega = complex_mode(sys.M, C, K, mode).omega;
+  return complex_mode(sys.M, C + sys.K_loss / omega, K, mode);
 }
 
 ElementSystem without_excitation(ElementSystem system) {
@@ -113,16 +143,21 @@ ExtendedPeriodicMotion::ExtendedPeriodicMotion(ElementSystem system, HarmonicBas
     : hb_(without_excitation(std::move(system)), with_fundamental(std::move(basis))) {
   linear_ = linear_start(hb_, mode);
   psi_scale_ = linear_.shape.cwiseAbs().maxCoeff();
-  M_phi_ = hb_.system().M * linear_.shape;
-  kappa_ = linear_.omega * linear_.omega * M_phi_.norm();  // ||K_lin phi||
+  M_real_ = hb_.system().M * linear_.shape.real();
+  M_imag_ = hb_.system().M * linear_.shape.imag();
+  // ~||K_lin psi||: the force per unit modal amplitude.
+  kappa_ = linear_.omega * linear_.omega * std::hypot(M_real_.norm(), M_imag_.norm());
   G1_ = velocity_mass(hb_.system().M, hb_.basis());
 }
 
 Eigen::VectorXd ExtendedPeriodicMotion::linear_guess() const {
   const int n = hb_.system().dofs(), s = hb_.basis().size(), N = hb_.size();
   Eigen::VectorXd z = Eigen::VectorXd::Zero(size());
-  for (int d = 0; d < n; ++d)
-    z[d * s + HarmonicBasis::cos_index(1)] = linear_.shape[d] / psi_scale_;
+  // q = Re(psi e^{i theta}) = Re psi cos theta - Im psi sin theta.
+  for (int d = 0; d < n; ++d) {
+    z[d * s + HarmonicBasis::cos_index(1)] = linear_.shape[d].real() / psi_scale_;
+    z[d * s + HarmonicBasis::sin_index(1)] = -linear_.shape[d].imag() / psi_scale_;
+  }
   z[N] = 1.0;
   z[N + 1] = linear_.xi / linear_.omega;
   return z;
@@ -161,7 +196,7 @@ Eigen::VectorXd ExtendedPeriodicMotion::residual(const Eigen::VectorXd& z, doubl
   Eigen::VectorXd R(size());
   R.head(N) = Rhb + x * w * g;
   R[N] = kappa_ * (Pc.dot(M * Pc) + Ps.dot(M * Ps) - 1.0);
-  R[N + 1] = kappa_ * M_phi_.dot(Ps);
+  R[N + 1] = kappa_ * (M_real_.dot(Ps) + M_imag_.dot(Pc));
   if (dR_dp != nullptr) {
     // d/dp of F(a Psi) / a at fixed Psi is ln 10 (J_F Psi - F / a); the linear terms cancel.
     dR_dp->setZero(size());
@@ -176,7 +211,8 @@ Eigen::VectorXd ExtendedPeriodicMotion::residual(const Eigen::VectorXd& z, doubl
     for (int d = 0; d < n; ++d) {
       (*J)(N, d * s + c1) = kappa_ * psi_scale_ * 2.0 * MPc[d];
       (*J)(N, d * s + s1) = kappa_ * psi_scale_ * 2.0 * MPs[d];
-      (*J)(N + 1, d * s + s1) = kappa_ * psi_scale_ * M_phi_[d];
+      (*J)(N + 1, d * s + c1) = kappa_ * psi_scale_ * M_imag_[d];
+      (*J)(N + 1, d * s + s1) = kappa_ * psi_scale_ * M_real_[d];
     }
   }
   return R;

@@ -14,9 +14,12 @@
 // DOF-major X[d (2H+1) + c]) with the unknowns (X, omega, xi) and two more equations:
 //   amplitude   X_1^H M X_1 = X_c1^T M X_c1 + X_s1^T M X_s1 = a^2   (X_c1, X_s1: the cosine and
 //               sine coefficients of the fundamental of every DOF; a the modal amplitude: for a
-//               motion q = a phi cos(omega t) of the mass-normalised linear mode phi, it is a)
-//   phase       phi^T M X_s1 = 0   (the projection of the fundamental on the linear mode is a
-//               cosine: valid while the nonlinear mode keeps a component along phi)
+//               motion q = a Re(psi e^{i omega t}) of the linear mode psi, psi^H M psi = 1,
+//               it is a)
+//   phase       Im(psi^H M Q_1) = 0 with Q_1 = X_c1 - i X_s1, i.e.
+//               Re(psi)^T M X_s1 + Im(psi)^T M X_c1 = 0 (the projection of the fundamental on
+//               the linear mode has zero phase: valid while the nonlinear mode keeps a
+//               component along psi; for a real mode phi it is phi^T M X_s1 = 0)
 // From each point: the frequency omega, the modal damping ratio zeta = xi / (2 omega) (Krack
 // 2015: exact for a linear mode of proportional damping, where xi = 2 zeta_0 omega_0),
 // and the energy dissipated per cycle, which the negative damping feeds:
@@ -25,12 +28,16 @@
 // Solved form (ExtendedPeriodicMotion): the harmonics are scaled by the amplitude, X = a Psi,
 // and the force equations divided by a, so the unknowns are of order one at every amplitude:
 //   z = (Psi / psi_scale, omega / omega_0, xi / omega_0),   p = log10 a,
-// psi_scale the largest entry of |phi|, omega_0 the linear natural frequency. The curve is
-// traced by the pseudo-arc-length continuation of harmonic_balance.hpp (continue_in_frequency,
-// its "frequency" being p) from the linear mode at a small amplitude: X = a phi cos, omega =
-// omega_0, xi from the linear damping (Newton corrects the guess). The linear mode is that of the
-// linearisation at rest: K plus the elements' tangent stiffness at q = 0 (a stuck friction
-// element counts with its stiffness), C plus their tangent damping and the structural loss.
+// psi_scale the largest |psi_d|, omega_0 the linear natural frequency. The curve is traced by
+// the pseudo-arc-length continuation of harmonic_balance.hpp (continue_in_frequency, its
+// "frequency" being p) from the linear mode at a small amplitude: Q_1 = a psi, omega = omega_0,
+// xi from the linear damping (Newton corrects the guess). The linear mode is a complex mode of
+// the linearisation at rest, M q'' + C_lin q' + K_lin q = 0: K plus the elements' tangent
+// stiffness at q = 0 (a stuck friction element counts with its stiffness), C plus their tangent
+// damping (a regularised friction law at rest is a large damper: its heavily damped DOFs give
+// real, overdamped modes, which are not counted, and the oscillatory ones are those of the
+// stuck contact) and the structural loss as K_loss / omega_0. From its eigenvalue lambda:
+// omega_0 = |lambda|, xi = -2 Re lambda (both exact for proportional damping).
 // Where the corrector fails the curve ends there, with the status and the reason.
 // References: Krack (2015) above; Krack & Gross, "Harmonic Balance for Nonlinear Vibration
 // Problems", Springer (2019), ch. 4 (nonlinear modal analysis); Nayfeh & Mook, "Nonlinear
@@ -49,17 +56,20 @@ struct LinearModeStart {
   double omega = 0.0;          ///< natural frequency omega_0 [rad/s]
   double xi = 0.0;             ///< the negative damping that makes it periodic [1/s]
   double damping_ratio = 0.0;  ///< xi / (2 omega_0)
-  Eigen::VectorXd shape;       ///< phi (n_dof), mass-normalised (phi^T M phi = 1)
+  /// psi (n_dof), q = a Re(psi e^{i omega t}); psi^H M psi = 1, its largest entry real > 0
+  /// (real for an undamped or proportionally damped mode).
+  Eigen::VectorXcd shape;
 };
 
 /// The EPMC as a HarmonicSystem for continue_in_frequency: unknowns z (size n_dof (2H+1) + 2,
 /// see the header), the continuation parameter p = log10 a in place of the frequency. Rows: the
 /// force equations divided by a, then the amplitude and phase conditions times kappa =
-/// ||K_lin phi|| (the force per unit amplitude of the linear mode, so that all rows compare).
+/// omega_0^2 ||M psi|| (~ the force per unit amplitude of the linear mode, so that all rows
+/// compare).
 class ExtendedPeriodicMotion final : public HarmonicSystem {
  public:
   /// `system` without excitation (InputError otherwise), `mode` >= 0 the index of the linear
-  /// mode in ascending frequency (InputError when out of range or of zero frequency).
+  /// mode among the oscillatory ones in ascending |lambda| (InputError when out of range).
   ExtendedPeriodicMotion(ElementSystem system, HarmonicBasis basis, int mode);
 
   int size() const override { return hb_.size() + 2; }
@@ -84,8 +94,8 @@ class ExtendedPeriodicMotion final : public HarmonicSystem {
   LinearModeStart linear_;
   double psi_scale_ = 1.0;
   double kappa_ = 1.0;
-  Eigen::VectorXd M_phi_;  // M phi
-  Eigen::MatrixXd G1_;     // xi omega G1_ X: the harmonics of -xi M q'
+  Eigen::VectorXd M_real_, M_imag_;  // M Re psi, M Im psi
+  Eigen::MatrixXd G1_;               // xi omega G1_ X: the harmonics of -xi M q'
 };
 
 struct NonlinearModeOptions {
