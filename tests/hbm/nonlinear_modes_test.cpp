@@ -456,6 +456,13 @@ TEST(NonlinearModes, BadInputThrows) {
   forced.excitation = Eigen::Vector3d(0.0, 1.0, 0.0);
   EXPECT_THROW(nonlinear_mode(forced, basis, o), InputError);
   EXPECT_THROW(nonlinear_mode(duffing(0.0), HarmonicBasis(0, 8), o), InputError);
+  Eigen::MatrixXd K(2, 2), M(2, 2);
+  K << 2.0, -1.0, -1.0, 2.0;
+  M << 1.0, 0.2, 0.0, 1.0;  // not symmetric
+  EXPECT_THROW(nonlinear_mode(system_with(M, 0.0 * K, K, std::make_shared<CubicSpring>(1.0),
+                                          Eigen::RowVector2d(1.0, 0.0)),
+                              basis, o),
+               InputError);
 }
 
 // A corrector that cannot converge (one Newton iteration to a tolerance below round-off) is

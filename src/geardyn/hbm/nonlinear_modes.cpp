@@ -63,9 +63,11 @@ LinearModeStart complex_mode(const Eigen::MatrixXd& M, const Eigen::MatrixXd& C,
                              const Eigen::MatrixXd& K, int mode) {
   const Eigen::Index n = M.rows();
   const Eigen::LLT<Eigen::MatrixXd> llt(M);
-  if (llt.info() != Eigen::Success)
+  // The amplitude condition's gradient 2 M X_1 and the LLT (which reads one triangle) need M
+  // symmetric.
+  if (llt.info() != Eigen::Success || (M - M.transpose()).norm() > 1e-12 * M.norm())
     throw InputError({}, "mass", "a symmetric positive definite mass matrix",
-                     "a matrix whose Cholesky factorisation fails");
+                     "a non-symmetric matrix or one whose Cholesky factorisation fails");
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   A.topRightCorner(n, n).setIdentity();
   A.bottomLeftCorner(n, n) = -llt.solve(K);
