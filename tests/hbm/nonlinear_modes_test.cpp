@@ -16,6 +16,10 @@
 //    backbone from omega_0 = 1 towards, but below, sqrt(2) (the second DOF on its two springs
 //    with the first one held by the stiffening spring), and the small-amplitude slope of the
 //    single-mode perturbation omega^2 = 1 + 3/4 * 0.5 phi_1^4 a^2 = 1 + (3/32) a^2.
+//  * NLvib's example 05 (2-DOF, regularised dry friction): the stuck and free-sliding limits, the
+//    damping peak between them and the energy balance (details at the test).
+//  * a linear 2-DOF system with Rayleigh damping and structural loss: its modal frequency and
+//    damping ratio at every amplitude; the Jacobian against finite differences; input errors.
 #include "geardyn/hbm/nonlinear_modes.hpp"
 
 #include <gtest/gtest.h>
