@@ -26,6 +26,7 @@ namespace geardyn::analyses {
   X(gear_forced_response)         \
   X(gear_whine)                   \
   X(damper_ring_response)         \
+  X(nonlinear_response)           \
   X(drivetrain_transient)
 
 #define GEARDYN_DECLARE_ANALYSIS(type) AnalysisType type##_analysis();

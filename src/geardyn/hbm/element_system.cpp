@@ -197,11 +197,21 @@ Eigen::VectorXd ElementHarmonicBalance::residual(const Eigen::VectorXd& X, doubl
   return R;
 }
 
-double ElementHarmonicBalance::residual_scale(const Eigen::VectorXd& X, double /*omega*/) const {
+double ElementHarmonicBalance::residual_scale(const Eigen::VectorXd& X, double omega) const {
   const int s = basis_.size(), n = system_.dofs();
   const Eigen::Map<const Eigen::MatrixXd> Xs(X.data(), s, n);
   const double stiffness_force = (system_.K * Xs.transpose()).norm();
-  return std::max({std::abs(load_factor_) * F_ext_.norm(), stiffness_force,
+  // A structure held by its elements alone (K = 0: a gear pair held by its mesh) is judged
+  // against the elements' forces.
+  double element_force = 0.0;
+  for (std::size_t e = 0; e < system_.elements.size(); ++e) {
+    const auto& placed = system_.elements[e];
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(placed.element->size() * s);
+    placed.element->harmonic_force(basis_, element_coordinates(X, static_cast<int>(e)), omega, f,
+                                   nullptr, nullptr);
+    element_force = std::max(element_force, f.norm());
+  }
+  return std::max({std::abs(load_factor_) * F_ext_.norm(), stiffness_force, element_force,
                    std::numeric_limits<double>::min()});
 }
 

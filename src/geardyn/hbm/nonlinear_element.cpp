@@ -31,6 +31,10 @@ namespace {
 
 int coordinates_of(const HarmonicBasis& basis, const Eigen::VectorXd& w) {
   const int s = basis.size();
+  // Contact laws return 0 for a NaN motion: a non-finite input must not pass unnoticed.
+  if (!w.allFinite())
+    throw NumericalError("harmonic balance",
+                         "an element's motion is not finite (the Newton iteration diverged)");
   if (w.size() == 0 || w.size() % s != 0)
     throw InputError({}, "coordinates",
                      fmt::format("a multiple of 2H + 1 = {} Fourier coefficients", s),

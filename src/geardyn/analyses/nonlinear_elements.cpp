@@ -1,0 +1,216 @@
+#include "geardyn/analyses/nonlinear_elements.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "geardyn/analyses/mesh_force_map.hpp"
+#include "geardyn/drivetrain/builder.hpp"
+#include "geardyn/drivetrain/placement.hpp"
+#include "geardyn/elements/gap_contact.hpp"
+#include "geardyn/hbm/element_library.hpp"
+#include "geardyn/hbm/gear_mesh_element.hpp"
+#include "geardyn/hbm/squeeze_film_element.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+using model::NonlinearElementKind;
+using model::NonlinearElementSpec;
+
+const char* kind_name(NonlinearElementKind k) {
+  switch (k) {
+    case NonlinearElementKind::Jenkins:
+      return "jenkins";
+    case NonlinearElementKind::Coulomb:
+      return "coulomb";
+    case NonlinearElementKind::FrictionContact:
+      return "friction_contact";
+    case NonlinearElementKind::Polynomial:
+      return "polynomial";
+    case NonlinearElementKind::Cubic:
+      return "cubic";
+    case NonlinearElementKind::Unilateral:
+      return "unilateral";
+    case NonlinearElementKind::Contact:
+      return "contact";
+    case NonlinearElementKind::GearMesh:
+      return "gear_mesh";
+    case NonlinearElementKind::SqueezeFilm:
+      return "squeeze_film";
+  }
+  return "?";
+}
+
+Eigen::Vector3d vec(const model::DrivetrainVec3& v) { return {v[0], v[1], v[2]}; }
+
+// The rows of an element between node1 and node2 along `directions` (one row each).
+Eigen::MatrixXd two_node_rows(const NonlinearElementSpec& e, const fe::LinearSystem& system,
+                              const std::vector<Eigen::Vector3d>& directions, bool rotation,
+                              const std::string& path) {
+  const int rows = static_cast<int>(directions.size());
+  drivetrain::PlacementBuilder b(system.dofs, rows);
+  const int n2 = system.dofs.node_index(e.node2);
+  const int n1 = e.node1.empty() ? -1 : system.dofs.node_index(e.node1);
+  for (int r = 0; r < rows; ++r) {
+    b.add_projection(r, n2, rotation, directions[static_cast<std::size_t>(r)], 1.0);
+    b.add_projection(r, n1, rotation, directions[static_cast<std::size_t>(r)], -1.0);
+    if (b.row_empty(r))
+      throw InputError(e.where, path + ".node2",
+                       "ends whose motion along the element's direction is not constrained on "
+                       "both sides",
+                       fmt::format("'{}'{} fixed along [{:.3g}, {:.3g}, {:.3g}]", e.node2,
+                                   e.node1.empty() ? " and ground" : " and '" + e.node1 + "'",
+                                   directions[static_cast<std::size_t>(r)].x(),
+                                   directions[static_cast<std::size_t>(r)].y(),
+                                   directions[static_cast<std::size_t>(r)].z()),
+                       "the element would act on nothing: free a DOF of one end");
+  }
+  const drivetrain::PlacedElement placed = b.finish(nullptr, kind_name(e.kind), e.name);
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(rows, system.size());
+  for (std::size_t k = 0; k < placed.equations.size(); ++k)
+    B.col(placed.equations[k]) = placed.B.col(static_cast<Eigen::Index>(k));
+  return B;
+}
+
+std::size_t mesh_index(const model::Model& model, const std::string& name) {
+  for (std::size_t i = 0; i < model.gear_meshes.size(); ++i)
+    if (model.gear_meshes[i].name == name) return i;
+  throw std::logic_error("unknown gear mesh " + name);  // the parser checked the name
+}
+
+// The law of a gear_mesh element: its mesh's stiffness and unloaded TE over one mesh cycle
+// (the first cycle of the map's period when the map spans the hunting period), the mesh's
+// damping and the element's backlash.
+std::shared_ptr<const hbm::NonlinearElement> gear_mesh_law(const model::Model& model,
+                                                           const NonlinearElementSpec& e) {
+  const std::size_t index = mesh_index(model, e.gear_mesh);
+  const elements::MeshForceMap map = mesh_force_map(model, index);
+  const int per_cycle = std::max(1, map.angles() / std::max(1, map.mesh_cycles));
+  hbm::GearMeshBacklashParameters p;
+  p.stiffness.values.resize(static_cast<std::size_t>(per_cycle));
+  p.unloaded_te.values.resize(static_cast<std::size_t>(per_cycle));
+  for (int i = 0; i < per_cycle; ++i) {
+    p.stiffness.values[static_cast<std::size_t>(i)] = map.stiffness_at_node(i);
+    p.unloaded_te.values[static_cast<std::size_t>(i)] =
+        map.unloaded_te_m[static_cast<std::size_t>(i)];
+  }
+  p.backlash = std::isnan(e.backlash) ? std::numeric_limits<double>::infinity() : e.backlash;
+  p.damping = model.gear_meshes[index].damping;
+  return std::make_shared<hbm::GearMeshBacklash>(e.name, p);
+}
+
+std::shared_ptr<const hbm::NonlinearElement> law_of(const model::Model& model,
+                                                    const NonlinearElementSpec& e,
+                                                    const std::string& path) {
+  const hbm::ElementSource source{e.where, path};
+  switch (e.kind) {
+    case NonlinearElementKind::Jenkins:
+      return std::make_shared<hbm::JenkinsElementHb>(
+          e.name, hbm::JenkinsElement{e.stiffness, e.slip_force}, source);
+    case NonlinearElementKind::Coulomb:
+      return std::make_shared<hbm::TanhCoulomb>(e.name, e.slip_force, e.regularisation_velocity,
+                                                source);
+    case NonlinearElementKind::FrictionContact: {
+      hbm::FrictionContact c;
+      c.tangential_directions = std::isnan(e.tangent2[0]) ? 1 : 2;
+      c.normal_stiffness = e.normal_stiffness;
+      c.tangential_stiffness = e.tangential_stiffness;
+      c.friction_coefficient = e.friction_coefficient;
+      c.normal_preload = e.normal_preload;
+      return std::make_shared<hbm::FrictionContactHb>(e.name, c, hbm::ContactMarchOptions{},
+                                                      source);
+    }
+    case NonlinearElementKind::Polynomial: {
+      std::map<int, double> c;
+      for (std::size_t k = 0; k < e.powers.size(); ++k)
+        c[static_cast<int>(e.powers[k])] += e.coefficients[k];
+      return std::make_shared<hbm::PolynomialSpring>(e.name, c, source);
+    }
+    case NonlinearElementKind::Cubic:
+      return std::make_shared<hbm::PolynomialSpring>(
+          e.name, std::map<int, double>{{3, e.stiffness}}, source);
+    case NonlinearElementKind::Unilateral:
+      return std::make_shared<hbm::UnilateralSpringHb>(e.name, e.stiffness, e.gap, e.damping,
+                                                       source);
+    case NonlinearElementKind::Contact: {
+      const elements::LawSource law_source{e.law.where, path + ".law"};
+      const auto stop = std::make_shared<elements::GapContact>(elements::GapContact::stop(
+          e.name, e.gap, drivetrain::make_contact_law(e.law, law_source), law_source));
+      return std::make_shared<hbm::ForceElementAdapter>(e.name, stop, source);
+    }
+    case NonlinearElementKind::GearMesh:
+      return gear_mesh_law(model, e);
+    case NonlinearElementKind::SqueezeFilm: {
+      hbm::SqueezeFilmParameters p;
+      p.radius = e.radius;
+      p.length = e.length;
+      p.clearance = e.clearance;
+      p.viscosity = e.viscosity;
+      p.film = e.cavitated ? hbm::SqueezeFilm::pi : hbm::SqueezeFilm::two_pi;
+      return std::make_shared<hbm::SqueezeFilmDamper>(e.name, p);
+    }
+  }
+  throw std::logic_error("unknown nonlinear element kind");
+}
+
+// The placement rows of an element (one per coordinate of its law).
+Eigen::MatrixXd rows_of(const model::Model& model, const fe::LinearSystem& system,
+                        const NonlinearElementSpec& e, const std::string& path) {
+  if (e.kind == NonlinearElementKind::GearMesh) {
+    const drivetrain::MeshRows rows =
+        drivetrain::mesh_rows(model, system, mesh_index(model, e.gear_mesh));
+    Eigen::MatrixXd B = Eigen::MatrixXd::Zero(1, system.size());
+    for (std::size_t k = 0; k < rows.equations.size(); ++k)
+      B(0, rows.equations[k]) += rows.coefficients[k];
+    return B;
+  }
+  std::vector<Eigen::Vector3d> directions{vec(e.direction)};
+  if (e.kind == NonlinearElementKind::FrictionContact) {
+    directions.push_back(vec(e.tangent));
+    if (!std::isnan(e.tangent2[0])) directions.push_back(vec(e.tangent2));
+  }
+  if (e.kind == NonlinearElementKind::SqueezeFilm) {
+    const Eigen::Matrix3d frame =
+        drivetrain::frame_with_axis(vec(e.direction), Eigen::Vector3d::UnitX());
+    directions = {frame.col(0), frame.col(1)};
+  }
+  return two_node_rows(e, system, directions, e.rotation, path);
+}
+
+}  // namespace
+
+std::vector<BuiltNonlinearElement> build_nonlinear_elements(const model::Model& model,
+                                                            const fe::LinearSystem& system,
+                                                            const Context& /*context*/) {
+  std::vector<BuiltNonlinearElement> out;
+  for (std::size_t i = 0; i < model.nonlinear_elements.size(); ++i) {
+    const NonlinearElementSpec& e = model.nonlinear_elements[i];
+    const std::string path = fmt::format("nonlinear_elements[{}]", i);
+    BuiltNonlinearElement b;
+    b.name = e.name;
+    b.kind = kind_name(e.kind);
+    b.element = law_of(model, e, path);
+    b.B = rows_of(model, system, e, path);
+    if (e.kind == NonlinearElementKind::GearMesh)
+      b.mesh_teeth = model.gear_meshes[mesh_index(model, e.gear_mesh)].teeth1;
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+model::Model without_replaced_mesh_springs(const model::Model& model) {
+  model::Model m = model;
+  for (const auto& e : model.nonlinear_elements)
+    if (e.kind == NonlinearElementKind::GearMesh) {
+      model::GearMesh& g = m.gear_meshes[mesh_index(model, e.gear_mesh)];
+      g.stiffness = 0.0;
+      g.damping = 0.0;
+    }
+  return m;
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,412 @@
+#include "geardyn/analyses/nonlinear_response.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geardyn/analyses/nonlinear_elements.hpp"
+#include "geardyn/assembly/system_builder.hpp"
+#include "geardyn/core/units.hpp"
+#include "geardyn/eig/symmetric_eigen.hpp"
+#include "geardyn/hbm/element_system.hpp"
+#include "geardyn/hbm/stability.hpp"
+
+namespace geardyn::analyses {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+/// Physical coordinates beyond this many DOFs make the dense balance slow: ask for modes.
+constexpr int kMaxPhysicalDofs = 600;
+
+// The force level continuation: R(X, lambda) = R_hb(X, omega) - (lambda - 1) F_ext at a fixed
+// omega (the balance's own load factor is 1), dR/dlambda = -F_ext.
+class LevelSystem final : public hbm::HarmonicSystem {
+ public:
+  LevelSystem(const hbm::ElementHarmonicBalance& hb, double omega) : hb_(hb), omega_(omega) {}
+  int size() const override { return hb_.size(); }
+  Eigen::VectorXd residual(const Eigen::VectorXd& X, double lambda, Eigen::MatrixXd* J,
+                           Eigen::VectorXd* dR) const override {
+    Eigen::VectorXd R = hb_.residual(X, omega_, J) - (lambda - 1.0) * hb_.external_force();
+    if (dR != nullptr) *dR = -hb_.external_force();
+    return R;
+  }
+  double residual_scale(const Eigen::VectorXd& X, double lambda) const override {
+    return std::max(hb_.residual_scale(X, omega_), std::abs(lambda) * hb_.external_force().norm());
+  }
+
+ private:
+  const hbm::ElementHarmonicBalance& hb_;
+  double omega_;
+};
+
+struct Coordinates {
+  Eigen::MatrixXd M, C, K, K_loss;
+  Eigen::MatrixXd basis;  ///< n_eq x n_coordinates (identity rows for the physical form)
+  bool modal = false;
+  double highest_mode = kNaN;  ///< [rad/s]
+};
+
+Eigen::MatrixXd dense(const fe::SparseMatrix& A) { return Eigen::MatrixXd(A); }
+
+// The structure in physical DOFs or in modes (see the header).
+Coordinates coordinates_of(const fe::LinearSystem& system, const NonlinearResponseSettings& s,
+                           const Context& context) {
+  Coordinates c;
+  const int n = system.size();
+  if (s.n_modes == 0) {
+    if (n > kMaxPhysicalDofs)
+      throw context.error("n_modes",
+                          fmt::format("a number of modes (the model has {} DOFs; the "
+                                      "physical form is dense, for up to {} DOFs)",
+                                      n, kMaxPhysicalDofs),
+                          "0 (physical DOFs)",
+                          "n_modes = 20 to 60 usually suffices: modes well above H x the "
+                          "highest frequency");
+    c.M = dense(system.M);
+    c.K = dense(system.K_at(s.speed));
+    c.C = system.damping_dense(s.speed);
+    if (system.K_loss.nonZeros() > 0) c.K_loss = dense(system.K_loss);
+    c.basis = Eigen::MatrixXd::Identity(n, n);
+    return c;
+  }
+  if (s.n_modes > n)
+    throw context.error("n_modes", fmt::format("at most the model's {} DOFs", n),
+                        fmt::format("{}", s.n_modes));
+  eig::SymmetricEigenOptions o;
+  o.n_modes = s.n_modes;
+  const fe::SparseMatrix K = system.K_at(s.speed);
+  const auto modes = eig::solve_symmetric(K, system.M, o);
+  if (modes.status != Status::Ok)
+    throw NumericalError(context.name(), "the modes of the linear structure: " + modes.message);
+  const Eigen::MatrixXd& Phi = modes.eigenvectors;
+  c.modal = true;
+  c.basis = Phi;
+  c.M = Eigen::MatrixXd::Identity(Phi.cols(), Phi.cols());
+  c.K = modes.eigenvalues.asDiagonal();
+  c.highest_mode = std::sqrt(std::max(modes.eigenvalues.maxCoeff(), 0.0));
+  // Phi^T (C(W) + W G + modal damping) Phi without forming an n x n dense matrix.
+  const fe::SparseMatrix CW = system.C_at(s.speed) + s.speed * system.G;
+  c.C = Phi.transpose() * (CW * Phi);
+  if (system.has_modal_damping()) {
+    const Eigen::MatrixXd BtPhi = system.modal_basis.transpose() * Phi;
+    c.C += BtPhi.transpose() * system.modal_coefficients.asDiagonal() * BtPhi;
+  }
+  if (system.K_loss.nonZeros() > 0) c.K_loss = Phi.transpose() * (system.K_loss * Phi);
+  return c;
+}
+
+// Fourier coefficients of the excitation on the equations: named forces at the fundamental
+// (a_1 = A cos phi, b_1 = -A sin phi: f = Re(A e^{i phi} e^{i w t})) and constant loads.
+Eigen::MatrixXd excitation_of(const model::Model& model, const fe::LinearSystem& system,
+                              const NonlinearResponseSettings& s) {
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(system.size(), 3);  // [a0, a1, b1] per equation
+  auto force_of = [&](const std::string& name) -> const model::HarmonicForce& {
+    for (const auto& f : model.forces)
+      if (f.name == name) return f;
+    throw std::logic_error("unknown force " + name);  // the parser checked the names
+  };
+  auto node_index = [&](const std::string& node) { return system.dofs.node_index(node); };
+  for (const auto& name : s.forces) {
+    const auto& f = force_of(name);
+    const Eigen::VectorXd unit = system.unit_load(node_index(f.node), f.dof);
+    F.col(1) += f.amplitude * std::cos(f.phase) * unit;
+    F.col(2) -= f.amplitude * std::sin(f.phase) * unit;
+  }
+  for (const auto& name : s.mean_forces) {
+    const auto& f = force_of(name);
+    F.col(0) += f.amplitude * std::cos(f.phase) * system.unit_load(node_index(f.node), f.dof);
+  }
+  return F;
+}
+
+struct SensorRows {
+  std::vector<std::string> names;
+  std::vector<bool> rotational;
+  Eigen::MatrixXd rows;  ///< sensors x n_eq
+};
+
+SensorRows sensor_rows(const model::Model& model, const fe::LinearSystem& system,
+                       const NonlinearResponseSettings& s, const Context& context) {
+  SensorRows r;
+  std::vector<const model::Sensor*> chosen;
+  for (const auto& sensor : model.sensors)
+    if (s.sensors.empty() ||
+        std::find(s.sensors.begin(), s.sensors.end(), sensor.name) != s.sensors.end())
+      chosen.push_back(&sensor);
+  r.rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(chosen.size()), system.size());
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    const model::Sensor& sensor = *chosen[k];
+    if (!sensor.solid.empty())
+      throw context.error("sensors", "sensors on rotor or point nodes",
+                          fmt::format("\"{}\" on solid '{}'", sensor.name, sensor.solid));
+    const int eq = system.dofs.dof(system.dofs.node_index(sensor.node), sensor.dof);
+    if (eq < 0)
+      throw context.error("sensors", "sensors on DOFs that are not constrained",
+                          fmt::format("\"{}\" on a constrained DOF", sensor.name));
+    r.rows(static_cast<Eigen::Index>(k), eq) = 1.0;
+    r.names.push_back(sensor.name);
+    r.rotational.push_back(static_cast<int>(sensor.dof) >= 3);
+  }
+  return r;
+}
+
+// The placed system on the chosen coordinates.
+hbm::ElementSystem element_system(const Coordinates& c,
+                                  const std::vector<BuiltNonlinearElement>& elements,
+                                  const Eigen::MatrixXd& F) {
+  hbm::ElementSystem sys;
+  sys.M = c.M;
+  sys.C = c.C;
+  sys.K = c.K;
+  sys.K_loss = c.K_loss;
+  for (const auto& e : elements) sys.elements.push_back({e.element, e.name, e.B * c.basis});
+  const Eigen::MatrixXd Fq = c.basis.transpose() * F;  // n_coordinates x 3
+  sys.excitation_harmonics = 1;
+  sys.excitation.resize(Fq.rows() * 3);
+  for (Eigen::Index d = 0; d < Fq.rows(); ++d) sys.excitation.segment(d * 3, 3) = Fq.row(d);
+  return sys;
+}
+
+// Scales of the arc length: the linear response's size over the range and the range itself.
+void set_scales(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSettings& s,
+                hbm::ContinuationOptions& o) {
+  double x = 0.0;
+  if (s.parameter == ContinuationParameter::Frequency) {
+    for (int k = 0; k <= 20; ++k) {
+      const double w = s.f_start + (s.f_stop - s.f_start) * k / 20.0;
+      if (w <= 0.0) continue;
+      try {
+        x = std::max(x, hb.linear_response(w).norm());
+      } catch (...) {  // a singular linear structure at that frequency: no scale from it
+      }
+    }
+    o.omega_scale = s.f_stop - s.f_start;
+  } else {
+    x = hb.linear_response(s.frequency).norm() * std::max(std::abs(s.level_stop), 1e-12);
+    o.omega_scale = std::abs(s.level_stop - s.level_start);
+  }
+  o.x_scale = std::isfinite(x) && x > 0.0 ? x : 1.0;
+}
+
+// Turning points of the continuation parameter p along the curve. Contact laws make the curve
+// ripple near a fold (turns a fraction of a per mil of the range apart); turns closer than
+// `merge` in p form one cluster, which is one turning point when it has an odd number of turns
+// (at its first turn) and none when even.
+std::vector<int> turning_points(const std::vector<double>& p, double merge) {
+  std::vector<int> raw;
+  for (std::size_t i = 1; i + 1 < p.size(); ++i) {
+    const double a = p[i] - p[i - 1], b = p[i + 1] - p[i];
+    if (a * b < 0.0) raw.push_back(static_cast<int>(i));
+  }
+  std::vector<int> out;
+  for (std::size_t k = 0; k < raw.size();) {
+    std::size_t end = k + 1;
+    while (end < raw.size() && std::abs(p[static_cast<std::size_t>(raw[end])] -
+                                        p[static_cast<std::size_t>(raw[end - 1])]) <= merge)
+      ++end;
+    if ((end - k) % 2 == 1) out.push_back(raw[k]);
+    k = end;
+  }
+  return out;
+}
+
+// Unstable after an odd number of turning points (a real multiplier crosses +1 at each fold;
+// Seydel 2010, ch. 7), from a stable start.
+std::vector<char> unstable_after(const std::vector<int>& turns, std::size_t points) {
+  std::vector<char> u(points, 0);
+  std::size_t next = 0;
+  bool odd = false;
+  for (std::size_t i = 0; i < points; ++i) {
+    while (next < turns.size() && static_cast<std::size_t>(turns[next]) < i) {
+      odd = !odd;
+      ++next;
+    }
+    u[i] = odd ? 1 : 0;
+  }
+  return u;
+}
+
+void record_point(const hbm::ElementHarmonicBalance& hb, const Eigen::MatrixXd& sensors_q,
+                  const hbm::ContinuationPoint& p, double omega, double level,
+                  NonlinearResponseResult& r) {
+  const int s = hb.basis().size(), n = hb.system().dofs();
+  const Eigen::Map<const Eigen::MatrixXd> Xs(p.X.data(), s, n);
+  r.sensor_coefficients.push_back(sensors_q * Xs.transpose());
+  r.frequency.push_back(omega);
+  r.level.push_back(level);
+  r.iterations.push_back(p.iterations);
+  r.residual.push_back(p.residual / hb.residual_scale(p.X, omega));
+}
+
+void element_statistics(const hbm::ElementHarmonicBalance& hb,
+                        const std::vector<hbm::ContinuationPoint>& points,
+                        NonlinearResponseResult& r) {
+  const auto np = static_cast<Eigen::Index>(points.size());
+  const auto ne = static_cast<Eigen::Index>(hb.system().elements.size());
+  r.energy.setConstant(np, ne, kNaN);
+  r.stick = r.slip = r.open = r.energy;
+  for (Eigen::Index i = 0; i < np; ++i)
+    for (Eigen::Index e = 0; e < ne; ++e) {
+      const auto& placed = hb.system().elements[static_cast<std::size_t>(e)];
+      const hbm::ElementLoop loop = placed.element->loop(
+          hb.basis(),
+          hb.element_coordinates(points[static_cast<std::size_t>(i)].X, static_cast<int>(e)),
+          r.frequency[static_cast<std::size_t>(i)]);
+      r.energy(i, e) = loop.energy_per_cycle;
+      r.stick(i, e) = loop.stick_fraction;
+      r.slip(i, e) = loop.slip_fraction;
+      r.open(i, e) = loop.open_fraction;
+    }
+}
+
+void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSettings& s,
+               const std::vector<hbm::ContinuationPoint>& points, const Context& context,
+               NonlinearResponseResult& r) {
+  const std::size_t np = points.size();
+  r.max_real_exponent.assign(np, kNaN);
+  r.instability.assign(np, "");
+  if (s.stability == NonlinearStability::Fold || s.parameter != ContinuationParameter::Frequency) {
+    r.unstable =
+        hbm::fold_unstable(s.parameter == ContinuationParameter::Frequency ? r.frequency : r.level);
+    for (std::size_t i = 0; i < np; ++i) r.instability[i] = r.unstable[i] ? "fold" : "none";
+    return;
+  }
+  r.unstable.assign(np, 0);
+  for (const auto& e : hb.system().elements) {
+    const auto* pointwise = dynamic_cast<const hbm::PointwiseElement*>(e.element.get());
+    if (pointwise != nullptr && pointwise->velocity_dependent())
+      throw context.error("stability", "\"fold\" with velocity-dependent elements",
+                          fmt::format("\"hill\" with {}", e.element->describe()),
+                          "Hill's method here takes the elements' stiffness only; their damping "
+                          "would be left out of the variational equation");
+  }
+  Eigen::MatrixXd J;
+  for (std::size_t i = 0; i < np; ++i) {
+    hb.residual(points[i].X, r.frequency[i], &J);
+    const hbm::FloquetResult f = hbm::hill_stability(J, hb.system().M, hb.system().C,
+                                                     hb.basis().harmonics(), r.frequency[i]);
+    r.max_real_exponent[i] = f.max_real_part;
+    r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
+    r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
+  }
+}
+
+// The point of largest sensor RMS (or of the largest coefficient norm without sensors).
+int largest_point(const NonlinearResponseResult& r) {
+  int best = -1;
+  double value = -1.0;
+  for (std::size_t i = 0; i < r.sensor_coefficients.size(); ++i) {
+    const Eigen::MatrixXd& c = r.sensor_coefficients[i];
+    double v = 0.0;
+    for (Eigen::Index k = 0; k < c.rows(); ++k) v = std::max(v, series_rms(c.row(k).transpose()));
+    if (v > value) {
+      value = v;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+double harmonic_amplitude(const Eigen::VectorXd& c, int n) {
+  if (n == 0) return std::abs(c[0]);
+  return std::hypot(c[hbm::HarmonicBasis::cos_index(n)], c[hbm::HarmonicBasis::sin_index(n)]);
+}
+
+double series_rms(const Eigen::VectorXd& c) {
+  double sum = c[0] * c[0];
+  for (Eigen::Index k = 1; k < c.size(); ++k) sum += 0.5 * c[k] * c[k];
+  return std::sqrt(sum);
+}
+
+NonlinearResponseResult run_nonlinear_response(const model::Model& model,
+                                               const NonlinearResponseSettings& s,
+                                               const Context& context) {
+  NonlinearResponseResult r;
+  r.parameter = s.parameter;
+  // Gear mesh elements replace their mesh's linear spring: the system is built without it.
+  const model::Model linear_model = without_replaced_mesh_springs(model);
+  const bool replaced =
+      std::any_of(model.nonlinear_elements.begin(), model.nonlinear_elements.end(),
+                  [](const auto& e) { return e.kind == model::NonlinearElementKind::GearMesh; });
+  fe::LinearSystem own;
+  if (replaced) own = assembly::build_system(linear_model, context.solids(), context.progress());
+  const fe::LinearSystem& system = replaced ? own : context.system();
+
+  const std::vector<BuiltNonlinearElement> elements =
+      build_nonlinear_elements(model, system, context);
+  const Coordinates c = coordinates_of(system, s, context);
+  const Eigen::MatrixXd F = excitation_of(model, system, s);
+  const SensorRows sensors = sensor_rows(model, system, s, context);
+  r.sensors = sensors.names;
+  r.sensor_rotational = sensors.rotational;
+  for (const auto& e : elements) {
+    r.elements.push_back(e.name);
+    r.element_kinds.push_back(e.kind);
+  }
+  r.modal = c.modal;
+  r.highest_mode_hz = c.highest_mode / units::kTwoPi;
+  r.coordinates = static_cast<int>(c.M.rows());
+  r.harmonics = s.harmonics;
+  r.time_samples = s.time_samples > 0 ? s.time_samples : hbm::default_time_samples(s.harmonics);
+  if (r.time_samples < 2 * s.harmonics + 1)
+    throw context.error("time_samples", fmt::format("at least 2 H + 1 = {}", 2 * s.harmonics + 1),
+                        fmt::format("{}", s.time_samples));
+  const hbm::ElementHarmonicBalance hb(element_system(c, elements, F),
+                                       hbm::HarmonicBasis(s.harmonics, r.time_samples));
+
+  hbm::ContinuationOptions o;
+  const bool frequency = s.parameter == ContinuationParameter::Frequency;
+  o.omega_start = frequency ? s.f_start : s.level_start;
+  o.omega_end = frequency ? s.f_stop : s.level_stop;
+  o.step = s.step;
+  o.max_step = s.max_step;
+  o.max_points = s.max_points;
+  o.tolerance = s.tolerance;
+  set_scales(hb, s, o);
+  const Eigen::VectorXd X0 = Eigen::VectorXd::Zero(hb.size());
+  hbm::ContinuationResult curve;
+  if (frequency) {
+    curve = hbm::continue_in_frequency(hb, X0, o);
+  } else {
+    const LevelSystem level(hb, s.frequency);
+    curve = hbm::continue_in_frequency(level, X0, o);
+  }
+  if (curve.points.empty()) {
+    throw NumericalError(
+        context.name(),
+        fmt::format("the harmonic balance could not start at {}: {}. Start where the response "
+                    "is nearly linear (away from resonance, or at a lower force level), or give "
+                    "the mean loads that close the contacts (mean_forces).",
+                    frequency ? fmt::format("{:.6g} Hz", s.f_start / units::kTwoPi)
+                              : fmt::format("force factor {:.6g}", s.level_start),
+                    curve.message));
+  }
+  const Eigen::MatrixXd sensors_q = sensors.rows * c.basis;
+  for (const auto& p : curve.points)
+    record_point(hb, sensors_q, p, frequency ? p.omega : s.frequency, frequency ? 1.0 : p.omega, r);
+  element_statistics(hb, curve.points, r);
+  r.turning_points = turning_points(frequency ? r.frequency : r.level,
+                                    1e-3 * std::abs(o.omega_end - o.omega_start));
+  stability(hb, s, curve.points, context, r);
+  r.loop_point = largest_point(r);
+  if (r.loop_point >= 0)
+    for (std::size_t e = 0; e < elements.size(); ++e)
+      r.loops.push_back(hb.system().elements[e].element->loop(
+          hb.basis(),
+          hb.element_coordinates(curve.points[static_cast<std::size_t>(r.loop_point)].X,
+                                 static_cast<int>(e)),
+          r.frequency[static_cast<std::size_t>(r.loop_point)]));
+  if (curve.status != Status::Ok) {
+    r.status = Status::NotConverged;
+    r.message = fmt::format(
+        "the continuation ended before the end of the range: {}. The points "
+        "up to there are converged solutions.",
+        curve.message);
+  }
+  return r;
+}
+
+}  // namespace geardyn::analyses

@@ -1,0 +1,108 @@
+#pragma once
+// Nonlinear frequency response by harmonic balance (docs/theory.md §19): the model's linear
+// structure (any model: lumped points, rotors, joined reduced components) with the
+// [[nonlinear_elements]] placed between its DOFs, excited by named harmonic forces at the
+// fundamental (plus constant loads), solved for periodic steady states with H harmonics by the
+// alternating frequency-time method and traced by pseudo-arc-length continuation over the
+// excitation frequency or the force level, passing turning points.
+//
+// Coordinates: the system's DOFs (n_modes = 0, exact for any damping, gyroscopic terms at the
+// reference speed and hysteretic loss), or its n_modes lowest undamped modes at the reference
+// speed (M = I, K = diag(w_r^2), C = Phi^T C Phi in full: non-proportional damping couples the
+// modes), the nonlinear elements acting on u = B Phi eta. The modal form drops the static
+// contribution of the higher modes; the note says how many modes were kept and the highest
+// frequency, which should lie well above the highest harmonic H x the highest fundamental.
+//
+// Stability: from the turning points of the curve (a real multiplier crosses +1 at each fold:
+// valid for every element, friction included, but blind to period doubling and Neimark-Sacker),
+// or by Hill's method on the harmonic-balance Jacobian (stability = "hill": all kinds, but for
+// hysteretic elements an approximation; hbm/stability.hpp).
+#include <Eigen/Dense>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geardyn/analyses/context.hpp"
+#include "geardyn/core/status.hpp"
+#include "geardyn/core/table.hpp"
+#include "geardyn/hbm/nonlinear_element.hpp"
+#include "geardyn/model/model.hpp"
+
+namespace geardyn::analyses {
+
+enum class ContinuationParameter { Frequency, ForceLevel };
+enum class NonlinearStability { Fold, Hill };
+
+struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  double speed = 0.0;                    ///< reference speed [rad/s] (K(W), C(W), W G)
+  std::vector<std::string> forces;       ///< [[forces]] at the fundamental
+  std::vector<std::string> mean_forces;  ///< [[forces]] applied as constant loads
+  ContinuationParameter parameter = ContinuationParameter::Frequency;
+  double f_start = kNaN, f_stop = kNaN;        ///< fundamental range [rad/s] (frequency)
+  double frequency = kNaN;                     ///< fundamental [rad/s] (force_level)
+  double level_start = 0.0, level_stop = 1.0;  ///< force factor range (force_level)
+  int harmonics = 7;
+  int time_samples = 0;              ///< 0: automatic (hbm::default_time_samples)
+  int n_modes = 0;                   ///< 0: physical DOFs; > 0: that many modes
+  std::vector<std::string> sensors;  ///< empty: all
+  double step = 0.01;                ///< first arc-length step (scaled)
+  double max_step = 0.05;
+  int max_points = 5000;
+  double tolerance = 1e-9;
+  NonlinearStability stability = NonlinearStability::Fold;
+};
+
+struct NonlinearResponseResult {
+  Status status = Status::Ok;
+  std::string message;
+  ContinuationParameter parameter = ContinuationParameter::Frequency;
+  int harmonics = 0, time_samples = 0;
+  int coordinates = 0;  ///< unknowns per harmonic coefficient (DOFs or modes)
+  bool modal = false;   ///< modal coordinates
+  double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();  ///< modal form
+  std::vector<std::string> sensors;
+  std::vector<bool> sensor_rotational;
+  std::vector<std::string> elements;  ///< element names
+  std::vector<std::string> element_kinds;
+
+  // Per continuation point.
+  std::vector<double> frequency;  ///< fundamental [rad/s]
+  std::vector<double> level;      ///< force factor
+  std::vector<int> iterations;
+  std::vector<double> residual;                      ///< relative residual at convergence
+  std::vector<Eigen::MatrixXd> sensor_coefficients;  ///< sensors x (2H+1) per point
+  Eigen::MatrixXd energy;                 ///< points x elements: dissipated per cycle [J]
+  Eigen::MatrixXd stick, slip, open;      ///< points x elements: regime shares (NaN: none)
+  std::vector<char> unstable;             ///< per point
+  std::vector<double> max_real_exponent;  ///< Hill: max Re lambda [1/s] (NaN: fold method)
+  std::vector<std::string> instability;   ///< Hill: kind per point ("none", "fold", ...)
+  std::vector<int> turning_points;        ///< point indices where the parameter turns
+
+  /// Hysteresis loops of every element at the point of largest response (loop_point).
+  int loop_point = -1;
+  std::vector<hbm::ElementLoop> loops;
+  std::vector<std::string> notes;
+};
+
+/// Amplitude of harmonic n >= 1 (or |mean| for n = 0) from coefficients c (HarmonicBasis layout).
+double harmonic_amplitude(const Eigen::VectorXd& c, int n);
+/// RMS over the period of the series with coefficients c: sqrt(a0^2 + sum (a^2 + b^2) / 2).
+double series_rms(const Eigen::VectorXd& c);
+
+/// Builds and traces the response (see the header comment). InputError for bad settings
+/// (located by the context); a curve that ends early is Status::NotConverged with where and why.
+NonlinearResponseResult run_nonlinear_response(const model::Model& model,
+                                               const NonlinearResponseSettings& settings,
+                                               const Context& context);
+
+/// Tables "nonlinear_response" (per point: fundamental, force factor, stability, per sensor
+/// first-harmonic amplitude, RMS and peak), "harmonics" (per point, sensor and harmonic:
+/// amplitude and phase), "element_energy", "turning_points", "hysteresis_loops"; plots of the
+/// response curve with unstable parts dashed, the energy per cycle and the loops.
+AnalysisOutput nonlinear_response_output(const model::Model& model,
+                                         const NonlinearResponseSettings& settings,
+                                         const NonlinearResponseResult& result,
+                                         const Context& context);
+
+}  // namespace geardyn::analyses
