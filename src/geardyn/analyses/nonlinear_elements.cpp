@@ -10,6 +10,7 @@
 #include "geardyn/analyses/mesh_force_map.hpp"
 #include "geardyn/drivetrain/builder.hpp"
 #include "geardyn/drivetrain/placement.hpp"
+#include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/elements/gap_contact.hpp"
 #include "geardyn/hbm/element_library.hpp"
 #include "geardyn/hbm/gear_mesh_element.hpp"
@@ -17,6 +18,11 @@
 
 namespace geardyn::analyses {
 namespace {
+
+/// Physical coordinates beyond this many DOFs make the dense balance slow: ask for modes.
+constexpr int kMaxPhysicalDofs = 600;
+
+Eigen::MatrixXd dense(const fe::SparseMatrix& A) { return Eigen::MatrixXd(A); }
 
 using model::NonlinearElementKind;
 using model::NonlinearElementSpec;
@@ -200,6 +206,93 @@ std::vector<BuiltNonlinearElement> build_nonlinear_elements(const model::Model& 
     out.push_back(std::move(b));
   }
   return out;
+}
+
+NonlinearCoordinates nonlinear_coordinates(const fe::LinearSystem& system, double speed,
+                                           int n_modes, const Context& context) {
+  NonlinearCoordinates c;
+  const int n = system.size();
+  if (n_modes == 0) {
+    if (n > kMaxPhysicalDofs)
+      throw context.error("n_modes",
+                          fmt::format("a number of modes (the model has {} DOFs; the "
+                                      "physical form is dense, for up to {} DOFs)",
+                                      n, kMaxPhysicalDofs),
+                          "0 (physical DOFs)",
+                          "n_modes = 20 to 60 usually suffices: modes well above H x the "
+                          "highest frequency");
+    c.M = dense(system.M);
+    c.K = dense(system.K_at(speed));
+    c.C = system.damping_dense(speed);
+    if (system.K_loss.nonZeros() > 0) c.K_loss = dense(system.K_loss);
+    c.basis = Eigen::MatrixXd::Identity(n, n);
+    return c;
+  }
+  if (n_modes > n)
+    throw context.error("n_modes", fmt::format("at most the model's {} DOFs", n),
+                        fmt::format("{}", n_modes));
+  eig::SymmetricEigenOptions o;
+  o.n_modes = n_modes;
+  const fe::SparseMatrix K = system.K_at(speed);
+  const auto modes = eig::solve_symmetric(K, system.M, o);
+  if (modes.status != Status::Ok)
+    throw NumericalError(context.name(), "the modes of the linear structure: " + modes.message);
+  const Eigen::MatrixXd& Phi = modes.eigenvectors;
+  c.modal = true;
+  c.basis = Phi;
+  c.M = Eigen::MatrixXd::Identity(Phi.cols(), Phi.cols());
+  c.K = modes.eigenvalues.asDiagonal();
+  c.highest_mode = std::sqrt(std::max(modes.eigenvalues.maxCoeff(), 0.0));
+  // Phi^T (C(W) + W G + modal damping) Phi without forming an n x n dense matrix.
+  const fe::SparseMatrix CW = system.C_at(speed) + speed * system.G;
+  c.C = Phi.transpose() * (CW * Phi);
+  if (system.has_modal_damping()) {
+    const Eigen::MatrixXd BtPhi = system.modal_basis.transpose() * Phi;
+    c.C += BtPhi.transpose() * system.modal_coefficients.asDiagonal() * BtPhi;
+  }
+  if (system.K_loss.nonZeros() > 0) c.K_loss = Phi.transpose() * (system.K_loss * Phi);
+  return c;
+}
+
+SensorRows nonlinear_sensor_rows(const model::Model& model, const fe::LinearSystem& system,
+                                 const std::vector<std::string>& names, const Context& context) {
+  SensorRows r;
+  std::vector<const model::Sensor*> chosen;
+  for (const auto& sensor : model.sensors)
+    if (names.empty() || std::find(names.begin(), names.end(), sensor.name) != names.end())
+      chosen.push_back(&sensor);
+  r.rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(chosen.size()), system.size());
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    const model::Sensor& sensor = *chosen[k];
+    if (!sensor.solid.empty())
+      throw context.error("sensors", "sensors on rotor or point nodes",
+                          fmt::format("\"{}\" on solid '{}'", sensor.name, sensor.solid));
+    const int eq = system.dofs.dof(system.dofs.node_index(sensor.node), sensor.dof);
+    if (eq < 0)
+      throw context.error("sensors", "sensors on DOFs that are not constrained",
+                          fmt::format("\"{}\" on a constrained DOF", sensor.name));
+    r.rows(static_cast<Eigen::Index>(k), eq) = 1.0;
+    r.names.push_back(sensor.name);
+    r.rotational.push_back(static_cast<int>(sensor.dof) >= 3);
+  }
+  return r;
+}
+
+hbm::ElementSystem placed_element_system(const NonlinearCoordinates& c,
+                                         const std::vector<BuiltNonlinearElement>& elements,
+                                         const Eigen::MatrixXd& F) {
+  hbm::ElementSystem sys;
+  sys.M = c.M;
+  sys.C = c.C;
+  sys.K = c.K;
+  sys.K_loss = c.K_loss;
+  for (const auto& e : elements) sys.elements.push_back({e.element, e.name, e.B * c.basis});
+  if (F.size() == 0) return sys;
+  const Eigen::MatrixXd Fq = c.basis.transpose() * F;  // n_coordinates x 3
+  sys.excitation_harmonics = 1;
+  sys.excitation.resize(Fq.rows() * 3);
+  for (Eigen::Index d = 0; d < Fq.rows(); ++d) sys.excitation.segment(d * 3, 3) = Fq.row(d);
+  return sys;
 }
 
 model::Model without_replaced_mesh_springs(const model::Model& model) {

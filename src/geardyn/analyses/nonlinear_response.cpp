@@ -8,7 +8,6 @@
 #include "geardyn/analyses/nonlinear_elements.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
-#include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/hbm/element_system.hpp"
 #include "geardyn/hbm/stability.hpp"
 
@@ -16,8 +15,6 @@ namespace geardyn::analyses {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-/// Physical coordinates beyond this many DOFs make the dense balance slow: ask for modes.
-constexpr int kMaxPhysicalDofs = 600;
 
 // The force level continuation: R(X, lambda) = R_hb(X, omega) - (lambda - 1) F_ext at a fixed
 // omega (the balance's own load factor is 1), dR/dlambda = -F_ext.
@@ -39,62 +36,6 @@ class LevelSystem final : public hbm::HarmonicSystem {
   const hbm::ElementHarmonicBalance& hb_;
   double omega_;
 };
-
-struct Coordinates {
-  Eigen::MatrixXd M, C, K, K_loss;
-  Eigen::MatrixXd basis;  ///< n_eq x n_coordinates (identity rows for the physical form)
-  bool modal = false;
-  double highest_mode = kNaN;  ///< [rad/s]
-};
-
-Eigen::MatrixXd dense(const fe::SparseMatrix& A) { return Eigen::MatrixXd(A); }
-
-// The structure in physical DOFs or in modes (see the header).
-Coordinates coordinates_of(const fe::LinearSystem& system, const NonlinearResponseSettings& s,
-                           const Context& context) {
-  Coordinates c;
-  const int n = system.size();
-  if (s.n_modes == 0) {
-    if (n > kMaxPhysicalDofs)
-      throw context.error("n_modes",
-                          fmt::format("a number of modes (the model has {} DOFs; the "
-                                      "physical form is dense, for up to {} DOFs)",
-                                      n, kMaxPhysicalDofs),
-                          "0 (physical DOFs)",
-                          "n_modes = 20 to 60 usually suffices: modes well above H x the "
-                          "highest frequency");
-    c.M = dense(system.M);
-    c.K = dense(system.K_at(s.speed));
-    c.C = system.damping_dense(s.speed);
-    if (system.K_loss.nonZeros() > 0) c.K_loss = dense(system.K_loss);
-    c.basis = Eigen::MatrixXd::Identity(n, n);
-    return c;
-  }
-  if (s.n_modes > n)
-    throw context.error("n_modes", fmt::format("at most the model's {} DOFs", n),
-                        fmt::format("{}", s.n_modes));
-  eig::SymmetricEigenOptions o;
-  o.n_modes = s.n_modes;
-  const fe::SparseMatrix K = system.K_at(s.speed);
-  const auto modes = eig::solve_symmetric(K, system.M, o);
-  if (modes.status != Status::Ok)
-    throw NumericalError(context.name(), "the modes of the linear structure: " + modes.message);
-  const Eigen::MatrixXd& Phi = modes.eigenvectors;
-  c.modal = true;
-  c.basis = Phi;
-  c.M = Eigen::MatrixXd::Identity(Phi.cols(), Phi.cols());
-  c.K = modes.eigenvalues.asDiagonal();
-  c.highest_mode = std::sqrt(std::max(modes.eigenvalues.maxCoeff(), 0.0));
-  // Phi^T (C(W) + W G + modal damping) Phi without forming an n x n dense matrix.
-  const fe::SparseMatrix CW = system.C_at(s.speed) + s.speed * system.G;
-  c.C = Phi.transpose() * (CW * Phi);
-  if (system.has_modal_damping()) {
-    const Eigen::MatrixXd BtPhi = system.modal_basis.transpose() * Phi;
-    c.C += BtPhi.transpose() * system.modal_coefficients.asDiagonal() * BtPhi;
-  }
-  if (system.K_loss.nonZeros() > 0) c.K_loss = Phi.transpose() * (system.K_loss * Phi);
-  return c;
-}
 
 // Fourier coefficients of the excitation on the equations: named forces at the fundamental
 // (a_1 = A cos phi, b_1 = -A sin phi: f = Re(A e^{i phi} e^{i w t})) and constant loads.
@@ -118,54 +59,6 @@ Eigen::MatrixXd excitation_of(const model::Model& model, const fe::LinearSystem&
     F.col(0) += f.amplitude * std::cos(f.phase) * system.unit_load(node_index(f.node), f.dof);
   }
   return F;
-}
-
-struct SensorRows {
-  std::vector<std::string> names;
-  std::vector<bool> rotational;
-  Eigen::MatrixXd rows;  ///< sensors x n_eq
-};
-
-SensorRows sensor_rows(const model::Model& model, const fe::LinearSystem& system,
-                       const NonlinearResponseSettings& s, const Context& context) {
-  SensorRows r;
-  std::vector<const model::Sensor*> chosen;
-  for (const auto& sensor : model.sensors)
-    if (s.sensors.empty() ||
-        std::find(s.sensors.begin(), s.sensors.end(), sensor.name) != s.sensors.end())
-      chosen.push_back(&sensor);
-  r.rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(chosen.size()), system.size());
-  for (std::size_t k = 0; k < chosen.size(); ++k) {
-    const model::Sensor& sensor = *chosen[k];
-    if (!sensor.solid.empty())
-      throw context.error("sensors", "sensors on rotor or point nodes",
-                          fmt::format("\"{}\" on solid '{}'", sensor.name, sensor.solid));
-    const int eq = system.dofs.dof(system.dofs.node_index(sensor.node), sensor.dof);
-    if (eq < 0)
-      throw context.error("sensors", "sensors on DOFs that are not constrained",
-                          fmt::format("\"{}\" on a constrained DOF", sensor.name));
-    r.rows(static_cast<Eigen::Index>(k), eq) = 1.0;
-    r.names.push_back(sensor.name);
-    r.rotational.push_back(static_cast<int>(sensor.dof) >= 3);
-  }
-  return r;
-}
-
-// The placed system on the chosen coordinates.
-hbm::ElementSystem element_system(const Coordinates& c,
-                                  const std::vector<BuiltNonlinearElement>& elements,
-                                  const Eigen::MatrixXd& F) {
-  hbm::ElementSystem sys;
-  sys.M = c.M;
-  sys.C = c.C;
-  sys.K = c.K;
-  sys.K_loss = c.K_loss;
-  for (const auto& e : elements) sys.elements.push_back({e.element, e.name, e.B * c.basis});
-  const Eigen::MatrixXd Fq = c.basis.transpose() * F;  // n_coordinates x 3
-  sys.excitation_harmonics = 1;
-  sys.excitation.resize(Fq.rows() * 3);
-  for (Eigen::Index d = 0; d < Fq.rows(); ++d) sys.excitation.segment(d * 3, 3) = Fq.row(d);
-  return sys;
 }
 
 // Scales of the arc length: the linear response's size over the range and the range itself.
@@ -337,9 +230,9 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
 
   const std::vector<BuiltNonlinearElement> elements =
       build_nonlinear_elements(model, system, context);
-  const Coordinates c = coordinates_of(system, s, context);
+  const NonlinearCoordinates c = nonlinear_coordinates(system, s.speed, s.n_modes, context);
   const Eigen::MatrixXd F = excitation_of(model, system, s);
-  const SensorRows sensors = sensor_rows(model, system, s, context);
+  const SensorRows sensors = nonlinear_sensor_rows(model, system, s.sensors, context);
   r.sensors = sensors.names;
   r.sensor_rotational = sensors.rotational;
   for (const auto& e : elements) {
@@ -354,7 +247,7 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
   if (r.time_samples < 2 * s.harmonics + 1)
     throw context.error("time_samples", fmt::format("at least 2 H + 1 = {}", 2 * s.harmonics + 1),
                         fmt::format("{}", s.time_samples));
-  const hbm::ElementHarmonicBalance hb(element_system(c, elements, F),
+  const hbm::ElementHarmonicBalance hb(placed_element_system(c, elements, F),
                                        hbm::HarmonicBasis(s.harmonics, r.time_samples));
 
   hbm::ContinuationOptions o;
