@@ -24,7 +24,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -357,9 +356,6 @@ TEST(TimeMarch, DuffingStaysOnTheHarmonicBalanceSolution) {
         const double rel = (r.coefficients - p.X).norm() / p.X.norm();
         const double srel =
             (r.samples.col(0) - samples).cwiseAbs().maxCoeff() / samples.cwiseAbs().maxCoeff();
-        std::printf("%s %g scheme %d shift %g: periods %d closure %.3g rel %.3g srel %.3g\n",
-                    p.branch, p.omega, static_cast<int>(scheme), shift, r.periods, r.closure_error,
-                    rel, srel);
         // RK4 (2048 steps): the march and the HB solution differ by the truncation at H = 7
         // and the closure tolerance 1e-10 / (1 - |rho|) (|rho| <= 0.91), measured <= 8e-10 on
         // the coefficients and 4e-8 on the samples (the upper branch, richest in harmonics):
@@ -372,42 +368,63 @@ TEST(TimeMarch, DuffingStaysOnTheHarmonicBalanceSolution) {
   }
 }
 
+// The contraction per period of a march's transient: exp of the least-squares slope of
+// log(closure error) against the period, over the second half of the periods (where the
+// slowest mode dominates and the perturbation is small).
+double transient_contraction(const std::vector<double>& history) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = history.size() / 2; k < history.size(); ++k) {
+    const double x = static_cast<double>(k), y = std::log(history[k]);
+    n += 1;
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  return std::exp((n * sxy - sx * sy) / (n * sxx - sx * sx));
+}
+
 // ---- (c) Jenkins-damped oscillator -----------------------------------------------------------
 
+constexpr double kJm = 1.0, kJk = 1.0, kJc = 0.01, kJkt = 1.0, kJf = 0.05;
+
+ElementSystem jenkins_oscillator(double slip) {
+  return sdof(kJm, kJc, kJk, std::make_shared<JenkinsSlider>(JenkinsElement{kJkt, slip}), kJf);
+}
+
+// The HB solution nearest `omega` on a continuation, corrected at omega.
+Eigen::VectorXd nearest_solution(const ElementHarmonicBalance& hb, const ContinuationResult& curve,
+                                 double omega) {
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < curve.points.size(); ++i)
+    if (std::abs(curve.points[i].omega - omega) < std::abs(curve.points[best].omega - omega))
+      best = i;
+  return solve_at(hb, curve.points[best].X, omega, 1e-12);
+}
+
 TEST(TimeMarch, JenkinsOscillatorEqualsHarmonicBalance) {
-  constexpr double m = 1.0, k = 1.0, c = 0.01, kt = 1.0, slip = 0.02, f = 0.05;
   constexpr int H = 11;
   const HarmonicBasis basis(H, 1024);
-  const ElementSystem sys =
-      sdof(m, c, k, std::make_shared<JenkinsSlider>(JenkinsElement{kt, slip}), f);
+  const ElementSystem sys = jenkins_oscillator(0.02);
   const ElementHarmonicBalance hb(sys, basis);
   ContinuationOptions co;
-  co.omega_start = 0.6;
+  co.omega_start = 0.7;
   co.omega_end = 1.8;
-  co.step = 0.01;
-  co.max_step = 0.01;
+  co.step = 0.02;
+  co.max_step = 0.02;
   co.tolerance = 1e-12;
   const Eigen::VectorXd X0 =
-      f / (k + kt - 0.36) * Eigen::VectorXd::Unit(hb.size(), HarmonicBasis::cos_index(1));
+      kJf / (kJk + kJkt - 0.49) * Eigen::VectorXd::Unit(hb.size(), HarmonicBasis::cos_index(1));
   const ContinuationResult curve = continue_in_frequency(hb, X0, co);
   ASSERT_EQ(curve.status, Status::Ok) << curve.message;
-  for (const double omega : {0.8, 1.0, 1.1, 1.2, 1.3, 1.45, 1.7}) {
+  for (const double omega : {0.8, 1.0, 1.2, 1.45, 1.7}) {
     SCOPED_TRACE("Omega " + std::to_string(omega));
-    std::size_t best = 0;
-    for (std::size_t i = 0; i < curve.points.size(); ++i)
-      if (std::abs(curve.points[i].omega - omega) < std::abs(curve.points[best].omega - omega))
-        best = i;
-    const Eigen::VectorXd X = solve_at(hb, curve.points[best].X, omega, 1e-12);
+    const Eigen::VectorXd X = nearest_solution(hb, curve, omega);
     Eigen::MatrixXd J;
     ASSERT_LE(hb.residual(X, omega, &J).norm(), 1e-11);
-    const FloquetResult hill = hill_stability(J, sys.M, sys.C, H, omega);
-    const double stick =
-        sys.elements[0].element->loop(basis, hb.element_coordinates(X, 0), omega).stick_fraction;
     TimeMarchOptions o;
     o.closure_tolerance = 1e-9;
-    const double q0 = basis.to_time(X.head(basis.size()))[0];
-    double dq0 = 0.0;
-    for (int h = 1; h <= H; ++h) dq0 += h * X[HarmonicBasis::sin_index(h)];
+    const auto [q0, dq0] = testing::series_at(X, H, 0.0);
     const PeriodicMarchResult r =
         march_to_periodic(sys, omega, Eigen::VectorXd::Constant(1, q0),
                           Eigen::VectorXd::Constant(1, omega * dq0), basis, o);
@@ -415,16 +432,97 @@ TEST(TimeMarch, JenkinsOscillatorEqualsHarmonicBalance) {
     const double rel = (r.coefficients - X).norm() / X.norm();
     const MonodromyResult mono = monodromy(sys, omega, X, basis);
     ASSERT_EQ(mono.floquet.status, Status::Ok) << mono.floquet.message;
-    std::printf(
-        "jenkins %g: amp %.4g stick %.3f periods %d rel %.3g | mono |rho| %.4g %.4g %.4g neutral "
-        "%d closure %.3g | hill maxRe %.3g %s\n",
-        omega, std::hypot(X[1], X[2]), stick, r.periods, rel, std::abs(mono.floquet.multipliers[0]),
-        mono.floquet.multipliers.size() > 1 ? std::abs(mono.floquet.multipliers[1]) : 0.0,
-        mono.floquet.multipliers.size() > 2 ? std::abs(mono.floquet.multipliers[2]) : 0.0,
-        mono.neutral_states, mono.closure_error, hill.max_real_part, to_string(hill.kind));
+    const FloquetResult hill = hill_stability(J, sys.M, sys.C, H, omega);
+    ASSERT_EQ(hill.status, Status::Ok) << hill.message;
+    // The issue's 1 %; measured <= 1.1e-4 (at Omega = 1.0, the largest amplitude: the HB
+    // truncation at H = 11 of a loop with kinks, and Newmark's first order across the switches),
+    // so 1e-3 as well, to catch a regression long before 1 %.
     EXPECT_LE(rel, 0.01);
+    EXPECT_LE(rel, 1e-3);
     EXPECT_TRUE(mono.floquet.stable);
+    EXPECT_EQ(mono.floquet.kind, Instability::None);
+    // The multipliers are those of the actual march: its transient decays per period like the
+    // modulus of one of them (the slowest excited mode; at Omega = 1.0 the start excites the
+    // 0.938 one more than the 0.969), never slower than the largest. Measured within 1.5e-3 (the
+    // fit's ripple from the rotation of a complex pair): 5e-3 asserted.
+    const double decay = transient_contraction(r.closure_history);
+    double nearest = 1.0;
+    for (const Complex rho : mono.floquet.multipliers)
+      nearest = std::min(nearest, std::abs(decay - std::abs(rho)));
+    EXPECT_LE(nearest, 5e-3) << "decay " << decay;
+    EXPECT_LE(decay, std::abs(mono.floquet.multipliers[0]) + 5e-3);
+    // What Hill's method says on the same solutions (issue #18 asks to report it): stable, no
+    // spurious positive exponent, but max Re lambda = -c / (2 m) = -0.005 at every point
+    // (-0.005004 at Omega = 1.0): the AFT Jacobian of a Jenkins is a periodic stiffness (k_t in
+    // stick, 0 in slip) with no velocity term, so the Hill problem is a damped Hill equation whose
+    // exponents sum to -c / m (Liouville) and a complex pair sits at -c / 2m. It misses the
+    // friction's damping of perturbations that the monodromy sees (|rho| = 0.43 at Omega = 0.8
+    // against exp(-c T / 2m) = 0.96).
+    EXPECT_TRUE(hill.stable);
+    EXPECT_NEAR(hill.max_real_part, -kJc / (2.0 * kJm), 1e-5);
+    EXPECT_LE(std::abs(mono.floquet.multipliers[0]),
+              std::exp(hill.max_real_part * 2.0 * kPi / omega) + 1e-6);
   }
+}
+
+// The exact multipliers exp(lambda T) of m q'' + c q' + k q = 0 (lambda = -c/2m +- i w_d).
+std::pair<Complex, Complex> linear_multipliers(double m, double c, double k, double omega) {
+  const double wd = std::sqrt(k / m - c * c / (4 * m * m)), T = 2.0 * kPi / omega;
+  const Complex rho = std::exp(Complex{-c / (2 * m), wd} * T);
+  return {rho, std::conj(rho)};
+}
+
+TEST(Monodromy, StuckAndFreeSlidersAreLinear) {
+  const HarmonicBasis basis(5, 256);
+  const double omega = 1.1;
+  // A slider that never slips (F = 1e3 >> k_t |u| ~ 0.05): the oscillator k + k_t, and the
+  // slider's state is neutral (multiplier 1 exactly, excluded, not a fold). A slider of F = 0
+  // slips at every step: the oscillator k, and a multiplier 0 (the state is forgotten).
+  for (const double slip : {1e3, 0.0}) {
+    SCOPED_TRACE("slip force " + std::to_string(slip));
+    const bool stuck = slip > 0.0;
+    const ElementSystem sys = jenkins_oscillator(slip);
+    const ElementHarmonicBalance hb(sys, basis);
+    const Eigen::VectorXd X = solve_at(hb, Eigen::VectorXd::Zero(hb.size()), omega, 1e-14);
+    const MonodromyResult mono = monodromy(sys, omega, X, basis);
+    ASSERT_EQ(mono.floquet.status, Status::Ok) << mono.floquet.message;
+    EXPECT_EQ(mono.neutral_states, stuck ? 1 : 0);
+    ASSERT_EQ(mono.floquet.multipliers.size(), stuck ? 2 : 3);
+    EXPECT_TRUE(mono.floquet.stable);
+    const auto [r0, r1] = linear_multipliers(kJm, kJc, stuck ? kJk + kJkt : kJk, omega);
+    // Newmark's frequency warping turns them by w_d T (w h)^2 / 12 <= 1.1e-5 (w = sqrt(2),
+    // h = T / 2048); the difference quotient of a linear flow is exact: 1e-4 asserted.
+    EXPECT_LE(pair_distance(mono.floquet.multipliers[0], mono.floquet.multipliers[1], r0, r1),
+              1e-4);
+    if (!stuck) {
+      EXPECT_LE(std::abs(mono.floquet.multipliers[2]), 1e-9);
+    }
+  }
+}
+
+TEST(TimeMarch, ReportsResponsesThatAreNotPeriodic) {
+  const HarmonicBasis basis(3, 64);
+  TimeMarchOptions o;
+  o.scheme = TimeScheme::RungeKutta4;
+  o.max_periods = 20;
+  // Undamped x'' + x = cos(omega t), omega = 1 / golden ratio, from rest: the free oscillation at
+  // 1 rad/s never decays and is incommensurate with the forcing (quasi-periodic).
+  const double omega = 2.0 / (1.0 + std::sqrt(5.0));
+  const PeriodicMarchResult quasi =
+      march_to_periodic(sdof(1.0, 0.0, 1.0, nullptr, 1.0), omega, Eigen::VectorXd::Zero(1),
+                        Eigen::VectorXd::Zero(1), basis, o);
+  EXPECT_EQ(quasi.status, Status::NotConverged);
+  EXPECT_EQ(quasi.periods, o.max_periods);
+  EXPECT_GT(quasi.closure_error, 1e-2);
+  EXPECT_NE(quasi.message.find("quasi-periodic"), std::string::npos) << quasi.message;
+  // Undamped x'' + x / 4 = 0 at omega = 1 from x = 1: x = cos(t / 2), z(T) = -z(0), z(2T) = z(0):
+  // a period-2 response, named as such (RK4 at 2048 steps keeps z(2T) = z(0) to ~1e-13).
+  const PeriodicMarchResult twice =
+      march_to_periodic(sdof(1.0, 0.0, 0.25, nullptr, 0.0), 1.0, Eigen::VectorXd::Ones(1),
+                        Eigen::VectorXd::Zero(1), basis, o);
+  EXPECT_EQ(twice.status, Status::NotConverged);
+  EXPECT_NEAR(twice.closure_error, 2.0, 1e-9);  // |x(T) - x(0)| = 2 |x(0)|
+  EXPECT_NE(twice.message.find("period-2"), std::string::npos) << twice.message;
 }
 
 }  // namespace

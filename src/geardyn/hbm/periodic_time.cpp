@@ -78,10 +78,16 @@ void MonodromyOptions::validate() const {
 // ---------------------------------------------------------------------------------------------
 // The integrator.
 
-struct PeriodicIntegrator::Forces {
+// Scratch of one period's integration (no allocation per step for systems of fixed size).
+struct PeriodicIntegrator::Workspace {
   Eigen::VectorXd g;                  ///< sum_e B_e^T f_e (n_dof)
   Eigen::MatrixXd Kt, Ct;             ///< sum_e B_e^T (df/du, df/dv) B_e
   std::vector<Eigen::VectorXd> next;  ///< the states to commit
+  ElementStep step;
+  Eigen::VectorXd u, v;  ///< an element's coordinates and rates
+  Eigen::VectorXd f_ext, q1, v1, a1, r, dq;
+  Eigen::MatrixXd Keff;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
 };
 
 PeriodicIntegrator::PeriodicIntegrator(ElementSystem system, double omega, TimeMarchOptions options)
@@ -124,81 +130,88 @@ TimeState PeriodicIntegrator::start_state(const Eigen::VectorXd& q,
 
 void PeriodicIntegrator::element_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                         double theta, const std::vector<Eigen::VectorXd>& states,
-                                        Forces& out, bool tangents) const {
+                                        Workspace& w, bool tangents) const {
   const int n = system_.dofs();
-  out.g.setZero(n);
+  w.g.setZero(n);
   if (tangents) {
-    out.Kt.setZero(n, n);
-    out.Ct.setZero(n, n);
+    w.Kt.setZero(n, n);
+    w.Ct.setZero(n, n);
   }
-  out.next.resize(system_.elements.size());
-  ElementStep step;
+  w.next.resize(system_.elements.size());
+  ElementStep& step = w.step;
   for (std::size_t e = 0; e < system_.elements.size(); ++e) {
     const auto& placed = system_.elements[e];
     const int ne = placed.element->size();
     step.force.setZero(ne);
     step.stiffness.setZero(ne, ne);
     step.damping.setZero(ne, ne);
-    placed.element->time_force(placed.B * q, placed.B * v, theta, omega_, states[e], step);
-    out.g.noalias() += placed.B.transpose() * step.force;
+    w.u.noalias() = placed.B * q;
+    w.v.noalias() = placed.B * v;
+    placed.element->time_force(w.u, w.v, theta, omega_, states[e], step);
+    w.g.noalias() += placed.B.transpose() * step.force;
     if (tangents) {
-      out.Kt.noalias() += placed.B.transpose() * step.stiffness * placed.B;
-      out.Ct.noalias() += placed.B.transpose() * step.damping * placed.B;
+      w.Kt.noalias() += placed.B.transpose() * step.stiffness * placed.B;
+      w.Ct.noalias() += placed.B.transpose() * step.damping * placed.B;
     }
-    out.next[e] = step.state;
+    w.next[e] = step.state;
   }
 }
 
 Eigen::VectorXd PeriodicIntegrator::acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                                  double theta,
-                                                 const std::vector<Eigen::VectorXd>& states) const {
-  Forces f;
-  element_forces(q, v, theta, states, f, false);
-  const Eigen::VectorXd rhs =
-      options_.load_factor * system_.excitation_at(theta) - system_.C * v - system_.K * q - f.g;
-  return mass_lu_.solve(rhs);
+                                                 const std::vector<Eigen::VectorXd>& states,
+                                                 Workspace& w) const {
+  element_forces(q, v, theta, states, w, false);
+  w.r = options_.load_factor * system_.excitation_at(theta);
+  w.r.noalias() -= system_.C * v;
+  w.r.noalias() -= system_.K * q;
+  w.r -= w.g;
+  return mass_lu_.solve(w.r);
 }
 
-bool PeriodicIntegrator::newmark_step(TimeState& z, Eigen::VectorXd& a, int k) const {
+bool PeriodicIntegrator::newmark_step(TimeState& z, Eigen::VectorXd& a, int k, Workspace& w) const {
   const double h = h_, theta = units::kTwoPi * (k + 1) / options_.steps_per_period;
-  const Eigen::VectorXd f_ext = options_.load_factor * system_.excitation_at(theta);
+  w.f_ext = options_.load_factor * system_.excitation_at(theta);
   const Eigen::VectorXd& q0 = z.q;
   const Eigen::VectorXd& v0 = z.v;
   const double scale_floor =
       std::max({h * inf_norm(v0), h * h * inf_norm(a), std::numeric_limits<double>::min()});
-  Eigen::VectorXd q1 = q0 + h * v0 + 0.5 * h * h * a;  // constant-acceleration predictor
-  Eigen::VectorXd v1, a1;
-  Forces f;
+  w.q1 = q0 + h * v0 + 0.5 * h * h * a;  // constant-acceleration predictor
+  auto rates = [&]() {                   // Newmark: q1'' and q1' from q1
+    w.v1 = (2.0 / h) * (w.q1 - q0) - v0;
+    w.a1 = (4.0 / (h * h)) * (w.q1 - q0 - h * v0) - a;
+  };
   for (int it = 0; it < options_.max_newton_iterations; ++it) {
-    v1 = (2.0 / h) * (q1 - q0) - v0;
-    a1 = (4.0 / (h * h)) * (q1 - q0 - h * v0) - a;
-    element_forces(q1, v1, theta, z.element_states, f, true);
-    const Eigen::VectorXd r = system_.M * a1 + system_.C * v1 + system_.K * q1 + f.g - f_ext;
-    const Eigen::MatrixXd Keff =
-        (4.0 / (h * h)) * system_.M + (2.0 / h) * (system_.C + f.Ct) + system_.K + f.Kt;
-    const Eigen::VectorXd dq = Keff.partialPivLu().solve(r);
-    if (!dq.allFinite()) return false;
-    q1 -= dq;
-    if (inf_norm(dq) <= options_.newton_tolerance * std::max(inf_norm(q1), scale_floor)) {
-      v1 = (2.0 / h) * (q1 - q0) - v0;
-      a1 = (4.0 / (h * h)) * (q1 - q0 - h * v0) - a;
-      element_forces(q1, v1, theta, z.element_states, f, false);
-      z.q = q1;
-      z.v = v1;
-      a = a1;
-      z.element_states = f.next;
+    rates();
+    element_forces(w.q1, w.v1, theta, z.element_states, w, true);
+    w.r = w.g - w.f_ext;
+    w.r.noalias() += system_.M * w.a1;
+    w.r.noalias() += system_.C * w.v1;
+    w.r.noalias() += system_.K * w.q1;
+    w.Keff = (4.0 / (h * h)) * system_.M + (2.0 / h) * (system_.C + w.Ct) + system_.K + w.Kt;
+    w.lu.compute(w.Keff);
+    w.dq = w.lu.solve(w.r);
+    if (!w.dq.allFinite()) return false;
+    w.q1 -= w.dq;
+    if (inf_norm(w.dq) <= options_.newton_tolerance * std::max(inf_norm(w.q1), scale_floor)) {
+      rates();
+      element_forces(w.q1, w.v1, theta, z.element_states, w, false);
+      z.q = w.q1;
+      z.v = w.v1;
+      a = w.a1;
+      std::swap(z.element_states, w.next);
       return true;
     }
   }
   return false;
 }
 
-bool PeriodicIntegrator::rk4_step(TimeState& z, int k) const {
+bool PeriodicIntegrator::rk4_step(TimeState& z, int k, Workspace& w) const {
   const double h = h_, dtheta = units::kTwoPi / options_.steps_per_period;
   const double theta0 = dtheta * k;
   const auto& s0 = z.element_states;
   auto acc = [&](const Eigen::VectorXd& q, const Eigen::VectorXd& v, double theta) {
-    return acceleration(q, v, theta, s0);
+    return acceleration(q, v, theta, s0, w);
   };
   const Eigen::VectorXd k1q = z.v, k1v = acc(z.q, z.v, theta0);
   const Eigen::VectorXd q2 = z.q + 0.5 * h * k1q, v2 = z.v + 0.5 * h * k1v;
@@ -210,9 +223,8 @@ bool PeriodicIntegrator::rk4_step(TimeState& z, int k) const {
   z.q += h / 6.0 * (k1q + 2.0 * v2 + 2.0 * v3 + v4);
   z.v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
   if (!z.q.allFinite() || !z.v.allFinite()) return false;
-  Forces f;
-  element_forces(z.q, z.v, theta0 + dtheta, s0, f, false);
-  z.element_states = f.next;
+  element_forces(z.q, z.v, theta0 + dtheta, s0, w, false);
+  std::swap(z.element_states, w.next);
   return true;
 }
 
@@ -231,9 +243,11 @@ Status PeriodicIntegrator::advance_period(TimeState& z, Record* record,
     record->v.row(0) = z.v.transpose();
   }
   const bool newmark = options_.scheme == TimeScheme::Newmark;
-  Eigen::VectorXd a = newmark ? acceleration(z.q, z.v, 0.0, z.element_states) : Eigen::VectorXd();
+  Workspace w;
+  Eigen::VectorXd a =
+      newmark ? acceleration(z.q, z.v, 0.0, z.element_states, w) : Eigen::VectorXd();
   for (int k = 0; k < N; ++k) {
-    const bool ok = newmark ? newmark_step(z, a, k) : rk4_step(z, k);
+    const bool ok = newmark ? newmark_step(z, a, k, w) : rk4_step(z, k, w);
     if (!ok || !z.q.allFinite() || !z.v.allFinite()) {
       message = fmt::format(
           "time step {} of {} (theta = {:.4g} rad) failed: {}", k + 1, N,

@@ -138,13 +138,14 @@ class PeriodicIntegrator {
   int state_count() const;
 
  private:
-  struct Forces;
+  struct Workspace;
   void element_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double theta,
-                      const std::vector<Eigen::VectorXd>& states, Forces& out, bool tangents) const;
+                      const std::vector<Eigen::VectorXd>& states, Workspace& w,
+                      bool tangents) const;
   Eigen::VectorXd acceleration(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double theta,
-                               const std::vector<Eigen::VectorXd>& states) const;
-  bool newmark_step(TimeState& z, Eigen::VectorXd& a, int k) const;
-  bool rk4_step(TimeState& z, int k) const;
+                               const std::vector<Eigen::VectorXd>& states, Workspace& w) const;
+  bool newmark_step(TimeState& z, Eigen::VectorXd& a, int k, Workspace& w) const;
+  bool rk4_step(TimeState& z, int k, Workspace& w) const;
 
   ElementSystem system_;
   double omega_;
