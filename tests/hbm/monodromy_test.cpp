@@ -243,6 +243,31 @@ TEST(Monodromy, DampedMathieu) {
   EXPECT_TRUE(mathieu(0.25, eps, 1.5 * eps).stable);
 }
 
+// The kinds from the multiplier of largest modulus, on linear oscillators whose multipliers are
+// exp(lambda T): negative damping (c = -0.05, k = 1: a complex pair outside the unit circle,
+// Neimark-Sacker) and negative stiffness (k = -1: a real multiplier exp(T) > 1, the fold kind).
+TEST(Monodromy, ClassifiesTheKinds) {
+  const HarmonicBasis basis(1, 8);
+  const double omega = 1.3, T = 2.0 * kPi / omega;
+  const FloquetResult ns = monodromy_stability(sdof(1.0, -0.05, 1.0, nullptr, 0.0), omega,
+                                               Eigen::VectorXd::Zero(3), basis);
+  ASSERT_EQ(ns.status, Status::Ok) << ns.message;
+  EXPECT_FALSE(ns.stable);
+  EXPECT_EQ(ns.kind, Instability::NeimarkSacker);
+  // Re lambda = 0.025 exactly; Newmark keeps the modulus of an undamped (here anti-damped) pair
+  // to O(c h^2): 1e-6 relative.
+  EXPECT_NEAR(ns.max_real_part, 0.025, 1e-6);
+  const FloquetResult fold = monodromy_stability(sdof(1.0, 0.0, -1.0, nullptr, 0.0), omega,
+                                                 Eigen::VectorXd::Zero(3), basis);
+  ASSERT_EQ(fold.status, Status::Ok) << fold.message;
+  EXPECT_FALSE(fold.stable);
+  EXPECT_EQ(fold.kind, Instability::Fold);
+  EXPECT_NEAR(fold.multipliers[0].imag(), 0.0, 1e-12);
+  // exp(T) = 125.9; Newmark's (1 + h/2)/(1 - h/2) per step errs by h^2 / 12 per unit time:
+  // T h^2 / 12 = 4e-6 relative; 1e-5 asserted.
+  EXPECT_NEAR(fold.multipliers[0].real(), std::exp(T), 1e-5 * std::exp(T));
+}
+
 TEST(Monodromy, RejectsStructuralLossAndBadInput) {
   ElementSystem s = sdof(1.0, 0.0, 1.0, nullptr, 1.0);
   const HarmonicBasis basis(1, 8);

@@ -322,6 +322,10 @@ PeriodicMarchResult march_to_periodic(const ElementSystem& system, double omega,
 PeriodicMarchResult march_to_periodic(const ElementSystem& system, double omega, TimeState start,
                                       const HarmonicBasis& basis, const TimeMarchOptions& options) {
   const PeriodicIntegrator integrator(system, omega, options);
+  if (2 * basis.harmonics() >= options.steps_per_period)
+    throw InputError({}, "steps_per_period",
+                     fmt::format("more than 2H = {} steps per period", 2 * basis.harmonics()),
+                     fmt::format("{}", options.steps_per_period));
   PeriodicMarchResult out;
   PeriodicIntegrator::Record rec;
   TimeState z = std::move(start), previous = z, before_previous;
