@@ -56,7 +56,8 @@
 // exactly periodic; `closure_error` reports how far z(T) is from z(0).)
 //
 // Neutral element states. A slider stuck over the whole period keeps its state (w(T) = w(0)
-// exactly and independently of small perturbations of q, q'), so its row of Phi is the unit row
+// exactly and independently of small perturbations of q, q', as long as its time_force returns
+// the state unchanged in stick, as a return mapping does), so its row of Phi is the unit row
 // e_j^T and Phi has the multiplier 1 exactly: the family of periodic solutions of a stuck slider
 // at every position (a continuum, neutral). It is not a fold. Such states are detected (row of
 // the scaled Phi within neutral_tolerance of e_j^T), counted in `neutral_states` and excluded:
@@ -69,6 +70,12 @@
 // 1 + stability_tolerance: exponent lambda = log(rho) / T (principal branch, Im in
 // (-omega/2, omega/2]); instability_kind(lambda, omega, kind_tolerance): Fold (real rho > 1),
 // PeriodDoubling (real rho < -1), NeimarkSacker (complex pair).
+//
+// Against Hill's method (stability.hpp): on smooth laws both give the same multipliers (Duffing:
+// within 5e-7 with RK4, the HB truncation at H = 7). On a Jenkins-damped oscillator Hill's method
+// on the AFT Jacobian reports max Re lambda = -c / 2m at every point: that Jacobian is a periodic
+// stiffness (k_t in stick, 0 in slip), so the friction's damping of perturbations is missing,
+// which the monodromy sees (|rho| = 0.43 against exp(-c T / 2m) = 0.96; monodromy_test.cpp).
 // References: Seydel, "Practical Bifurcation and Stability Analysis", 3rd ed., Springer (2010),
 // ch. 7 (monodromy, multipliers, their crossings); Nayfeh & Balachandran, "Applied Nonlinear
 // Dynamics", Wiley (1995), ch. 3.
