@@ -9,6 +9,7 @@
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/hbm/element_system.hpp"
+#include "geardyn/hbm/periodic_time.hpp"
 #include "geardyn/hbm/stability.hpp"
 
 namespace geardyn::analyses {
@@ -166,6 +167,24 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
     return;
   }
   r.unstable.assign(np, 0);
+  if (s.stability == NonlinearStability::Monodromy) {
+    hbm::MonodromyOptions o;
+    o.march.steps_per_period = 1024;
+    for (std::size_t i = 0; i < np; ++i) {
+      o.march.load_factor = r.level[i];
+      hbm::FloquetResult f;
+      try {
+        f = hbm::monodromy_stability(hb.system(), r.frequency[i], points[i].X, hb.basis(), o);
+      } catch (const InputError& e) {
+        throw context.error("stability", "a system the time march can integrate",
+                            e.expected() + " not met: " + e.found(), "use stability = \"fold\"");
+      }
+      r.max_real_exponent[i] = f.max_real_part;
+      r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
+      r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
+    }
+    return;
+  }
   for (const auto& e : hb.system().elements) {
     const auto* pointwise = dynamic_cast<const hbm::PointwiseElement*>(e.element.get());
     if (pointwise != nullptr && pointwise->velocity_dependent())

@@ -15,8 +15,10 @@
 //
 // Stability: from the turning points of the curve (a real multiplier crosses +1 at each fold:
 // valid for every element, friction included, but blind to period doubling and Neimark-Sacker),
-// or by Hill's method on the harmonic-balance Jacobian (stability = "hill": all kinds, but for
-// hysteretic elements an approximation; hbm/stability.hpp).
+// by Hill's method on the harmonic-balance Jacobian (stability = "hill": all kinds, but for
+// hysteretic elements an approximation; hbm/stability.hpp), or by the monodromy matrix of a time
+// march over one period through the elements' actual laws (stability = "monodromy": all kinds,
+// valid for stick-slip; 2 (2 n + states) + 1 marched periods per point; hbm/periodic_time.hpp).
 #include <Eigen/Dense>
 #include <limits>
 #include <string>
@@ -31,7 +33,7 @@
 namespace geardyn::analyses {
 
 enum class ContinuationParameter { Frequency, ForceLevel };
-enum class NonlinearStability { Fold, Hill };
+enum class NonlinearStability { Fold, Hill, Monodromy };
 
 struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -152,14 +152,16 @@ std::vector<model::Field> keys() {
           .gt(0)
           .lt(1e-2)
           .to_settings(&NonlinearResponseSettings::tolerance),
-      choice("stability", {"fold", "hill"},
+      choice("stability", {"fold", "hill", "monodromy"},
              "Stability of each point: \"fold\" from the turning points of the curve (valid "
              "for friction, blind to period doubling and quasi-periodic loss); \"hill\": Hill's "
              "method on the balance's Jacobian (every kind; approximate for hysteretic "
-             "elements).")
+             "elements); \"monodromy\": Floquet multipliers of a time march over one period "
+             "through the elements' laws (every kind, valid for stick-slip; the costliest).")
           .def("\"fold\"")
-          .to_settings_enum(&NonlinearResponseSettings::stability,
-                            {NonlinearStability::Fold, NonlinearStability::Hill}),
+          .to_settings_enum(
+              &NonlinearResponseSettings::stability,
+              {NonlinearStability::Fold, NonlinearStability::Hill, NonlinearStability::Monodromy}),
   };
 }
 
