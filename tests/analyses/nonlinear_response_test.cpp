@@ -283,3 +283,40 @@ TEST(NonlinearResponse, FrictionContactWithoutNormalLoadIsALocatedError) {
 
 }  // namespace
 }  // namespace geardyn::analyses
+
+namespace geardyn::analyses {
+namespace {
+
+// The Duffing oscillator's backbone at H = 1: w^2 = k/m + 3/4 (alpha/m) a^2 (Nayfeh & Mook 1979,
+// sec. 4.1), a the first-harmonic amplitude, here through the model file and nonlinear_modes.
+TEST(NonlinearModes, DuffingBackboneMatchesTheClosedForm) {
+  const auto dir = test::fresh_dir("nonlinear_modes_duffing");
+  std::string text = duffing_model("");
+  text.replace(text.find("type = \"nonlinear_response\"\nforces = [\"F\"]"),
+               std::string("type = \"nonlinear_response\"\nforces = [\"F\"]").size(),
+               "type = \"nonlinear_modes\"\namplitude_start = 0.01\namplitude_stop = 4.0\n"
+               "harmonics = 1\ntime_samples = 16");
+  const model::Model m = test::load(dir, text);
+  check_inputs(m, {});
+  fe::LinearSystem system = assembly::build_system(m, nullptr);
+  Context c(m, m.analyses[0]);
+  c.with_system(&system);
+  const Outcome out = run_analysis(m, m.analyses[0], c);
+  ASSERT_EQ(out.output.status, Status::Ok) << out.output.message;
+  const Table& t = test::table(out.output, "backbone");
+  const auto& hz = t.column("frequency_hz").numbers;
+  const auto& a = t.column("x_h1_m").numbers;
+  const auto& zeta = t.column("damping_ratio").numbers;
+  ASSERT_GT(hz.size(), 5u);
+  EXPECT_GE(a.back(), 4.0 * (1.0 - 1e-9));
+  for (std::size_t i = 0; i < hz.size(); ++i) {
+    const double w = hz[i] * kTwoPi;
+    // Exact at H = 1 with 16 > 4H samples: the Newton tolerance (1e-10) sets the error.
+    EXPECT_NEAR(w * w, 1.0 + 0.075 * a[i] * a[i], 1e-8 * (1.0 + a[i] * a[i])) << "point " << i;
+    // Mass-proportional damping c = 0.05 m: xi = c / m, zeta = xi / (2 w) (Krack 2015).
+    EXPECT_NEAR(zeta[i], 0.05 / (2.0 * w), 1e-8);
+  }
+}
+
+}  // namespace
+}  // namespace geardyn::analyses

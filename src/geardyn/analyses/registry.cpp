@@ -27,6 +27,7 @@ namespace geardyn::analyses {
   X(gear_whine)                   \
   X(damper_ring_response)         \
   X(nonlinear_response)           \
+  X(nonlinear_modes)              \
   X(drivetrain_transient)
 
 #define GEARDYN_DECLARE_ANALYSIS(type) AnalysisType type##_analysis();
