@@ -73,14 +73,14 @@ forces = ["F"]
 )" + analysis;
 }
 
-struct Run {
+struct Solved {
   Outcome outcome;
   const NonlinearResponseResult& result() const {
     return result_of<NonlinearResponseResult>(outcome);
   }
 };
 
-Run run(const model::Model& m) {
+Solved run(const model::Model& m) {
   check_inputs(m, {});
   fe::LinearSystem system = assembly::build_system(m, nullptr);
   Context c(m, m.analyses[0]);
@@ -103,7 +103,7 @@ time_samples = 16
 tolerance = 1e-12
 max_step = 0.02
 )"));
-  const Run r = run(m);
+  const Solved r = run(m);
   ASSERT_EQ(r.outcome.output.status, Status::Ok) << r.outcome.output.message;
   const auto& res = r.result();
   ASSERT_GT(res.frequency.size(), 50u);
@@ -142,7 +142,7 @@ harmonics = 1
 time_samples = 16
 tolerance = 1e-12
 )"));
-  const Run r = run(m);
+  const Solved r = run(m);
   ASSERT_EQ(r.outcome.output.status, Status::Ok) << r.outcome.output.message;
   const auto& res = r.result();
   ASSERT_FALSE(res.level.empty());
@@ -237,20 +237,22 @@ time_samples = 1024
 TEST(NonlinearResponse, NLvibThreeDofMultipleNonlinearities) {
   const auto dir = fresh_dir("nonlinear_nlvib07");
   const model::Model m = load(dir, nlvib07_model());
-  const Run r = run(m);
+  const Solved r = run(m);
   ASSERT_EQ(r.outcome.output.status, Status::Ok) << r.outcome.output.message;
   const auto& res = r.result();
   // Every point converged to the tolerance (relative residual).
   for (double x : res.residual) EXPECT_LE(x, 1e-8);
   EXPECT_NEAR(res.frequency.back(), 2.0, 1e-9);
-  // The friction elements dissipate energy, the others none (elastic: their loop encloses no
-  // area; trapezoidal rule on 1024 samples of a smooth loop: round-off).
+  // The friction elements dissipate energy, the elastic cubic spring none: its loop encloses no
+  // area, up to the second-order error of the trapezoidal loop integral over 1024 samples,
+  // O((2 pi / 1024)^2) = 4e-5 of f du before the cancellation over the closed loop; 1e-5 of the
+  // friction's energy bounds it.
   double friction = 0.0;
-  for (Eigen::Index i = 0; i < res.energy.rows(); ++i) {
+  for (Eigen::Index i = 0; i < res.energy.rows(); ++i)
     friction = std::max(friction, res.energy(i, 0));
-    EXPECT_NEAR(res.energy(i, 2), 0.0, 1e-9);
-  }
   EXPECT_GT(friction, 0.0);
+  for (Eigen::Index i = 0; i < res.energy.rows(); ++i)
+    EXPECT_NEAR(res.energy(i, 2), 0.0, 1e-5 * friction);
 }
 
 TEST(NonlinearResponse, ElementBetweenANodeAndItselfIsALocatedError) {

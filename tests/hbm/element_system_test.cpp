@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "duffing_problem.hpp"
+#include "geardyn/core/error.hpp"
 
 namespace geardyn::hbm {
 namespace {
@@ -63,8 +64,17 @@ TEST(ElementSystem, DuffingEqualsTheHandWrittenCubicForce) {
   EXPECT_LE((J1 - J2).norm(), 1e-12 * J1.norm());
   EXPECT_LE((d1 - d2).norm(), 1e-12 * d1.norm());
   // The whole response curve through both folds.
-  const ContinuationResult a = testing::duffing_continuation(reference);
-  const ContinuationResult b = testing::duffing_continuation(hb);
+  // The continuation of duffing_problem.hpp (Omega 0.5 -> 2 through both folds) on both forms.
+  ContinuationOptions o;
+  o.omega_start = 0.5;
+  o.omega_end = 2.0;
+  o.step = 0.005;
+  o.max_step = 0.005;
+  o.tolerance = 1e-12;
+  const Eigen::VectorXd X0 = testing::kForce / (testing::kStiffness - 0.25) *
+                             Eigen::VectorXd::Unit(hb.size(), HarmonicBasis::cos_index(1));
+  const ContinuationResult a = continue_in_frequency(reference, X0, o);
+  const ContinuationResult b = continue_in_frequency(hb, X0, o);
   ASSERT_EQ(a.status, Status::Ok) << a.message;
   ASSERT_EQ(b.status, Status::Ok) << b.message;
   ASSERT_EQ(a.points.size(), b.points.size());

@@ -1,4 +1,9 @@
-#include "geardyn/analyses/nonlinear_response.hpp"
+// GCC's -Wnull-dereference false positive inside Eigen's inlined code (see
+// linalg/sparse_factorization.cpp): the pragma must precede the first include of Eigen.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnull-dereference"
+#include <Eigen/Dense>
+#pragma GCC diagnostic pop
 
 #include <fmt/format.h>
 
@@ -6,6 +11,7 @@
 #include <cmath>
 
 #include "geardyn/analyses/nonlinear_elements.hpp"
+#include "geardyn/analyses/nonlinear_response.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/hbm/element_system.hpp"
@@ -81,6 +87,29 @@ void set_scales(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSe
     o.omega_scale = std::abs(s.level_stop - s.level_start);
   }
   o.x_scale = std::isfinite(x) && x > 0.0 ? x : 1.0;
+}
+
+// The continuation stops at the first point past the end of the range: that point is moved
+// onto the end by interpolating between the last two and a Newton correction at the fixed
+// parameter (kept as traced when Newton does not converge).
+void land_on_end(const hbm::HarmonicSystem& system, double end, double tolerance,
+                 std::vector<hbm::ContinuationPoint>& points) {
+  if (points.size() < 2) return;
+  hbm::ContinuationPoint& last = points.back();
+  const hbm::ContinuationPoint& before = points[points.size() - 2];
+  if (last.omega == end || (last.omega - end) * (before.omega - end) > 0.0) return;
+  const double s = (end - before.omega) / (last.omega - before.omega);
+  Eigen::VectorXd X = before.X + s * (last.X - before.X);
+  Eigen::MatrixXd J;
+  for (int it = 1; it <= 20; ++it) {
+    const Eigen::VectorXd R = system.residual(X, end, &J);
+    if (!R.allFinite()) return;
+    if (R.norm() <= tolerance * system.residual_scale(X, end)) {
+      last = {end, X, it, R.norm()};
+      return;
+    }
+    X -= J.partialPivLu().solve(R);
+  }
 }
 
 // Turning points of the continuation parameter p along the curve. Contact laws make the curve
@@ -160,9 +189,8 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
   const std::size_t np = points.size();
   r.max_real_exponent.assign(np, kNaN);
   r.instability.assign(np, "");
-  if (s.stability == NonlinearStability::Fold || s.parameter != ContinuationParameter::Frequency) {
-    r.unstable =
-        hbm::fold_unstable(s.parameter == ContinuationParameter::Frequency ? r.frequency : r.level);
+  if (s.stability == NonlinearStability::Fold) {
+    r.unstable = unstable_after(r.turning_points, np);
     for (std::size_t i = 0; i < np; ++i) r.instability[i] = r.unstable[i] ? "fold" : "none";
     return;
   }
@@ -228,9 +256,10 @@ double harmonic_amplitude(const Eigen::VectorXd& c, int n) {
 }
 
 double series_rms(const Eigen::VectorXd& c) {
-  double sum = c[0] * c[0];
-  for (Eigen::Index k = 1; k < c.size(); ++k) sum += 0.5 * c[k] * c[k];
-  return std::sqrt(sum);
+  if (c.size() == 0) return 0.0;
+  // a_0^2 + sum (a_n^2 + b_n^2) / 2 = (||c||^2 + a_0^2) / 2.
+  const double all = c.squaredNorm(), mean = c.head(1).squaredNorm();
+  return std::sqrt(0.5 * (all + mean));
 }
 
 NonlinearResponseResult run_nonlinear_response(const model::Model& model,
@@ -282,9 +311,11 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
   hbm::ContinuationResult curve;
   if (frequency) {
     curve = hbm::continue_in_frequency(hb, X0, o);
+    if (curve.status == Status::Ok) land_on_end(hb, o.omega_end, o.tolerance, curve.points);
   } else {
     const LevelSystem level(hb, s.frequency);
     curve = hbm::continue_in_frequency(level, X0, o);
+    if (curve.status == Status::Ok) land_on_end(level, o.omega_end, o.tolerance, curve.points);
   }
   if (curve.points.empty()) {
     throw NumericalError(
