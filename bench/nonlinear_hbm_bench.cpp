@@ -14,13 +14,12 @@
 // ElementHarmonicBalance is traced by continue_in_frequency. Issue target: the whole range in
 // under 1 s on one core, every point checked by its residual. Two step sizes: max_step 0.05 (the
 // benchmark) and 0.005 (a fine trace, the reference for comparisons). The curve is not smooth
-// (stick-slip and contact transitions put corners in it) and folds twice near Omega = 1.6 with a
-// small loop between 1.64 and 1.67: larger steps than 0.05 (0.2) and, by chance, 0.03 jump parts
-// of it (max_chord_steps shows it). With
-// GEARDYN_BENCH_NLVIB_CURVE=<prefix> each curve is written to <prefix>_<max_step / 1e-3>.txt
-// (columns: Omega, Q1_rms, Q2_rms, Q3_rms with NLvib's amplitude sqrt(sum of the squared
-// coefficients) / sqrt(2), ||R|| / residual_scale, Newton iterations) for the comparison with
-// NLvib's curve.
+// (stick-slip and contact transitions put corners in it) and turns four times between Omega =
+// 1.55 and 1.67 (a small loop and the hardening fold): max_step 0.2 and, by chance, 0.03 jump
+// parts of it (max_chord_steps shows it). With GEARDYN_BENCH_NLVIB_CURVE=<prefix> each curve is
+// written to <prefix>_<max_step / 1e-3>.txt (columns: Omega, Q1_rms, Q2_rms, Q3_rms with NLvib's
+// amplitude sqrt(sum of the squared coefficients) / sqrt(2), ||R|| / residual_scale, Newton
+// iterations) for the comparison with NLvib's curve.
 //
 // BM_Condensed100Dof: 100 Jenkins elements, each from one point of a structure to ground,
 // condensed to their 100 coordinates (CondensedHarmonicBalance, LocalForce form), H = 7, traced
@@ -34,8 +33,7 @@
 // P cos(Omega t) acts at s = 0.23. Contacts: k = 3.2e-3 w_1^2 each (the stuck contacts raise
 // the first mode by about 15 %), slip force 1 N; P is set so that the stuck structure's peak
 // displacement at a contact is 40 slip limits F / k. The band 0.85 w_1 .. 2.5 w_1 holds the
-// first two resonances (from free to stuck) and the superharmonic ones of modes 3..5 that the
-// odd harmonics of the friction forces excite.
+// first two resonances; friction holds their peaks to about 6 and 7.6 slip limits.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
