@@ -322,3 +322,32 @@ TEST(NonlinearModes, DuffingBackboneMatchesTheClosedForm) {
 
 }  // namespace
 }  // namespace geardyn::analyses
+
+namespace geardyn::analyses {
+namespace {
+
+// A mass held only by a unilateral spring that acts for u > gap, pushed the other way by a
+// constant load: no periodic state exists (the mean has nothing to balance the load), so Newton
+// cannot start. The run reports it (status failed, where and what helps); nothing is hidden.
+TEST(NonlinearResponse, AStartTheSolverCannotConvergeIsReported) {
+  const auto dir = test::fresh_dir("nonlinear_cannot_start");
+  std::string text =
+      duffing_model("mean_forces = [\"P\"]\nfrequency_start_hz = 0.1\nfrequency_stop_hz = 0.2\n");
+  text.replace(text.find("[[sensors]]"), 11,
+               "[[forces]]\nname = \"P\"\nnode = \"p\"\ndof = \"uz\"\namplitude = 0.5\n"
+               "phase_deg = 180.0\n[[sensors]]");
+  text.replace(text.find("kzz = 1.0\nczz = 0.05"), 20, "czz = 0.05");
+  text.replace(text.find("type = \"cubic\""), 14, "type = \"unilateral\"");
+  text.replace(text.find("stiffness = 0.1"), 15, "stiffness = 1.0\ngap = 0.5");
+  const model::Model m = test::load(dir, text);
+  check_inputs(m, {});
+  fe::LinearSystem system = assembly::build_system(m, nullptr);
+  Context c(m, m.analyses[0]);
+  c.with_system(&system);
+  const Outcome out = run_analysis(m, m.analyses[0], c);
+  EXPECT_EQ(out.output.status, Status::Failed);
+  EXPECT_NE(out.output.message.find("could not start"), std::string::npos) << out.output.message;
+}
+
+}  // namespace
+}  // namespace geardyn::analyses

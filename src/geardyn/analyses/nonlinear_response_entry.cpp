@@ -79,7 +79,7 @@ std::vector<model::Field> keys() {
       names("forces", Ref::Force,
             "Named [[forces]] acting at the fundamental (amplitude and phase: f = Re(A e^{i "
             "phi} e^{i w t})).")
-          .note("none: the excitation is the unloaded TE of gear_mesh elements")
+          .note("the excitation is the unloaded TE of gear_mesh elements")
           .min_items(1)
           .to_settings(&NonlinearResponseSettings::forces),
       names("mean_forces", Ref::Force,

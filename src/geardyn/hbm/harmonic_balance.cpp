@@ -510,6 +510,59 @@ Corrected correct(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
   }
 }
 
+// Newton on [R(z); (|z - c|^2 - r^2) / (2 r)] = 0: the point of the curve at distance r from c
+// (Crisfield's spherical constraint), bordered by the row (z - c)^T / r. Used where the plane
+// constraint fails: a non-smooth fold (a contact that grazes) turns the curve back by more than
+// 90 degrees, so the plane normal to the tangent misses the new branch while the sphere meets it.
+Corrected correct_on_sphere(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
+                            const Eigen::VectorXd& c, double r, int max_iterations) {
+  const int n = p.size();
+  Corrected out;
+  Eigen::VectorXd R = algebra.residual(z, true);
+  for (;; ++out.iterations) {
+    const double g = ((z - c).squaredNorm() - r * r) / (2.0 * r);
+    out.residual = R.norm();
+    if (out.residual <= p.tolerance(z) && std::abs(g) <= 1e-12 * std::max(1.0, z.norm())) {
+      out.converged = true;
+      return out;
+    }
+    if (out.iterations >= max_iterations || !R.allFinite()) return out;
+    Eigen::VectorXd rhs(n + 1);
+    rhs << R, g;
+    const Eigen::VectorXd delta = algebra.solve((z - c) / r, rhs, 0.01 * p.tolerance(z));
+    if (!delta.allFinite()) return out;
+    z -= delta;
+    R = algebra.residual(z, true);
+  }
+}
+
+// After the plane corrector failed at the smallest step from y (previous point y_before): the
+// point at distance r (growing radii) on the sphere about y, searched from y + r t, that does
+// not lie back along the segment y_before -> y. True and z set when found.
+bool turn_sharp_fold(const Scaled& p, NewtonAlgebra& algebra, const Eigen::VectorXd& y,
+                     const Eigen::VectorXd& y_before, const Eigen::VectorXd& t, int max_iterations,
+                     double min_step, Eigen::VectorXd& z, double& radius, Corrected& used) {
+  const Eigen::VectorXd back = (y_before - y).normalized();
+  for (double r = 10.0 * min_step; r <= 1e-2; r *= 10.0) {
+    for (const double side : {1.0, -1.0}) {
+      // Start ahead along the tangent, or across it (the new branch may leave on either side).
+      Eigen::VectorXd guess = y + r * t;
+      if (side < 0.0) {
+        Eigen::VectorXd normal = back - back.dot(t) * t;
+        if (normal.norm() < 1e-12) continue;
+        guess = y - r * normal.normalized();
+      }
+      z = guess;
+      used = correct_on_sphere(p, algebra, z, y, r, max_iterations);
+      if (used.converged && (z - y).normalized().dot(back) < 0.9) {
+        radius = r;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::VectorXd& X0,
@@ -546,12 +599,28 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
   Eigen::VectorXd t_prev = Eigen::VectorXd::Unit(n + 1, n) * direction;
   Eigen::VectorXd t = tangent(p, *algebra, t_prev);
   double step = o.step;
+  Eigen::VectorXd y_before = y - o.step * t;  // the previous point (a guess at the start)
   while (static_cast<int>(out.points.size()) < o.max_points) {
     const Eigen::VectorXd predicted = y + step * t;
     Eigen::VectorXd z = predicted;
     c = correct(p, *algebra, z, t, predicted, o.max_iterations);
+    // A corrector that lands farther from its predictor than the step (more than 45 degrees off
+    // the tangent) has left the branch for another part of the curve: a smaller step.
+    if (c.converged && (z - predicted).norm() > step) c.converged = false;
     if (!c.converged) {
       step *= 0.5;
+      double radius = 0.0;
+      Corrected turned;
+      if (step < o.min_step && turn_sharp_fold(p, *algebra, y, y_before, t, o.max_iterations,
+                                               o.min_step, z, radius, turned)) {
+        t = tangent(p, *algebra, (z - y).normalized());
+        y_before = y;
+        y = z;
+        out.points.push_back({p.omega(y), p.X(y), turned.iterations, turned.residual});
+        step = radius;
+        if (direction * (p.omega(y) - o.omega_end) >= 0.0) break;
+        continue;
+      }
       if (step < o.min_step) {
         out.status = Status::NotConverged;
         out.message = fmt::format(
@@ -565,9 +634,18 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
       continue;
     }
     t = tangent(p, *algebra, t);
+    y_before = y;
     y = z;
     out.points.push_back({p.omega(y), p.X(y), c.iterations, c.residual});
     if (direction * (p.omega(y) - o.omega_end) >= 0.0) break;
+    if (direction * (p.omega(y) - o.omega_start) < -0.1 * std::abs(o.omega_end - o.omega_start)) {
+      out.status = Status::NotConverged;
+      out.message = fmt::format(
+          "the curve turned back and left the range below its start (at {:.8g}): it folds "
+          "over the whole range, or a smaller max_step is needed to follow it",
+          p.omega(y));
+      return out;
+    }
     if (c.iterations <= 3)
       step = std::min(1.5 * step, o.max_step);
     else if (c.iterations > 6)

@@ -13,11 +13,19 @@
 //
 // Continuation: Keller's pseudo-arc-length method on y = (X, omega): Euler predictor along the
 // unit tangent of R(y) = 0, Newton corrector on R(y) = 0 plus t . (y - y_predicted) = 0, step
-// length adapted to the corrector's iteration count. It passes turning points (folds) of the
-// response curve. A point whose corrector fails at the smallest step is reported (frequency,
-// iterations, residual), never dropped: the curve ends there with Status::NotConverged.
+// length adapted to the corrector's iteration count; a corrected point farther from its predictor
+// than the step (it jumped to another part of the curve) is refused and the step halved. It
+// passes turning points (folds) of the
+// response curve. Where the corrector fails at the smallest step, the point at a small distance
+// r (10 min_step, 100 min_step, ... up to 1e-2) on the sphere about the last point is sought
+// instead (Crisfield's spherical constraint), away from the segment just traced: a non-smooth fold
+// (a contact that grazes) turns the curve back by more than 90 degrees, which the plane misses.
+// A point that neither finds is reported (frequency, iterations, residual), never dropped: the
+// curve ends there with Status::NotConverged.
 // Reference: Seydel, "Practical Bifurcation and Stability Analysis", 3rd ed., Springer (2010),
-// ch. 4; Krack & Gross, "Harmonic Balance for Nonlinear Vibration Problems", Springer (2019).
+// ch. 4; Crisfield, "A fast incremental/iterative solution procedure that handles snap-through",
+// Computers & Structures 13 (1981) 55-62; Krack & Gross, "Harmonic Balance for Nonlinear Vibration
+// Problems", Springer (2019).
 #include <Eigen/Dense>
 #include <functional>
 #include <string>
