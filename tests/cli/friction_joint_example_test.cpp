@@ -194,9 +194,9 @@ void check_sweep(const fs::path& out, const DynamicStiffness& free_blade) {
   EXPECT_NEAR(at.front(), f_free, 0.5);
   EXPECT_NEAR(peak.back() / x_stuck, 1.0, 0.002);
   EXPECT_NEAR(at.back(), f_stuck, 0.5);
-  // The optimum: strictly inside the range, at the README's 11 N, its peak 4.073 um (0.1 %)
-  // between the free and stuck resonances, and 30 times below either limit (README: 32.8 and
-  // 29.7).
+  // The optimum: strictly inside the range, at the README's 11 N, its peak 4.073 um (0.1 %: its
+  // digits) between the free and stuck resonances, 32.8 and 29.7 times below the free and the
+  // stuck peaks (README; checked > 30 and > 29).
   const auto best =
       static_cast<std::size_t>(std::min_element(peak.begin(), peak.end()) - peak.begin());
   EXPECT_GT(best, 0u);
