@@ -8,6 +8,7 @@
 #include <map>
 
 #include "geardyn/analyses/mesh_force_map.hpp"
+#include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/drivetrain/builder.hpp"
 #include "geardyn/drivetrain/placement.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
@@ -293,6 +294,17 @@ hbm::ElementSystem placed_element_system(const NonlinearCoordinates& c,
   sys.excitation.resize(Fq.rows() * 3);
   for (Eigen::Index d = 0; d < Fq.rows(); ++d) sys.excitation.segment(d * 3, 3) = Fq.row(d);
   return sys;
+}
+
+const fe::LinearSystem& nonlinear_structure(const model::Model& model, const Context& context,
+                                            fe::LinearSystem& own) {
+  const bool replaced =
+      std::any_of(model.nonlinear_elements.begin(), model.nonlinear_elements.end(),
+                  [](const auto& e) { return e.kind == NonlinearElementKind::GearMesh; });
+  if (!replaced) return context.system();
+  own = assembly::build_system(without_replaced_mesh_springs(model), context.solids(),
+                               context.progress());
+  return own;
 }
 
 model::Model without_replaced_mesh_springs(const model::Model& model) {

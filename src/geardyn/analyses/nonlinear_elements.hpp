@@ -66,6 +66,11 @@ struct SensorRows {
 SensorRows nonlinear_sensor_rows(const model::Model& model, const fe::LinearSystem& system,
                                  const std::vector<std::string>& names, const Context& context);
 
+/// The linear structure the nonlinear analyses balance: the context's system, or, when gear_mesh
+/// elements replace their meshes' linear springs, the system built without them (into `own`).
+const fe::LinearSystem& nonlinear_structure(const model::Model& model, const Context& context,
+                                            fe::LinearSystem& own);
+
 /// The model without the linear springs of the [[gear_meshes]] that a gear_mesh element
 /// replaces (their stiffness and damping move into the nonlinear element).
 model::Model without_replaced_mesh_springs(const model::Model& model);

@@ -7,7 +7,6 @@
 
 #include "geardyn/analyses/nonlinear_elements.hpp"
 #include "geardyn/analyses/nonlinear_response.hpp"
-#include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/hbm/nonlinear_modes.hpp"
 
@@ -25,14 +24,8 @@ std::string unit_of(const NonlinearModesResult& r, std::size_t s) {
 NonlinearModesResult run_nonlinear_modes(const model::Model& model, const NonlinearModesSettings& s,
                                          const Context& context) {
   NonlinearModesResult r;
-  const bool replaced =
-      std::any_of(model.nonlinear_elements.begin(), model.nonlinear_elements.end(),
-                  [](const auto& e) { return e.kind == model::NonlinearElementKind::GearMesh; });
   fe::LinearSystem own;
-  if (replaced)
-    own = assembly::build_system(without_replaced_mesh_springs(model), context.solids(),
-                                 context.progress());
-  const fe::LinearSystem& system = replaced ? own : context.system();
+  const fe::LinearSystem& system = nonlinear_structure(model, context, own);
   const std::vector<BuiltNonlinearElement> elements =
       build_nonlinear_elements(model, system, context);
   const NonlinearCoordinates c = nonlinear_coordinates(system, s.speed, s.n_modes, context);

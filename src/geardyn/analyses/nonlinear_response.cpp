@@ -12,7 +12,6 @@
 
 #include "geardyn/analyses/nonlinear_elements.hpp"
 #include "geardyn/analyses/nonlinear_response.hpp"
-#include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/hbm/element_system.hpp"
 #include "geardyn/hbm/periodic_time.hpp"
@@ -267,14 +266,8 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
                                                const Context& context) {
   NonlinearResponseResult r;
   r.parameter = s.parameter;
-  // Gear mesh elements replace their mesh's linear spring: the system is built without it.
-  const model::Model linear_model = without_replaced_mesh_springs(model);
-  const bool replaced =
-      std::any_of(model.nonlinear_elements.begin(), model.nonlinear_elements.end(),
-                  [](const auto& e) { return e.kind == model::NonlinearElementKind::GearMesh; });
   fe::LinearSystem own;
-  if (replaced) own = assembly::build_system(linear_model, context.solids(), context.progress());
-  const fe::LinearSystem& system = replaced ? own : context.system();
+  const fe::LinearSystem& system = nonlinear_structure(model, context, own);
 
   const std::vector<BuiltNonlinearElement> elements =
       build_nonlinear_elements(model, system, context);
