@@ -128,8 +128,12 @@ TEST_F(MatricesComponent, GivesTheCyclicFrequenciesOfTheMeshItCameFrom) {
   const std::vector<double> imported = cyclic_frequencies(m, external);
   ASSERT_EQ(reference.size(), 15u);
   ASSERT_EQ(imported.size(), reference.size());
+  // The two routes factorise differently ordered patterns (the mesh's K keeps explicit zeros
+  // the file drops), so the Lanczos iterations take different rounding paths; their converged
+  // frequencies agree to the eigen-solver's accuracy: up to 1.9e-9 relative measured (AMD EPYC,
+  // Debian 12's OpenBLAS and SuiteSparse), so 1e-8.
   for (std::size_t i = 0; i < reference.size(); ++i)
-    EXPECT_NEAR(imported[i], reference[i], 1e-9 * reference[i]) << "row " << i;
+    EXPECT_NEAR(imported[i], reference[i], 1e-8 * reference[i]) << "row " << i;
   // Sanity of the oracle: ND 0..3 lowest frequencies near Leissa's thin-plate values (115.60,
   // 95.05, 150.10, 333.83 Hz) within the 8 % a mesh this coarse allows (one hex20 layer).
   const double leissa[] = {115.60, 95.05, 150.10, 333.83};

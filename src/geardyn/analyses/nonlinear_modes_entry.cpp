@@ -1,8 +1,12 @@
 // The `type = "nonlinear_modes"` analysis in the registry: its model-file keys and their rules,
 // its checks, how it runs.
+#include <algorithm>
+#include <limits>
+
 #include "geardyn/analyses/common_keys.hpp"
 #include "geardyn/analyses/nonlinear_modes.hpp"
 #include "geardyn/analyses/registry.hpp"
+#include "geardyn/core/units.hpp"
 #include "geardyn/model/parse.hpp"
 #include "geardyn/model/schema_builder.hpp"
 
@@ -110,6 +114,21 @@ AnalysisType nonlinear_modes_analysis() {
     return d;
   };
   type.run = runner(run_nonlinear_modes, nonlinear_modes_output);
+  type.scalars = {
+      {"linear_frequency", "Hz", "Frequency of the mode at rest (elements linearised).", {}},
+      {"end_frequency", "Hz", "Frequency at the largest amplitude traced.", {}},
+      {"max_damping_ratio",
+       "",
+       "Largest damping ratio along the backbone (a friction damper's best damping).",
+       {}}};
+  type.scalar = [](const Outcome& o, const ScalarRequest& q, std::string& unit) {
+    const auto& r = result_of<NonlinearModesResult>(o);
+    unit = q.quantity == "max_damping_ratio" ? "" : "Hz";
+    if (q.quantity == "linear_frequency") return r.linear_frequency / units::kTwoPi;
+    if (r.frequency.empty()) return std::numeric_limits<double>::quiet_NaN();
+    if (q.quantity == "end_frequency") return r.frequency.back() / units::kTwoPi;
+    return *std::max_element(r.damping_ratio.begin(), r.damping_ratio.end());
+  };
   return type;
 }
 
