@@ -86,10 +86,12 @@ std::vector<model::Field> keys() {
             "Named [[forces]] applied as constant loads of value amplitude x cos(phase) (a mean "
             "torque that keeps a gear mesh in contact, a static preload).")
           .to_settings(&NonlinearResponseSettings::mean_forces),
-      choice("parameter", {"frequency", "force_level"},
-             "What the continuation varies: the fundamental over [frequency_start_hz, "
-             "frequency_stop_hz], or the factor on the `forces` from force_factor_start to "
-             "force_factor_stop at frequency_hz.")
+      choice(
+          "parameter", {"frequency", "force_level"},
+          "What the continuation varies: the fundamental over [frequency_start_hz, "
+          "frequency_stop_hz], or the factor on the excitation (`forces` and `mean_forces` alike) "
+          "from force_factor_start to "
+          "force_factor_stop at frequency_hz.")
           .def("\"frequency\"")
           .to_settings_enum(&NonlinearResponseSettings::parameter,
                             {ContinuationParameter::Frequency, ContinuationParameter::ForceLevel}),
@@ -102,10 +104,10 @@ std::vector<model::Field> keys() {
       number("frequency_hz", kHertz, "Fixed fundamental of a force-level continuation.")
           .gt(0)
           .to_settings(&NonlinearResponseSettings::frequency),
-      number("force_factor_start", kNoUnit, "First factor on the forces (force_level).")
+      number("force_factor_start", kNoUnit, "First factor on the excitation (force_level).")
           .def("0.0")
           .to_settings(&NonlinearResponseSettings::level_start),
-      number("force_factor_stop", kNoUnit, "Last factor on the forces (force_level).")
+      number("force_factor_stop", kNoUnit, "Last factor on the excitation (force_level).")
           .def("1.0")
           .to_settings(&NonlinearResponseSettings::level_stop),
       integer("harmonics",
