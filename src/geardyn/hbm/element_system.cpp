@@ -200,18 +200,20 @@ Eigen::VectorXd ElementHarmonicBalance::residual(const Eigen::VectorXd& X, doubl
 double ElementHarmonicBalance::residual_scale(const Eigen::VectorXd& X, double omega) const {
   const int s = basis_.size(), n = system_.dofs();
   const Eigen::Map<const Eigen::MatrixXd> Xs(X.data(), s, n);
-  const double stiffness_force = (system_.K * Xs.transpose()).norm();
+  const Eigen::MatrixXd Xt = Xs.transpose();
+  const double stiffness_force = (system_.K * Xt).norm();
   // A structure held by its elements alone (K = 0: a gear pair held by its mesh) is judged
-  // against the elements' forces.
-  double element_force = 0.0;
-  for (std::size_t e = 0; e < system_.elements.size(); ++e) {
-    const auto& placed = system_.elements[e];
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(placed.element->size() * s);
-    placed.element->harmonic_force(basis_, element_coordinates(X, static_cast<int>(e)), omega, f,
-                                   nullptr, nullptr);
-    element_force = std::max(element_force, f.norm());
+  // against its inertia forces (n w)^2 M X_n, which the elements' forces balance; no AFT here,
+  // this runs at every Newton check.
+  double inertia = 0.0;
+  for (int h = 1; h <= basis_.harmonics(); ++h) {
+    const double hw2 = (h * omega) * (h * omega);
+    inertia += hw2 * hw2 *
+               ((system_.M * Xt.col(HarmonicBasis::cos_index(h))).squaredNorm() +
+                (system_.M * Xt.col(HarmonicBasis::sin_index(h))).squaredNorm());
   }
-  return std::max({std::abs(load_factor_) * F_ext_.norm(), stiffness_force, element_force,
+  const double inertia_force = std::sqrt(inertia);
+  return std::max({std::abs(load_factor_) * F_ext_.norm(), stiffness_force, inertia_force,
                    std::numeric_limits<double>::min()});
 }
 

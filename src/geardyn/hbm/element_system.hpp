@@ -61,7 +61,7 @@ class ElementHarmonicBalance final : public HarmonicSystem {
   /// R(X, omega) = D(omega) X + F_nl(X, omega) - lambda F_ext, lambda = load_factor().
   Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega, Eigen::MatrixXd* J = nullptr,
                            Eigen::VectorXd* dR_domega = nullptr) const override;
-  /// max(||lambda F_ext||, ||K X||, the largest element force, tiny).
+  /// max(||lambda F_ext||, ||K X||, ||(n omega)^2 M X_n||, tiny): no element is evaluated.
   double residual_scale(const Eigen::VectorXd& X, double omega) const override;
 
   void set_load_factor(double lambda) { load_factor_ = lambda; }

@@ -14,15 +14,13 @@ Eigen::VectorXd NonlinearElement::initial_state(const Eigen::VectorXd& /*u*/) co
 }
 
 Eigen::MatrixXd sampling_derivative(const HarmonicBasis& basis) {
-  const int n = basis.time_samples();
-  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(n, basis.size());
-  for (int j = 0; j < n; ++j) {
-    const double theta = units::kTwoPi * j / n;
-    for (int h = 1; h <= basis.harmonics(); ++h) {
-      // d/dtheta (a cos h theta + b sin h theta) = h (-a sin h theta + b cos h theta).
-      D(j, HarmonicBasis::cos_index(h)) = -h * std::sin(h * theta);
-      D(j, HarmonicBasis::sin_index(h)) = h * std::cos(h * theta);
-    }
+  // d/dtheta (a cos h theta + b sin h theta) = h (-a sin h theta + b cos h theta): the columns of
+  // the sampling matrix, swapped and scaled.
+  const Eigen::MatrixXd& Q = basis.sampling();
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(Q.rows(), Q.cols());
+  for (int h = 1; h <= basis.harmonics(); ++h) {
+    D.col(HarmonicBasis::cos_index(h)) = -h * Q.col(HarmonicBasis::sin_index(h));
+    D.col(HarmonicBasis::sin_index(h)) = h * Q.col(HarmonicBasis::cos_index(h));
   }
   return D;
 }
