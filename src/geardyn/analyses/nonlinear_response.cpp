@@ -182,6 +182,13 @@ void element_statistics(const hbm::ElementHarmonicBalance& hb,
     }
 }
 
+// Point i's Floquet verdict (Hill or monodromy); a failed eigen-solve is labelled "failed".
+void record_floquet(const hbm::FloquetResult& f, std::size_t i, NonlinearResponseResult& r) {
+  r.max_real_exponent[i] = f.max_real_part;
+  r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
+  r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
+}
+
 void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSettings& s,
                const std::vector<hbm::ContinuationPoint>& points, const Context& context,
                NonlinearResponseResult& r) {
@@ -206,9 +213,7 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
         throw context.error("stability", "a system the time march can integrate",
                             e.expected() + " not met: " + e.found(), "use stability = \"fold\"");
       }
-      r.max_real_exponent[i] = f.max_real_part;
-      r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
-      r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
+      record_floquet(f, i, r);
     }
     return;
   }
@@ -225,9 +230,7 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
     hb.residual(points[i].X, r.frequency[i], &J);
     const hbm::FloquetResult f = hbm::hill_stability(J, hb.system().M, hb.system().C,
                                                      hb.basis().harmonics(), r.frequency[i]);
-    r.max_real_exponent[i] = f.max_real_part;
-    r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
-    r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
+    record_floquet(f, i, r);
   }
 }
 
