@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geardyn/analyses/nonlinear_elements.hpp"
+#include "geardyn/analyses/nonlinear_forcing.hpp"
 #include "geardyn/analyses/nonlinear_response.hpp"
 #include "geardyn/core/units.hpp"
 #include "geardyn/hbm/element_system.hpp"
@@ -68,19 +70,19 @@ Eigen::MatrixXd excitation_of(const model::Model& model, const fe::LinearSystem&
 }
 
 // Scales of the arc length: the linear response's size over the range and the range itself.
-void set_scales(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSettings& s,
-                hbm::ContinuationOptions& o) {
+void set_scales(const ForcedBalance& forced, const hbm::ElementHarmonicBalance& hb,
+                const NonlinearResponseSettings& s, hbm::ContinuationOptions& o) {
   double x = 0.0;
-  if (s.parameter == ContinuationParameter::Frequency) {
+  if (s.parameter != ContinuationParameter::ForceLevel) {  // frequency or speed
     for (int k = 0; k <= 20; ++k) {
-      const double w = s.f_start + (s.f_stop - s.f_start) * k / 20.0;
-      if (w <= 0.0) continue;
+      const double p = o.omega_start + (o.omega_end - o.omega_start) * k / 20.0;
+      if (p <= 0.0) continue;
       try {
-        x = std::max(x, hb.linear_response(w).norm());
+        x = std::max(x, forced.linear_response(p).norm());
       } catch (...) {  // a singular linear structure at that frequency: no scale from it
       }
     }
-    o.omega_scale = s.f_stop - s.f_start;
+    o.omega_scale = o.omega_end - o.omega_start;
   } else {
     x = hb.linear_response(s.frequency).norm() * std::max(std::abs(s.level_stop), 1e-12);
     o.omega_scale = std::abs(s.level_stop - s.level_start);
@@ -150,7 +152,7 @@ std::vector<char> unstable_after(const std::vector<int>& turns, std::size_t poin
 }
 
 void record_point(const hbm::ElementHarmonicBalance& hb, const Eigen::MatrixXd& sensors_q,
-                  const hbm::ContinuationPoint& p, double omega, double level,
+                  const hbm::ContinuationPoint& p, double omega, double level, double scale,
                   NonlinearResponseResult& r) {
   const int s = hb.basis().size(), n = hb.system().dofs();
   const Eigen::Map<const Eigen::MatrixXd> Xs(p.X.data(), s, n);
@@ -158,7 +160,7 @@ void record_point(const hbm::ElementHarmonicBalance& hb, const Eigen::MatrixXd& 
   r.frequency.push_back(omega);
   r.level.push_back(level);
   r.iterations.push_back(p.iterations);
-  r.residual.push_back(p.residual / hb.residual_scale(p.X, omega));
+  r.residual.push_back(p.residual / scale);
 }
 
 void element_statistics(const hbm::ElementHarmonicBalance& hb,
@@ -189,7 +191,8 @@ void record_floquet(const hbm::FloquetResult& f, std::size_t i, NonlinearRespons
   r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
 }
 
-void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSettings& s,
+void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& forced,
+               const NonlinearResponseSettings& s,
                const std::vector<hbm::ContinuationPoint>& points, const Context& context,
                NonlinearResponseResult& r) {
   const std::size_t np = points.size();
@@ -201,6 +204,13 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
     return;
   }
   r.unstable.assign(np, 0);
+  // The balance of point i: the structure and excitation at its speed or frequency when they
+  // move with the parameter (nonlinear_forcing.hpp), else the one balance.
+  std::optional<hbm::ElementHarmonicBalance> moved;
+  auto at = [&](std::size_t i) -> const hbm::ElementHarmonicBalance& {
+    if (!forced.moves() || s.parameter == ContinuationParameter::ForceLevel) return hb;
+    return moved.emplace(forced.balance_at(points[i].omega));
+  };
   if (s.stability == NonlinearStability::Monodromy) {
     hbm::MonodromyOptions o;
     o.march.steps_per_period = 1024;
@@ -208,7 +218,7 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
       o.march.load_factor = r.level[i];
       hbm::FloquetResult f;
       try {
-        f = hbm::monodromy_stability(hb.system(), r.frequency[i], points[i].X, hb.basis(), o);
+        f = hbm::monodromy_stability(at(i).system(), r.frequency[i], points[i].X, hb.basis(), o);
       } catch (const InputError& e) {
         throw context.error("stability", "a system the time march can integrate",
                             e.expected() + " not met: " + e.found(), "use stability = \"fold\"");
@@ -227,9 +237,10 @@ void stability(const hbm::ElementHarmonicBalance& hb, const NonlinearResponseSet
   }
   Eigen::MatrixXd J;
   for (std::size_t i = 0; i < np; ++i) {
-    hb.residual(points[i].X, r.frequency[i], &J);
-    const hbm::FloquetResult f = hbm::hill_stability(J, hb.system().M, hb.system().C,
-                                                     hb.basis().harmonics(), r.frequency[i]);
+    const hbm::ElementHarmonicBalance& b = at(i);
+    b.residual(points[i].X, r.frequency[i], &J);
+    const hbm::FloquetResult f =
+        hbm::hill_stability(J, b.system().M, b.system().C, b.basis().harmonics(), r.frequency[i]);
     record_floquet(f, i, r);
   }
 }
@@ -275,7 +286,8 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
   const std::vector<BuiltNonlinearElement> elements =
       build_nonlinear_elements(model, system, context);
   const NonlinearCoordinates c = nonlinear_coordinates(system, s.speed, s.n_modes, context);
-  const Eigen::MatrixXd F = excitation_of(model, system, s);
+  const NonlinearForcing forcing = nonlinear_forcing(model, system, s, s.harmonics, context);
+  const Eigen::MatrixXd F = excitation_of(model, system, s) + forcing.fixed;
   const SensorRows sensors = nonlinear_sensor_rows(model, system, s.sensors, context);
   r.sensors = sensors.names;
   r.sensor_rotational = sensors.rotational;
@@ -293,43 +305,49 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
                         fmt::format("{}", s.time_samples));
   const hbm::ElementHarmonicBalance hb(placed_element_system(c, elements, F),
                                        hbm::HarmonicBasis(s.harmonics, r.time_samples));
+  const ForcedBalance forced(system, c, hb, forcing, s);
 
   hbm::ContinuationOptions o;
   const bool frequency = s.parameter == ContinuationParameter::Frequency;
-  o.omega_start = frequency ? s.f_start : s.level_start;
-  o.omega_end = frequency ? s.f_stop : s.level_stop;
+  const bool by_speed = s.parameter == ContinuationParameter::Speed;
+  o.omega_start = frequency ? s.f_start : by_speed ? s.speed_start : s.level_start;
+  o.omega_end = frequency ? s.f_stop : by_speed ? s.speed_stop : s.level_stop;
   o.step = s.step;
   o.max_step = s.max_step;
   o.max_points = s.max_points;
   o.tolerance = s.tolerance;
-  set_scales(hb, s, o);
+  set_scales(forced, hb, s, o);
   const Eigen::VectorXd X0 = Eigen::VectorXd::Zero(hb.size());
-  hbm::ContinuationResult curve;
-  if (frequency) {
-    curve = hbm::continue_in_frequency(hb, X0, o);
-    if (curve.status == Status::Ok) land_on_end(hb, o.omega_end, o.tolerance, curve.points);
-  } else {
-    const LevelSystem level(hb, s.frequency);
-    curve = hbm::continue_in_frequency(level, X0, o);
-    if (curve.status == Status::Ok) land_on_end(level, o.omega_end, o.tolerance, curve.points);
-  }
+  const LevelSystem level(hb, s.frequency);
+  const hbm::HarmonicSystem& traced = s.parameter == ContinuationParameter::ForceLevel
+                                          ? static_cast<const hbm::HarmonicSystem&>(level)
+                                          : forced;
+  hbm::ContinuationResult curve = hbm::continue_in_frequency(traced, X0, o);
+  if (curve.status == Status::Ok) land_on_end(traced, o.omega_end, o.tolerance, curve.points);
   if (curve.points.empty()) {
     throw NumericalError(
         context.name(),
         fmt::format("the harmonic balance could not start at {}: {}. Start where the response "
                     "is nearly linear (away from resonance, or at a lower force level), or give "
                     "the mean loads that close the contacts (mean_forces).",
-                    frequency ? fmt::format("{:.6g} Hz", s.f_start / units::kTwoPi)
-                              : fmt::format("force factor {:.6g}", s.level_start),
+                    frequency  ? fmt::format("{:.6g} Hz", s.f_start / units::kTwoPi)
+                    : by_speed ? fmt::format("{:.6g} rpm", s.speed_start * 60.0 / units::kTwoPi)
+                               : fmt::format("force factor {:.6g}", s.level_start),
                     curve.message));
   }
   const Eigen::MatrixXd sensors_q = sensors.rows * c.basis;
-  for (const auto& p : curve.points)
-    record_point(hb, sensors_q, p, frequency ? p.omega : s.frequency, frequency ? 1.0 : p.omega, r);
+  for (const auto& p : curve.points) {
+    const bool level_p = s.parameter == ContinuationParameter::ForceLevel;
+    record_point(hb, sensors_q, p, level_p ? s.frequency : forced.fundamental(p.omega),
+                 level_p ? p.omega : 1.0, traced.residual_scale(p.X, p.omega), r);
+    r.speed.push_back(level_p ? s.speed : forced.speed(p.omega));
+  }
   element_statistics(hb, curve.points, r);
-  r.turning_points = turning_points(frequency ? r.frequency : r.level,
+  r.turning_points = turning_points(frequency  ? r.frequency
+                                    : by_speed ? r.speed
+                                               : r.level,
                                     1e-3 * std::abs(o.omega_end - o.omega_start));
-  stability(hb, s, curve.points, context, r);
+  stability(hb, forced, s, curve.points, context, r);
   r.loop_point = largest_point(r);
   if (r.loop_point >= 0)
     for (std::size_t e = 0; e < elements.size(); ++e)

@@ -32,7 +32,9 @@
 
 namespace geardyn::analyses {
 
-enum class ContinuationParameter { Frequency, ForceLevel };
+enum class ContinuationParameter { Frequency, ForceLevel, Speed };
+/// Direction of a base motion (nonlinear_forcing.hpp): none, a global axis or a rotation about it.
+enum class BaseMotion { None, X, Y, Z, Rx, Ry, Rz };
 enum class NonlinearStability { Fold, Hill, Monodromy };
 
 struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> {
@@ -53,6 +55,13 @@ struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> 
   int max_points = 5000;
   double tolerance = 1e-9;
   NonlinearStability stability = NonlinearStability::Fold;
+  // Unbalance, base motion and the speed continuation (nonlinear_forcing.hpp).
+  std::vector<std::string> unbalances;           ///< [[unbalances]]: m e (rho W)^2
+  double speed_start = kNaN, speed_stop = kNaN;  ///< speed range [rad/s] (speed)
+  double order = 1.0;                            ///< fundamental = order x speed (speed)
+  BaseMotion base_motion = BaseMotion::None;
+  double base_acceleration = kNaN;  ///< amplitude [m/s^2 or rad/s^2]
+  double base_displacement = kNaN;  ///< amplitude [m or rad]
 };
 
 struct NonlinearResponseResult {
@@ -71,6 +80,7 @@ struct NonlinearResponseResult {
   // Per continuation point.
   std::vector<double> frequency;  ///< fundamental [rad/s]
   std::vector<double> level;      ///< force factor
+  std::vector<double> speed;      ///< reference speed [rad/s]
   std::vector<int> iterations;
   std::vector<double> residual;                      ///< relative residual at convergence
   std::vector<Eigen::MatrixXd> sensor_coefficients;  ///< sensors x (2H+1) per point

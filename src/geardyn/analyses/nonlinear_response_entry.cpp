@@ -20,8 +20,49 @@ using model::Analysis;
 using model::Ref;
 using model::TableContext;
 
+// The speed range of parameter = "speed" (and no speed keys otherwise).
+void finish_speed(const NonlinearResponseSettings& s, const TableContext& t) {
+  const bool by_speed = s.parameter == ContinuationParameter::Speed;
+  for (const char* key : {"speed_start_rpm", "speed_stop_rpm"}) {
+    if (by_speed && !t.has(key))
+      t.fail(key, "the speed range of the continuation (parameter = \"speed\")", "none");
+    if (!by_speed && t.has(key))
+      t.fail(key, "no speed range unless parameter = \"speed\"", "one",
+             "give parameter = \"speed\" to trace the response over the speed");
+  }
+  if (!by_speed && t.has("order"))
+    t.fail("order", "no order unless parameter = \"speed\"", "one",
+           "the order ties the fundamental to the speed of a speed continuation");
+  if (!by_speed) return;
+  for (const char* key : {"frequency_hz", "frequency_start_hz", "frequency_stop_hz"})
+    if (t.has(key))
+      t.fail(key, "no frequency with parameter = \"speed\" (the fundamental is order x speed)",
+             "one");
+  if (!(s.speed_stop > s.speed_start))
+    t.fail(
+        "speed_stop_rpm",
+        fmt::format("a speed > speed_start_rpm = {} rpm", value_text(s.speed_start / kRpm.to_si)),
+        fmt::format("{} rpm", value_text(s.speed_stop / kRpm.to_si)));
+}
+
+// base_motion with exactly one of its amplitudes.
+void finish_base_motion(const NonlinearResponseSettings& s, const TableContext& t) {
+  const bool a = t.has("base_acceleration"), d = t.has("base_displacement");
+  if (s.base_motion == BaseMotion::None) {
+    for (const char* key : {"base_acceleration", "base_displacement"})
+      if (t.has(key)) t.fail(key, "an amplitude together with base_motion", "no base_motion");
+    return;
+  }
+  if (a == d)
+    t.fail(a ? "base_displacement" : "base_motion",
+           "one amplitude of the base motion: base_acceleration or base_displacement",
+           a ? "both" : "none");
+}
+
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<NonlinearResponseSettings>();
+  finish_speed(s, t);
+  finish_base_motion(s, t);
   if (s.parameter == ContinuationParameter::Frequency) {
     for (const char* key : {"frequency_start_hz", "frequency_stop_hz"})
       if (!t.has(key))
@@ -34,7 +75,7 @@ void finish(Analysis& a, const TableContext& t) {
              fmt::format("a frequency > frequency_start_hz = {} Hz",
                          value_text(s.f_start / kHertz.to_si)),
              fmt::format("{} Hz", value_text(s.f_stop / kHertz.to_si)));
-  } else {
+  } else if (s.parameter == ContinuationParameter::ForceLevel) {
     if (!t.has("frequency_hz"))
       t.fail("frequency_hz", "the fixed fundamental of a force-level continuation", "none");
     for (const char* key : {"frequency_start_hz", "frequency_stop_hz"})
@@ -59,13 +100,15 @@ void check(const Analysis& a, const std::string& path, const model::ModelCheck& 
   check.check_named(path + ".mean_forces", s.mean_forces, model::names_of(m.forces), "force",
                     "forces");
   check.check_named(path + ".sensors", s.sensors, model::names_of(m.sensors), "sensor", "sensors");
+  check.check_named(path + ".unbalances", s.unbalances, model::names_of(m.unbalances), "unbalance",
+                    "unbalances");
   const bool mesh =
       std::any_of(m.nonlinear_elements.begin(), m.nonlinear_elements.end(),
                   [](const auto& e) { return e.kind == model::NonlinearElementKind::GearMesh; });
-  if (s.forces.empty() && !mesh)
+  if (s.forces.empty() && !mesh && s.unbalances.empty() && s.base_motion == BaseMotion::None)
     check.fail(path + ".forces",
-               "the forces that excite the structure (or a gear_mesh element "
-               "whose unloaded TE does)",
+               "the forces that excite the structure (or unbalances, a base_motion, or a "
+               "gear_mesh element whose unloaded TE does)",
                "none");
   if (m.nonlinear_elements.empty())
     check.fail(path + ".type",
@@ -87,14 +130,50 @@ std::vector<model::Field> keys() {
             "torque that keeps a gear mesh in contact, a static preload).")
           .to_settings(&NonlinearResponseSettings::mean_forces),
       choice(
-          "parameter", {"frequency", "force_level"},
+          "parameter", {"frequency", "force_level", "speed"},
           "What the continuation varies: the fundamental over [frequency_start_hz, "
-          "frequency_stop_hz], or the factor on the excitation (`forces` and `mean_forces` alike) "
-          "from force_factor_start to "
-          "force_factor_stop at frequency_hz.")
+          "frequency_stop_hz], the factor on the excitation (`forces`, `mean_forces`, "
+          "`unbalances` and `base_motion` alike) from force_factor_start to force_factor_stop at "
+          "frequency_hz, or the speed over [speed_start_rpm, speed_stop_rpm] with the fundamental "
+          "order x speed, the speed-dependent bearings, the gyroscopic terms and the unbalance "
+          "force m e W^2 at each speed.")
           .def("\"frequency\"")
           .to_settings_enum(&NonlinearResponseSettings::parameter,
-                            {ContinuationParameter::Frequency, ContinuationParameter::ForceLevel}),
+                            {ContinuationParameter::Frequency, ContinuationParameter::ForceLevel,
+                             ContinuationParameter::Speed}),
+      number("speed_start_rpm", kRpm, "First speed (parameter = speed).")
+          .gt(0)
+          .to_settings(&NonlinearResponseSettings::speed_start),
+      number("speed_stop_rpm", kRpm, "Last speed (parameter = speed; > speed_start_rpm).")
+          .gt(0)
+          .to_settings(&NonlinearResponseSettings::speed_stop),
+      number("order", kNoUnit,
+             "Fundamental of a speed continuation as a multiple of the speed: w = order x W "
+             "(an unbalance on a node of speed ratio rho acts on harmonic rho / order; a "
+             "gear_mesh element's fundamental is its mesh order, teeth x speed ratio).")
+          .def("1.0")
+          .gt(0)
+          .to_settings(&NonlinearResponseSettings::order),
+      names("unbalances", Ref::Unbalance,
+            "Named [[unbalances]]: the rotating force m e (rho W)^2 of the `unbalance` analysis. "
+            "With parameter = speed it follows the speed (harmonic rho / order); otherwise it "
+            "acts at the fundamental with its amplitude at the reference speed speed_rpm.")
+          .to_settings(&NonlinearResponseSettings::unbalances),
+      choice("base_motion", {"x", "y", "z", "rx", "ry", "rz"},
+             "Harmonic motion of the ground along a global axis or about it (through the "
+             "centroid of the nodes), a_g = Re(A e^{i w t}): the effective force -M r a_g in "
+             "coordinates relative to the ground (r the rigid-body motion of the direction); "
+             "the sensors read the motion relative to the ground.")
+          .to_settings_enum(&NonlinearResponseSettings::base_motion,
+                            {BaseMotion::X, BaseMotion::Y, BaseMotion::Z, BaseMotion::Rx,
+                             BaseMotion::Ry, BaseMotion::Rz}),
+      number("base_acceleration", kNoUnit,
+             "Acceleration amplitude A of the base motion [m/s^2; rad/s^2 for a rotation].")
+          .to_settings(&NonlinearResponseSettings::base_acceleration),
+      number("base_displacement", kNoUnit,
+             "Displacement amplitude D of the base motion [m; rad for a rotation]: A = -w^2 D "
+             "at the fundamental w.")
+          .to_settings(&NonlinearResponseSettings::base_displacement),
       number("frequency_start_hz", kHertz, "First fundamental frequency (parameter = frequency).")
           .gt(0)
           .to_settings(&NonlinearResponseSettings::f_start),

@@ -21,12 +21,18 @@ bool by_frequency(const NonlinearResponseResult& r) {
   return r.parameter == ContinuationParameter::Frequency;
 }
 
-// The continuation parameter of point i as plotted: Hz or the force factor.
+bool by_speed(const NonlinearResponseResult& r) {
+  return r.parameter == ContinuationParameter::Speed;
+}
+
+// The continuation parameter of point i as plotted: Hz, rpm or the force factor.
 double abscissa(const NonlinearResponseResult& r, std::size_t i) {
+  if (by_speed(r)) return r.speed[i] * 60.0 / units::kTwoPi;
   return by_frequency(r) ? r.frequency[i] / units::kTwoPi : r.level[i];
 }
 
 std::string abscissa_label(const NonlinearResponseResult& r) {
+  if (by_speed(r)) return "speed [rpm]";
   return by_frequency(r) ? "fundamental frequency [Hz]" : "force factor [-]";
 }
 
@@ -51,6 +57,11 @@ Table response_table(const NonlinearResponseResult& r) {
   t.add("point", "", point);
   t.add("frequency_hz", "Hz", hz);
   t.add("force_factor", "", r.level);
+  if (by_speed(r)) {
+    std::vector<double> rpm(np);
+    for (std::size_t i = 0; i < np; ++i) rpm[i] = abscissa(r, i);
+    t.add("speed_rpm", "rpm", rpm);
+  }
   t.add("stable", "", stable);
   t.add_text("instability", r.instability);
   if (std::any_of(r.max_real_exponent.begin(), r.max_real_exponent.end(),
