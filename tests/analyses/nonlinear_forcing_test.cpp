@@ -105,6 +105,34 @@ TEST(NonlinearForcing, LinearJeffcottOverSpeedEqualsTheUnbalanceAnalysis) {
   }
 }
 
+// At a fixed speed the unbalance is a force at the fundamental of amplitude m e W_ref^2: where
+// the frequency continuation ends on w = W_ref it is the unbalance response at W_ref.
+TEST(NonlinearForcing, FrequencyContinuationAtAFixedSpeedEndsOnTheUnbalanceResponse) {
+  const double m = 10.0, k = 1e6, c = 2.0 * 0.02 * std::sqrt(k * m), me = 1e-4;
+  model::Model model = harmonic_test::jeffcott(m, k, k, c, me);
+  model::NonlinearElementSpec stop =
+      element("stop", model::NonlinearElementKind::Unilateral, "disk", {1.0, 0.0, 0.0}, 1e6);
+  stop.gap = 1.0;
+  model.nonlinear_elements.push_back(stop);
+  const fe::LinearSystem system = fe::assemble(model);
+  const double W = 1.2 * std::sqrt(k / m);
+  NonlinearResponseSettings s = speed_sweep(0.0, 0.0);
+  s.parameter = ContinuationParameter::Frequency;
+  s.speed = W;
+  s.f_start = 0.5 * W;
+  s.f_stop = W;
+  const NonlinearResponseResult r =
+      run_nonlinear_response(model, s, Context("nl").with_system(&system));
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  ASSERT_NEAR(r.frequency.back(), W, 1e-9 * W);
+  UnbalanceSettings us;
+  us.speeds = {W};
+  const UnbalanceResult lin = run_unbalance(model, us, Context("unbalance").with_system(&system));
+  const Complex ref = lin.response[0](0, 0);
+  // As above: Newton to 1e-12 of the force, condition below 25.
+  EXPECT_LE(std::abs(first_harmonic(r, r.frequency.size() - 1, 0) - ref), 1e-8 * std::abs(ref));
+}
+
 TEST(NonlinearForcing, DuffingRotorOverSpeedMatchesTheSingleHarmonicRelation) {
   // m 1 kg, k 1 N/m, c 0.05 N s/m, alpha 0.1 N/m^3 in x and y, m e 0.1 kg m: a hardening
   // resonance bent over to about 1.2 rad/s with two folds.
@@ -143,6 +171,17 @@ TEST(NonlinearForcing, DuffingRotorOverSpeedMatchesTheSingleHarmonicRelation) {
   // Jump up and jump down: two turning points of the speed, the branch between them unstable.
   EXPECT_EQ(r.turning_points.size(), 2u);
   EXPECT_GT(std::count(r.unstable.begin(), r.unstable.end(), 1), 0);
+  // Hill's method on the balance at each point's speed finds the same unstable branch: the
+  // middle branch's real multiplier > 1 (a saddle); the verdicts may differ only at the two
+  // fold points themselves, where the multiplier is 1 to round-off.
+  NonlinearResponseSettings hill = speed_sweep(0.3, 2.5);
+  hill.stability = NonlinearStability::Hill;
+  const NonlinearResponseResult h =
+      run_nonlinear_response(model, hill, Context("nl").with_system(&system));
+  ASSERT_EQ(h.unstable.size(), r.unstable.size());
+  int differ = 0;
+  for (std::size_t i = 0; i < r.unstable.size(); ++i) differ += h.unstable[i] != r.unstable[i];
+  EXPECT_LE(differ, 2);
 }
 
 // dR/dW of the speed continuation against central differences on the Friswell et al. (2010,
@@ -335,6 +374,20 @@ frequency_start_hz = 0.1
 frequency_stop_hz = 0.2
 )");
   EXPECT_EQ(both.key_path(), "analyses[0].base_displacement");
+  // A direction the model has no DOF along (dofs = "axial": uz only) is found when run.
+  const auto dir = test::fresh_dir("nonlinear_forcing_no_dof");
+  const model::Model m = test::load(dir, base_model(kCubic, R"(base_motion = "x"
+base_acceleration = 1.0
+frequency_start_hz = 0.1
+frequency_stop_hz = 0.2
+)"));
+  try {
+    (void)run_file(m);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key_path(), "analyses[0].base_motion");
+    EXPECT_GT(e.where().line, 0);
+  }
 }
 
 }  // namespace
