@@ -122,7 +122,8 @@ std::vector<model::Field> keys() {
       names("forces", Ref::Force,
             "Named [[forces]] acting at the fundamental (amplitude and phase: f = Re(A e^{i "
             "phi} e^{i w t})).")
-          .note("the excitation is the unloaded TE of gear_mesh elements")
+          .note("the excitation is the unbalances, the base motion or the unloaded TE of gear_mesh "
+                "elements")
           .min_items(1)
           .to_settings(&NonlinearResponseSettings::forces),
       names("mean_forces", Ref::Force,
@@ -281,7 +282,8 @@ AnalysisType nonlinear_response_analysis() {
     auto d = declaration<NonlinearResponseSettings>(
         "nonlinear_response",
         "Nonlinear forced response by harmonic balance with the [[nonlinear_elements]]: "
-        "continuation over frequency or force level through turning points, amplitude per "
+        "forcing by named forces, unbalances, base motion or a gear mesh's TE; continuation over "
+        "frequency, force level or speed through turning points, amplitude per "
         "harmonic and RMS per sensor, stability, energy dissipated per element and hysteresis "
         "loops.");
     d.fields = keys();
