@@ -91,6 +91,12 @@ TEST(NonlinearForcing, LinearJeffcottOverSpeedEqualsTheUnbalanceAnalysis) {
   ASSERT_EQ(r.status, Status::Ok) << r.message;
   ASSERT_GT(r.speed.size(), 20u);
   EXPECT_NEAR(r.speed.back(), 3.0 * wn, 1e-9 * wn);
+  // The table gives each point's speed in rpm.
+  const AnalysisOutput out = nonlinear_response_output(model, speed_sweep(0.3 * wn, 3.0 * wn), r,
+                                                       Context("nl").with_system(&system));
+  const auto& rpm = test::table(out, "nonlinear_response").column("speed_rpm").numbers;
+  ASSERT_EQ(rpm.size(), r.speed.size());
+  EXPECT_NEAR(rpm.back(), 3.0 * wn * 60.0 / kTwoPi, 1e-9 * rpm.back());
   UnbalanceSettings us;
   us.speeds = r.speed;
   const UnbalanceResult lin = run_unbalance(model, us, Context("unbalance").with_system(&system));

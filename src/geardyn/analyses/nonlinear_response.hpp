@@ -2,9 +2,11 @@
 // Nonlinear frequency response by harmonic balance (docs/theory.md §19): the model's linear
 // structure (any model: lumped points, rotors, joined reduced components) with the
 // [[nonlinear_elements]] placed between its DOFs, excited by named harmonic forces at the
-// fundamental (plus constant loads), solved for periodic steady states with H harmonics by the
-// alternating frequency-time method and traced by pseudo-arc-length continuation over the
-// excitation frequency or the force level, passing turning points.
+// fundamental (plus constant loads), unbalances, a base motion (nonlinear_forcing.hpp) or a gear
+// mesh's TE, solved for periodic steady states with H harmonics by the alternating
+// frequency-time method and traced by pseudo-arc-length continuation over the excitation
+// frequency, the force level or the speed (K(W), C(W), W G and the unbalance force following
+// it), passing turning points.
 //
 // Coordinates: the system's DOFs (n_modes = 0, exact for any damping, gyroscopic terms at the
 // reference speed and hysteretic loss), or its n_modes lowest undamped modes at the reference

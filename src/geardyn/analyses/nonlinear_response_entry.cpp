@@ -257,18 +257,23 @@ double scalar(const Outcome& o, const ScalarRequest& q, std::string& unit) {
   const auto& r = result_of<NonlinearResponseResult>(o);
   const int s = sensor_index(r, q.sensor);
   unit = r.sensor_rotational[static_cast<std::size_t>(s)] ? "rad" : "m";
-  double best = -1.0, at = std::numeric_limits<double>::quiet_NaN();
+  double best = -1.0, at = std::numeric_limits<double>::quiet_NaN(), at_speed = at;
   for (std::size_t i = 0; i < r.sensor_coefficients.size(); ++i) {
     const Eigen::VectorXd c = r.sensor_coefficients[i].row(s).transpose();
     const double v = q.quantity == "peak_rms" ? series_rms(c) : harmonic_amplitude(c, 1);
     if (v > best) {
       best = v;
       at = r.frequency[i];
+      at_speed = r.speed[i];
     }
   }
   if (q.quantity == "peak_location") {
     unit = "Hz";
     return at / units::kTwoPi;
+  }
+  if (q.quantity == "peak_speed") {
+    unit = "rpm";
+    return at_speed * 60.0 / units::kTwoPi;
   }
   return best;
 }
@@ -304,6 +309,11 @@ AnalysisType nonlinear_response_analysis() {
                   {"peak_location",
                    "Hz",
                    "Fundamental frequency of the largest first-harmonic amplitude.",
+                   {"sensor"}},
+                  {"peak_speed",
+                   "rpm",
+                   "Speed of the largest first-harmonic amplitude (the reference speed unless "
+                   "parameter = \"speed\").",
                    {"sensor"}}};
   type.scalar = scalar;
   return type;
