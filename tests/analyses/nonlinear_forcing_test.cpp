@@ -316,6 +316,35 @@ tolerance = 1e-12
   }
 }
 
+// The same transmissibility traced over the speed from the model file: order 2 makes the
+// fundamental twice the speed (1.5 to 15 rpm: 0.05 to 0.5 Hz), the base force m w^2 D growing
+// with it (dR/dW = r dR/dw - 2 r w M r D).
+TEST(NonlinearForcing, BaseDisplacementOverSpeedWithAnOrder) {
+  const auto dir = test::fresh_dir("nonlinear_base_speed");
+  const model::Model m = test::load(dir, base_model(kFarStop, R"(base_motion = "z"
+base_displacement = 0.01
+parameter = "speed"
+speed_start_rpm = 1.5
+speed_stop_rpm = 15.0
+order = 2.0
+harmonics = 1
+time_samples = 16
+tolerance = 1e-12
+)"));
+  const Outcome o = run_file(m);
+  const auto& r = result_of<NonlinearResponseResult>(o);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  ASSERT_GT(r.frequency.size(), 20u);
+  EXPECT_NEAR(r.speed.back(), 15.0 * kTwoPi / 60.0, 1e-12);
+  for (std::size_t i = 0; i < r.frequency.size(); ++i) {
+    const double w = r.frequency[i], D = 0.01;
+    EXPECT_DOUBLE_EQ(w, 2.0 * r.speed[i]);
+    const Complex T = Complex(1.0, 0.05 * w) / Complex(1.0 - w * w, 0.05 * w);
+    // As above.
+    EXPECT_LE(std::abs((first_harmonic(r, i, 0) + D) / D - T), 1e-8 * std::abs(T)) << i;
+  }
+}
+
 TEST(NonlinearForcing, DuffingUnderBaseAccelerationMatchesTheSingleHarmonicRelation) {
   const auto dir = test::fresh_dir("nonlinear_base_duffing");
   // a_g = -0.18 m/s^2: the effective force -m a_g = 0.18 N of the Duffing problem in

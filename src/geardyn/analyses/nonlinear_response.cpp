@@ -90,6 +90,23 @@ void set_scales(const ForcedBalance& forced, const hbm::ElementHarmonicBalance& 
   o.x_scale = std::isfinite(x) && x > 0.0 ? x : 1.0;
 }
 
+// The range, steps, tolerance and scales of the continuation over the settings' parameter.
+hbm::ContinuationOptions continuation_options(const ForcedBalance& forced,
+                                              const hbm::ElementHarmonicBalance& hb,
+                                              const NonlinearResponseSettings& s) {
+  hbm::ContinuationOptions o;
+  const bool frequency = s.parameter == ContinuationParameter::Frequency;
+  const bool by_speed = s.parameter == ContinuationParameter::Speed;
+  o.omega_start = frequency ? s.f_start : by_speed ? s.speed_start : s.level_start;
+  o.omega_end = frequency ? s.f_stop : by_speed ? s.speed_stop : s.level_stop;
+  o.step = s.step;
+  o.max_step = s.max_step;
+  o.max_points = s.max_points;
+  o.tolerance = s.tolerance;
+  set_scales(forced, hb, s, o);
+  return o;
+}
+
 // The continuation stops at the first point past the end of the range: that point is moved
 // onto the end by interpolating between the last two and a Newton correction at the fixed
 // parameter (kept as traced when Newton does not converge).
@@ -307,16 +324,9 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
                                        hbm::HarmonicBasis(s.harmonics, r.time_samples));
   const ForcedBalance forced(system, c, hb, forcing, s);
 
-  hbm::ContinuationOptions o;
   const bool frequency = s.parameter == ContinuationParameter::Frequency;
   const bool by_speed = s.parameter == ContinuationParameter::Speed;
-  o.omega_start = frequency ? s.f_start : by_speed ? s.speed_start : s.level_start;
-  o.omega_end = frequency ? s.f_stop : by_speed ? s.speed_stop : s.level_stop;
-  o.step = s.step;
-  o.max_step = s.max_step;
-  o.max_points = s.max_points;
-  o.tolerance = s.tolerance;
-  set_scales(forced, hb, s, o);
+  const hbm::ContinuationOptions o = continuation_options(forced, hb, s);
   const Eigen::VectorXd X0 = Eigen::VectorXd::Zero(hb.size());
   const LevelSystem level(hb, s.frequency);
   const hbm::HarmonicSystem& traced = s.parameter == ContinuationParameter::ForceLevel
