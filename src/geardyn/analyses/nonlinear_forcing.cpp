@@ -24,7 +24,7 @@ constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 
 // Coefficients F (n_eq x columns, HarmonicBasis layout per equation) on the coordinates
 // (basis^T F) in the unknowns' layout of a balance with s coefficients per coordinate; columns
-// beyond s are dropped (the caller checked they are zero).
+// beyond s are dropped, as the fixed excitation's are (a balance of H = 0 has no fundamental).
 Eigen::VectorXd in_unknowns(const Eigen::MatrixXd& F, const Eigen::MatrixXd& basis, int s) {
   const Eigen::MatrixXd Fq = basis.transpose() * F;
   const auto keep = std::min<Eigen::Index>(Fq.cols(), s);
