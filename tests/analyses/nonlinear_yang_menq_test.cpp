@@ -11,10 +11,13 @@
 // prediction of resonant response of structures having 3D frictional constraint", J. Sound Vib.
 // 217 (1998) 909-925). The force (8 cos wt, 8 cos wt) N drives x and y in phase, so the normal
 // load oscillates with the tangential motion, as in a blade root or an under-platform damper.
-// Over w = 62.8 to 251 rad/s the contact goes through every regime of the law: full stick at the
-// ends, stick-slip around the tangential resonance (100 rad/s slipping, 141 stuck), and partial
-// lift-off around the normal resonance (200 rad/s in contact, 141 lifted; a softening fold at
-// 170-180 rad/s, where lift-off takes up to 55 % of the period).
+// Over w = 62.8 to 251 rad/s the contact goes through every regime of the law: stick at the ends
+// (at 62.8 rad/s after an elastic shakedown: the normal load is least when the tangential force
+// is most negative, T = -5 N against mu N = 4.7 N, so the first periods slip until the mean
+// tangential force has shifted enough that the limit is only touched), stick-slip around the
+// tangential resonance (100 rad/s slipping, 141 stuck), and partial lift-off around the normal
+// resonance (200 rad/s in contact, 141 lifted; a softening fold at 170-180 rad/s, where lift-off
+// takes up to 55 % of the period).
 //
 // Reference: hbm::march_to_periodic (Newmark average acceleration, 4096 steps per period, the
 // element's own time law with its return mapping) on the structure and elements that the
@@ -24,8 +27,8 @@
 // From rest where the response is single-valued, from the balance's solution inside the fold (the
 // march then stays on that branch only if it is a stable periodic solution; it would leave a wrong
 // one). Compared: the harmonics n = 1..H of both DOFs (a stuck contact keeps any mean tangential
-// force, so the mean depends on the history: the balance sticks about the mean position, the
-// march about where it stuck first).
+// force, so the mean depends on the history: the balance's loop and the march from rest shake
+// down to different mean forces).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -201,7 +204,7 @@ TEST(NonlinearYangMenq, HarmonicBalanceMatchesTheTimeMarchInEveryRegime) {
     const std::string regime = k.regime;
     // The point is in the regime it stands for (shares of the period).
     if (regime == "stick") {
-      // (one of the 2048 samples, 5e-4, is counted as slip here: it grazes the limit)
+      // After the shakedown one of the 2048 samples, 5e-4 of the period, touches the limit.
       EXPECT_GE(r.stick(i, 0), 0.999);
       EXPECT_EQ(r.open(i, 0), 0.0);
     }
