@@ -288,3 +288,88 @@ TEST(NonlinearCondensed, SpeedContinuationIsALocatedError) {
 
 }  // namespace
 }  // namespace geardyn::analyses
+
+namespace geardyn::analyses {
+namespace {
+
+// A free-free axial chain of 5 unit masses and unit springs (one rigid-body mode, K singular)
+// with a Jenkins element between masses 2 and 4 and a unit force at mass 1: with 3 modes kept
+// the residual flexibility must be the static term of the 2 modes left out,
+// B (phi_4 phi_4^T / w_4^2 + phi_5 phi_5^T / w_5^2) B^T, from a dense eigen-decomposition of
+// the 5 x 5 problem (the reference), and the mean (harmonic 0) must leave out the rigid-body mode
+// (inertia relief).
+TEST(NonlinearCondensed, FreeChainResidualFlexibilityIsTheModesLeftOut) {
+  std::string text = "version = 1\ndofs = \"axial\"\n";
+  for (int i = 1; i <= 5; ++i)
+    text += fmt::format(
+        "[[nodes]]\nname = \"m{0}\"\nposition = [{0}.0, 0.0, 0.0]\n[[point_masses]]\nnode = "
+        "\"m{0}\"\nmass = 1.0\n[[sensors]]\nname = \"q{0}\"\nnode = \"m{0}\"\ndof = \"uz\"\n",
+        i);
+  for (int i = 1; i < 5; ++i)
+    text += fmt::format("[[bearings]]\nnode = \"m{}\"\nnode2 = \"m{}\"\nkzz = 1.0\nczz = 0.01\n",
+                        i + 1, i);
+  text += R"([[forces]]
+name = "F"
+node = "m1"
+dof = "uz"
+amplitude = 1.0
+[[nonlinear_elements]]
+name = "slider"
+type = "jenkins"
+node1 = "m2"
+node2 = "m4"
+direction = [0.0, 0.0, 1.0]
+stiffness = 1.0
+slip_force = 0.1
+[[analyses]]
+name = "nl"
+type = "nonlinear_response"
+forces = ["F"]
+coordinates = "condensed"
+n_modes = 3
+frequency_start_hz = 0.1
+frequency_stop_hz = 0.2
+harmonics = 2
+)";
+  const auto dir = test::fresh_dir("condensed_free_chain");
+  const model::Model m = test::load(dir, text);
+  check_inputs(m, {});
+  const fe::LinearSystem system = assembly::build_system(m, nullptr);
+  Context c(m, m.analyses[0]);
+  c.with_system(&system);
+  const auto& s = m.analyses[0].settings_of<NonlinearResponseSettings>();
+  const auto elements = build_nonlinear_elements(m, system, c);
+  const NonlinearCoordinates modes = nonlinear_coordinates(system, s.speed, s.n_modes, c);
+  Eigen::MatrixXd F = Eigen::MatrixXd::Zero(system.size(), 3);
+  F.col(1) = system.unit_load(system.dofs.node_index("m1"), model::Component::Uz);
+  const SensorRows sensors = nonlinear_sensor_rows(m, system, s.sensors, c);
+  std::vector<std::string> notes;
+  const auto h = condensed_receptances({system, elements, modes, F, sensors}, s, {}, c, notes);
+
+  const Eigen::MatrixXd K(system.K), M(system.M);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(K, M);
+  const Eigen::MatrixXd& Phi = eig.eigenvectors();  // mass-normalised, ascending
+  const Eigen::MatrixXd& B = elements[0].B;
+  Eigen::MatrixXd reference = Eigen::MatrixXd::Zero(1, 1);
+  for (int r = 3; r < 5; ++r)
+    reference += (B * Phi.col(r)) * (B * Phi.col(r)).transpose() / eig.eigenvalues()[r];
+  ASSERT_EQ(h.size(), 3u);
+  // Round-off of a 5 x 5 eigen-decomposition and of the fixed point (settled to 1e-12): 1e-10.
+  EXPECT_NEAR(h[1].residual(0, 0).real(), reference(0, 0), 1e-10 * reference(0, 0));
+  EXPECT_NEAR(h[1].residual(0, 0).imag(), 0.0, 1e-14);
+  // Inertia relief: the mean has the 2 elastic modes kept, harmonics >= 1 all 3.
+  EXPECT_EQ(h[0].modes(), 2);
+  EXPECT_EQ(h[1].modes(), 3);
+  // The residual excitation: the same static term applied to the force at mass 1.
+  const Eigen::VectorXd f1 = F.col(1);
+  double r_f = 0.0;
+  for (int r = 3; r < 5; ++r)
+    r_f += (B * Phi.col(r))(0) * Phi.col(r).dot(f1) / eig.eigenvalues()[r];
+  EXPECT_NEAR(h[1].residual_excitation[0].real(), r_f, 1e-10 * std::abs(reference(0, 0)));
+  // And the whole curve runs through the rigid-body mode.
+  const Outcome o = run(m);
+  EXPECT_EQ(o.output.status, Status::Ok) << o.output.message;
+}
+
+}  // namespace
+}  // namespace geardyn::analyses
