@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <string>
@@ -239,6 +240,34 @@ TEST(NonlinearCondensed, TenThousandDofsRun) {
   ASSERT_GT(r.frequency.size(), 5u);
   // Every point converged (relative residual within the default Newton tolerance 1e-9).
   for (double x : r.residual) EXPECT_LE(x, 1e-9);
+  // The notes say what the condensed form did.
+  const auto& notes = o.output.notes;
+  EXPECT_TRUE(std::any_of(notes.begin(), notes.end(), [](const std::string& n) {
+    return n.find("Condensed form: the balance on the 20 relative coordinates") !=
+           std::string::npos;
+  }));
+}
+
+// stability = "hill" in the condensed form: the condensed Hill method (hbm/condensed_stability.hpp)
+// gives a verdict at every point of the 12-element beam's curve below the resonance, where the
+// response is the stable low branch.
+TEST(NonlinearCondensed, HillStabilityRuns) {
+  const auto dir = test::fresh_dir("condensed_hill");
+  const model::Model m = test::load(
+      dir, beam_model(kDivisions, two_elements(),
+                      "coordinates = \"condensed\"\nn_modes = 8\nfrequency_start_hz = 30.0\n"
+                      "frequency_stop_hz = 36.0\nharmonics = 3\nstability = \"hill\"\n"));
+  const Outcome o = run(m);
+  ASSERT_EQ(o.output.status, Status::Ok) << o.output.message;
+  const auto& r = result_of<NonlinearResponseResult>(o);
+  ASSERT_GT(r.frequency.size(), 2u);
+  for (std::size_t i = 0; i < r.frequency.size(); ++i) {
+    EXPECT_TRUE(std::isfinite(r.max_real_exponent[i])) << "point " << i;
+    EXPECT_NE(r.instability[i], "failed") << "point " << i;
+    // Below the first resonance, with no fold, every point is stable (Re lambda < 0).
+    EXPECT_EQ(r.unstable[i], 0) << "point " << i << ": " << r.max_real_exponent[i];
+  }
+  EXPECT_TRUE(r.turning_points.empty());
 }
 
 TEST(NonlinearCondensed, NModesBelowOneIsALocatedError) {
