@@ -11,6 +11,7 @@
 #include <cmath>
 #include <optional>
 
+#include "geardyn/analyses/nonlinear_condensed.hpp"
 #include "geardyn/analyses/nonlinear_elements.hpp"
 #include "geardyn/analyses/nonlinear_forcing.hpp"
 #include "geardyn/analyses/nonlinear_response.hpp"
@@ -107,6 +108,8 @@ hbm::ContinuationOptions continuation_options(const ForcedBalance& forced,
   return o;
 }
 
+}  // namespace
+
 // The continuation stops at the first point past the end of the range: that point is moved
 // onto the end by interpolating between the last two and a Newton correction at the fixed
 // parameter (kept as traced when Newton does not converge).
@@ -168,6 +171,8 @@ std::vector<char> unstable_after(const std::vector<int>& turns, std::size_t poin
   return u;
 }
 
+namespace {
+
 void record_point(const hbm::ElementHarmonicBalance& hb, const Eigen::MatrixXd& sensors_q,
                   const hbm::ContinuationPoint& p, double omega, double level, double scale,
                   NonlinearResponseResult& r) {
@@ -201,12 +206,16 @@ void element_statistics(const hbm::ElementHarmonicBalance& hb,
     }
 }
 
+}  // namespace
+
 // Point i's Floquet verdict (Hill or monodromy); a failed eigen-solve is labelled "failed".
 void record_floquet(const hbm::FloquetResult& f, std::size_t i, NonlinearResponseResult& r) {
   r.max_real_exponent[i] = f.max_real_part;
   r.unstable[i] = f.status == Status::Ok && !f.stable ? 1 : 0;
   r.instability[i] = f.status == Status::Ok ? hbm::to_string(f.kind) : "failed";
 }
+
+namespace {
 
 void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& forced,
                const NonlinearResponseSettings& s,
@@ -262,6 +271,8 @@ void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& force
   }
 }
 
+}  // namespace
+
 // The point of largest sensor RMS (or of the largest coefficient norm without sensors).
 int largest_point(const NonlinearResponseResult& r) {
   int best = -1;
@@ -277,8 +288,6 @@ int largest_point(const NonlinearResponseResult& r) {
   }
   return best;
 }
-
-}  // namespace
 
 double harmonic_amplitude(const Eigen::VectorXd& c, int n) {
   if (n == 0) return std::abs(c[0]);
@@ -306,6 +315,8 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
   const NonlinearForcing forcing = nonlinear_forcing(model, system, s, s.harmonics, context);
   const Eigen::MatrixXd F = excitation_of(model, system, s) + forcing.fixed;
   const SensorRows sensors = nonlinear_sensor_rows(model, system, s.sensors, context);
+  if (s.form == NonlinearForm::Condensed)
+    return run_nonlinear_condensed({system, elements, c, F, sensors}, s, context);
   r.sensors = sensors.names;
   r.sensor_rotational = sensors.rotational;
   for (const auto& e : elements) {

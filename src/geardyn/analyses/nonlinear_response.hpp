@@ -38,6 +38,10 @@ enum class ContinuationParameter { Frequency, ForceLevel, Speed };
 /// Direction of a base motion (nonlinear_forcing.hpp): none, a global axis or a rotation about it.
 enum class BaseMotion { None, X, Y, Z, Rx, Ry, Rz };
 enum class NonlinearStability { Fold, Hill, Monodromy };
+/// Coordinates of the balance: the DOFs, the lowest modes, or the elements' relative coordinates
+/// with the receptance (modes plus residual flexibility; nonlinear_condensed.hpp). Automatic:
+/// physical for n_modes = 0, modal otherwise (resolved when the model file is read).
+enum class NonlinearForm { Automatic, Physical, Modal, Condensed };
 
 struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -49,10 +53,11 @@ struct NonlinearResponseSettings : model::SettingsOf<NonlinearResponseSettings> 
   double frequency = kNaN;                     ///< fundamental [rad/s] (force_level)
   double level_start = 0.0, level_stop = 1.0;  ///< force factor range (force_level)
   int harmonics = 7;
-  int time_samples = 0;              ///< 0: automatic (hbm::default_time_samples)
-  int n_modes = 0;                   ///< 0: physical DOFs; > 0: that many modes
-  std::vector<std::string> sensors;  ///< empty: all
-  double step = 0.01;                ///< first arc-length step (scaled)
+  int time_samples = 0;                           ///< 0: automatic (hbm::default_time_samples)
+  int n_modes = 0;                                ///< 0: physical DOFs; > 0: that many modes
+  NonlinearForm form = NonlinearForm::Automatic;  ///< the `coordinates` key
+  std::vector<std::string> sensors;               ///< empty: all
+  double step = 0.01;                             ///< first arc-length step (scaled)
   double max_step = 0.05;
   int max_points = 5000;
   double tolerance = 1e-9;
@@ -71,8 +76,9 @@ struct NonlinearResponseResult {
   std::string message;
   ContinuationParameter parameter = ContinuationParameter::Frequency;
   int harmonics = 0, time_samples = 0;
-  int coordinates = 0;  ///< unknowns per harmonic coefficient (DOFs or modes)
-  bool modal = false;   ///< modal coordinates
+  int coordinates = 0;     ///< unknowns per harmonic coefficient (DOFs or modes)
+  bool modal = false;      ///< modal coordinates
+  bool condensed = false;  ///< the elements' coordinates (receptance form)
   double highest_mode_hz = std::numeric_limits<double>::quiet_NaN();  ///< modal form
   std::vector<std::string> sensors;
   std::vector<bool> sensor_rotational;

@@ -59,6 +59,30 @@ void finish_base_motion(const NonlinearResponseSettings& s, const TableContext& 
            a ? "both" : "none");
 }
 
+// The `coordinates` key against n_modes (absent: physical for n_modes = 0, modal otherwise).
+void finish_form(NonlinearResponseSettings& s, const TableContext& t) {
+  if (!t.has("coordinates"))
+    s.form = s.n_modes > 0 ? NonlinearForm::Modal : NonlinearForm::Physical;
+  if (s.form == NonlinearForm::Physical && s.n_modes > 0)
+    t.fail("n_modes", "0 with coordinates = \"physical\"", std::to_string(s.n_modes));
+  if (s.form != NonlinearForm::Physical && s.n_modes < 1)
+    t.fail("n_modes",
+           fmt::format("at least 1 mode with coordinates = \"{}\"",
+                       s.form == NonlinearForm::Modal ? "modal" : "condensed"),
+           std::to_string(s.n_modes));
+  if (s.form != NonlinearForm::Condensed) return;
+  if (s.parameter == ContinuationParameter::Speed)
+    t.fail("parameter", "\"frequency\" or \"force_level\" with coordinates = \"condensed\"",
+           "\"speed\"",
+           "the receptance is built once at the reference speed: use coordinates = \"modal\" "
+           "or \"physical\" to trace the speed");
+  if (s.parameter == ContinuationParameter::Frequency && t.has("base_displacement"))
+    t.fail("base_displacement",
+           "base_acceleration with coordinates = \"condensed\" and parameter = \"frequency\"",
+           "base_displacement",
+           "its force grows with the frequency squared; the condensed excitation is fixed");
+}
+
 void finish(Analysis& a, const TableContext& t) {
   auto& s = a.settings_of<NonlinearResponseSettings>();
   finish_speed(s, t);
@@ -88,6 +112,7 @@ void finish(Analysis& a, const TableContext& t) {
     t.fail("time_samples",
            fmt::format("at least 2 harmonics + 1 = {} samples per period", 2 * s.harmonics + 1),
            std::to_string(s.time_samples));
+  finish_form(s, t);
   if (s.max_step < s.step)
     t.fail("max_step", fmt::format("a step >= step = {}", value_text(s.step)),
            value_text(s.max_step));
@@ -206,10 +231,24 @@ std::vector<model::Field> keys() {
       integer("n_modes",
               "0: solve on the model's DOFs (exact, dense: up to 600 DOFs); > 0: on this many "
               "lowest modes at the reference speed (larger models; keep modes well above H x "
-              "the highest frequency).")
+              "the highest frequency), or with coordinates = \"condensed\" the modes kept in "
+              "the receptance.")
           .def("0")
           .ge(0)
           .to_settings(&NonlinearResponseSettings::n_modes),
+      choice("coordinates", {"physical", "modal", "condensed"},
+             "Coordinates of the balance: \"physical\" the model's DOFs (n_modes = 0); "
+             "\"modal\" its n_modes lowest modes (drops the static contribution of the higher "
+             "modes); \"condensed\" the nonlinear elements' relative coordinates only, through "
+             "the receptance of the n_modes lowest modes plus the residual flexibility of the "
+             "others (exact for the static part; any model size, unknowns: the elements' "
+             "coordinates x (2H + 1); modal damping from the diagonal of the modal damping "
+             "matrix; not with gyroscopic terms at speed, a loss factor, cross-coupled "
+             "bearings, parameter = \"speed\" or stability = \"monodromy\").")
+          .note("\"physical\" when n_modes = 0, \"modal\" otherwise")
+          .to_settings_enum(
+              &NonlinearResponseSettings::form,
+              {NonlinearForm::Physical, NonlinearForm::Modal, NonlinearForm::Condensed}),
       sensors_key().to_settings(&NonlinearResponseSettings::sensors),
       number("step", kNoUnit,
              "First continuation step, in the arc length scaled by the range and the linear "

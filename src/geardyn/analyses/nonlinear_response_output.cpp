@@ -283,7 +283,11 @@ std::vector<std::string> notes(const NonlinearResponseResult& r) {
       fmt::format("Harmonic balance with H = {} harmonics and {} time samples per period "
                   "(alternating frequency-time), {} {}; {} continuation points.",
                   r.harmonics, r.time_samples, r.coordinates,
-                  r.modal ? "modal coordinates" : "physical DOFs", r.frequency.size()));
+                  r.condensed ? "element coordinates (condensed)"
+                  : r.modal   ? "modal coordinates"
+                              : "physical DOFs",
+                  r.frequency.size()));
+  n.insert(n.end(), r.notes.begin(), r.notes.end());
   if (r.modal)
     n.push_back(
         fmt::format("Modal form: the highest mode kept is at {:.6g} Hz; the static "
