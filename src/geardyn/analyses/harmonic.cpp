@@ -118,9 +118,12 @@ void check_square(const fe::SparseMatrix& X, int n, const char* name) {
 
 void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<Complex>>& triplets) {
   if (is_empty(X)) return;
+  // Stored zeros (element blocks assembled whole) are left out: they would couple the lateral,
+  // axial and torsional DOFs of a shaft line in the pattern and widen its band several times.
   for (Eigen::Index k = 0; k < X.outerSize(); ++k)
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it)
-      triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
+      if (it.value() != 0.0)
+        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
 }
 
 // Maps X into the pattern of D; false if X has an entry outside it.
@@ -134,6 +137,7 @@ bool map_term(const fe::SparseMatrix& X, const fe::ComplexSparseMatrix& D, Term&
     const int* begin = inner + outer[k];
     const int* end = inner + outer[k + 1];
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) {
+      if (it.value() == 0.0) continue;  // not in the pattern (add_pattern)
       const int* pos = std::lower_bound(begin, end, static_cast<int>(it.row()));
       if (pos == end || *pos != it.row()) return false;
       term.slot.push_back(pos - inner);
@@ -334,7 +338,7 @@ void DynamicStiffness::factorize(double omega) {
     row.setZero(n_);
     for (Eigen::Index k = 0; k < m.D.outerSize(); ++k)
       for (fe::ComplexSparseMatrix::InnerIterator it(m.D, k); it; ++it)
-        row[it.row()] += std::abs(it.value());
+        row[it.row()] += std::sqrt(std::norm(it.value()));  // |z| without hypot's cost
     m.norm_inf = row.maxCoeff();
     for (int i = 0; i < n_; ++i) {
       const double scale = m.row_stiffness[i] + w2 * m.row_mass[i] + omega * m.row_damping[i] +

@@ -10,6 +10,18 @@
 namespace geardyn::linalg {
 namespace {
 
+using Complex = std::complex<double>;
+
+// |z| without std::abs's overflow-safe hypot, which dominated the profile of a sweep; matrix
+// entries of a structural model are far from 1e154, where the square would overflow.
+double magnitude(Complex z) { return std::sqrt(z.real() * z.real() + z.imag() * z.imag()); }
+
+// 1 / z by the conjugate (no libgcc __divdc3 call); z != 0.
+Complex reciprocal(Complex z) {
+  const double d = z.real() * z.real() + z.imag() * z.imag();
+  return {z.real() / d, -z.imag() / d};
+}
+
 // Symmetrised adjacency (no self loops) of a compressed-column pattern, in CSR form.
 struct Graph {
   std::vector<int> start, adjacent;
@@ -69,6 +81,18 @@ int cuthill_mckee_levels(const Graph& g, int root, int done, std::vector<int>& m
     level_end = order.size();
   }
   return levels;
+}
+
+// y[0..count) -= a[0..count) * s in plain real arithmetic (std::complex's operator* checks for
+// NaN results and calls libgcc on them, which keeps the loop from vectorising).
+void multiply_subtract(const Complex* a, Complex s, Complex* y, int count) {
+  const auto* ar = reinterpret_cast<const double*>(a);
+  auto* yr = reinterpret_cast<double*>(y);
+  const double sr = s.real(), si = s.imag();
+  for (int i = 0; i < count; ++i) {
+    yr[2 * i] -= ar[2 * i] * sr - ar[2 * i + 1] * si;
+    yr[2 * i + 1] -= ar[2 * i] * si + ar[2 * i + 1] * sr;
+  }
 }
 
 }  // namespace
@@ -147,6 +171,7 @@ void BandedLU::analyze(int n, const int* outer, const int* inner) {
   }
   row_scale_.assign(un, 0.0);
   pivot_.assign(un, 0);
+  inverse_pivot_.assign(un, Complex(0.0));
   band_.assign(un * ld_, Complex(0.0));
   pivot_ratio_ = 0.0;
 }
@@ -177,7 +202,7 @@ void BandedLU::eliminate_column(int j, int& last_column) {
   last_column = std::max(last_column, std::min(j + ku_ + p, n_ - 1));
   if (p != 0)
     for (int c = j; c <= last_column; ++c) std::swap(at(j, c), at(j + p, c));
-  const Complex inverse = 1.0 / column[0];
+  const Complex inverse = reciprocal(column[0]);
   for (int i = 1; i <= km; ++i) column[i] *= inverse;
   const double* l = reinterpret_cast<const double*>(column);
   for (int c = j + 1; c <= last_column; ++c) {
@@ -197,7 +222,7 @@ Status BandedLU::factorize(const Complex* values) {
   std::fill(band_.begin(), band_.end(), Complex(0.0));
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
   for (std::size_t k = 0; k < position_.size(); ++k)
-    row_scale_[static_cast<std::size_t>(new_row_[k])] += std::abs(values[k]);
+    row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
   for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
   for (std::size_t k = 0; k < position_.size(); ++k)
     band_[position_[k]] += row_scale_[static_cast<std::size_t>(new_row_[k])] * values[k];
@@ -207,9 +232,10 @@ Status BandedLU::factorize(const Complex* values) {
 
   double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
   for (int j = 0; j < n_; ++j) {
-    const double d = std::abs(at(j, j));
+    const double d = magnitude(at(j, j));
     smallest = std::min(smallest, d);
     largest = std::max(largest, d);
+    inverse_pivot_[static_cast<std::size_t>(j)] = d > 0.0 ? reciprocal(at(j, j)) : Complex(0.0);
   }
   pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
   return smallest > 0.0 ? Status::Ok : Status::Singular;
@@ -230,17 +256,15 @@ void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
     const Complex y = work[j];
     if (y == Complex(0.0)) continue;
     const int km = std::min(kl_, n_ - 1 - j);
-    const Complex* l = &band(j, j);
-    for (int i = 1; i <= km; ++i) work[j + i] -= l[i] * y;
+    multiply_subtract(&band(j, j) + 1, y, work + j + 1, km);
   }
   // U z = y (upper bandwidth kl + ku after the interchanges).
   for (int j = n_ - 1; j >= 0; --j) {
     if (work[j] == Complex(0.0)) continue;
-    work[j] /= band(j, j);
+    work[j] *= inverse_pivot_[static_cast<std::size_t>(j)];
     const Complex z = work[j];
     const int top = std::max(0, j - kv_);
-    const Complex* u = &band(top, j);
-    for (int i = top; i < j; ++i) work[i] -= u[i - top] * z;
+    multiply_subtract(&band(top, j), z, work + top, j - top);
   }
   for (int k = 0; k < n_; ++k) x[perm_[static_cast<std::size_t>(k)]] = work[k];
 }

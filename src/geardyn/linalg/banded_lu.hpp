@@ -70,11 +70,12 @@ class BandedLU {
 
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0;
   std::size_t ld_ = 1;
-  std::vector<int> perm_;              ///< perm_[new] = old
-  std::vector<std::size_t> position_;  ///< band index of each pattern entry
-  std::vector<int> new_row_;           ///< row of each pattern entry, renumbered
-  std::vector<double> row_scale_;      ///< in the new numbering
-  std::vector<int> pivot_;             ///< row interchanged with row j at step j
+  std::vector<int> perm_;               ///< perm_[new] = old
+  std::vector<std::size_t> position_;   ///< band index of each pattern entry
+  std::vector<int> new_row_;            ///< row of each pattern entry, renumbered
+  std::vector<double> row_scale_;       ///< in the new numbering
+  std::vector<int> pivot_;              ///< row interchanged with row j at step j
+  std::vector<Complex> inverse_pivot_;  ///< 1 / u_jj
   std::vector<Complex> band_;
   double pivot_ratio_ = 0.0;
 };
