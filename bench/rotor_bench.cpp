@@ -8,6 +8,7 @@
 #include "geardyn/analyses/campbell.hpp"
 #include "geardyn/analyses/harmonic.hpp"
 #include "geardyn/analyses/modal.hpp"
+#include "geardyn/analyses/stability_check.hpp"
 #include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
@@ -156,6 +157,51 @@ BENCHMARK(BM_Unbalance1k)
     ->Arg(10000)
     ->Unit(benchmark::kMillisecond)
     ->Complexity()
+    ->Iterations(1);
+
+// The unbalance sweep's direct solves alone (what run_unbalance does besides the stability
+// scan): 1000 speeds, one factorisation of D(W; W) and one solve each, on the factor path
+// range(1) (0: automatic = banded for this rotor, 2: UMFPACK, today's sparse path). With the
+// banded path this is the bound of docs/performance.md: the unavoidable work of the method.
+void BM_UnbalanceSolves(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = assembly::build_system(m);
+  const auto path = static_cast<analyses::FactorPath>(state.range(1));
+  const Eigen::MatrixXcd F = fe::unbalance_load(m, system, 1.0, 1.0);
+  Eigen::MatrixXcd X;
+  for (auto _ : state) {
+    analyses::DynamicStiffness D(system, 1.0, "unbalance", path);
+    for (int i = 1; i <= 1000; ++i) {
+      const double speed = units::rpm_to_rad_per_s(i * 10.0);
+      D.set_speed(speed);
+      D.factorize(speed);
+      D.solve(F, X);
+      benchmark::DoNotOptimize(X.data());
+    }
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_UnbalanceSolves)
+    ->ArgsProduct({{100, 1000, 10000}, {0, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+// The stability scan run_unbalance adds (analyses/stability_check.cpp, helper R1's work):
+// measured apart so that the direct solves and the scan can be reported separately.
+void BM_UnbalanceScan(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = assembly::build_system(m);
+  std::vector<double> speeds;
+  for (int i = 1; i <= 1000; ++i) speeds.push_back(units::rpm_to_rad_per_s(i * 10.0));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(analyses::scan_stability(system, speeds, speeds.back()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_UnbalanceScan)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
 }  // namespace

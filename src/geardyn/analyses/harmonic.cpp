@@ -4,13 +4,19 @@
 #include <umfpack.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/peak_table.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/linalg/banded_lu.hpp"
+#include "geardyn/linalg/blas_library.hpp"
 #include "geardyn/signal/half_power.hpp"
 
 namespace geardyn::analyses {
@@ -28,6 +34,13 @@ constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 // rotor model (stiff bearings on soft shafts, 1e-3 .. 1e-10) stays far above. 1e-13 separates
 // the two with two decades of margin on either side.
 constexpr double kSingularPivotRatio = 1e-13;
+
+// FactorPath::Automatic takes the banded LU when its band storage n (2 kl + ku + 1) is at most
+// this multiple of UMFPACK's estimate of nnz(L + U). The banded elimination runs in tight loops
+// with no indirection, so per entry it is several times faster than UMFPACK's frontal kernels
+// on the small fronts of a shaft line (measured on bench/rotor_bench.cpp's rotor, see
+// docs/performance.md, issue #19); a wider band (branched gear trains) goes to UMFPACK.
+constexpr double kBandedFillRatio = 4.0;
 
 // Complex LU by UMFPACK (called directly: the symbolic analysis is kept across frequencies and
 // the pivot ratio is read from its Info array). Complex values are passed packed (re, im), which
@@ -69,6 +82,10 @@ class UmfpackLu {
     return true;
   }
   double pivot_ratio() const { return pivot_ratio_; }
+  /// UMFPACK's estimate (after analyze) of the entries of L + U.
+  double factor_entries_estimate() const {
+    return info_[UMFPACK_LNZ_ESTIMATE] + info_[UMFPACK_UNZ_ESTIMATE];
+  }
 
  private:
   static const double* values(const fe::ComplexSparseMatrix& A) {
@@ -101,9 +118,12 @@ void check_square(const fe::SparseMatrix& X, int n, const char* name) {
 
 void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<Complex>>& triplets) {
   if (is_empty(X)) return;
+  // Stored zeros (element blocks assembled whole) are left out: they would couple the lateral,
+  // axial and torsional DOFs of a shaft line in the pattern and widen its band several times.
   for (Eigen::Index k = 0; k < X.outerSize(); ++k)
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it)
-      triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
+      if (it.value() != 0.0)
+        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
 }
 
 // Maps X into the pattern of D; false if X has an entry outside it.
@@ -117,6 +137,7 @@ bool map_term(const fe::SparseMatrix& X, const fe::ComplexSparseMatrix& D, Term&
     const int* begin = inner + outer[k];
     const int* end = inner + outer[k + 1];
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) {
+      if (it.value() == 0.0) continue;  // not in the pattern (add_pattern)
       const int* pos = std::lower_bound(begin, end, static_cast<int>(it.row()));
       if (pos == end || *pos != it.row()) return false;
       term.slot.push_back(pos - inner);
@@ -159,8 +180,12 @@ struct DynamicStiffness::Impl {
   Term mass, stiffness, damping, gyroscopic, loss;
   Eigen::VectorXd row_mass, row_stiffness, row_damping, row_gyroscopic, row_loss;
   UmfpackLu lu;
+  linalg::BandedLU banded;
+  bool banded_path = false;
   bool analysed = false;
-  fe::ComplexSparseMatrix M;  ///< complex copy of M for the residual
+  mutable Eigen::VectorXcd work;  ///< banded solve workspace
+  Eigen::VectorXd row_sum;        ///< absolute row sums of D (singularity check)
+  fe::ComplexSparseMatrix M;      ///< complex copy of M for the residual
   Eigen::MatrixXcd B;
   Eigen::VectorXd c;
   double s0 = 0.0;
@@ -187,9 +212,18 @@ struct DynamicStiffness::Impl {
     analysed = false;
   }
 
+  // A^{-1} F by the chosen factor (X is resized only when its shape differs).
+  bool factor_solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
+    if (!banded_path) return lu.solve(D, F, X);
+    X.resize(F.rows(), F.cols());
+    for (Eigen::Index j = 0; j < F.cols(); ++j)
+      banded.solve(F.col(j).data(), X.col(j).data(), work.data());
+    return true;
+  }
+
   // P^{-1} F (A_s^{-1} F without the modal path).
   bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
-    if (!lu.solve(D, F, X)) return false;
+    if (!factor_solve(F, X)) return false;
     if (modal_path) X -= Y * capacitance.solve(s.asDiagonal() * (B.transpose() * X));
     return true;
   }
@@ -206,8 +240,11 @@ struct DynamicStiffness::Impl {
 };
 
 DynamicStiffness::DynamicStiffness(const fe::LinearSystem& system, double speed,
-                                   std::string analysis)
-    : system_(system), analysis_(std::move(analysis)), impl_(std::make_unique<Impl>()) {
+                                   std::string analysis, FactorPath path)
+    : system_(system),
+      analysis_(std::move(analysis)),
+      requested_(path),
+      impl_(std::make_unique<Impl>()) {
   n_ = static_cast<int>(system.M.rows());
   if (n_ == 0)
     throw NumericalError(analysis_, "the model has no free degrees of freedom (all constrained)");
@@ -241,11 +278,14 @@ void DynamicStiffness::set_speed(double speed) {
   if (!std::isfinite(speed)) throw std::invalid_argument("DynamicStiffness: speed is not finite");
   speed_ = speed;
   omega_ = std::numeric_limits<double>::quiet_NaN();
+  Impl& m = *impl_;
+  // Without speed-dependent bearings K(W) = K and C(W) = C: nothing to rebuild (W enters only
+  // through the factor of G at factorize).
+  if (system_.speed_bearings.empty() && m.D.rows() == n_) return;
   const fe::SparseMatrix K = system_.K_at(speed);
   const fe::SparseMatrix C = system_.C_at(speed);
   check_square(K, n_, "K_at");
   check_square(C, n_, "C_at");
-  Impl& m = *impl_;
   m.row_stiffness = abs_row_sums(K, n_);
   m.row_damping = abs_row_sums(C, n_);
   // Speed-dependent bearings change values, not the pattern: keep the symbolic analysis then.
@@ -294,10 +334,11 @@ void DynamicStiffness::factorize(double omega) {
   // scales rows, so a matrix made entirely of round-off can show a pivot ratio of 1).
   {
     const double w2 = omega * omega, wg = omega * std::abs(speed_);
-    Eigen::VectorXd row = Eigen::VectorXd::Zero(n_);
+    Eigen::VectorXd& row = m.row_sum;
+    row.setZero(n_);
     for (Eigen::Index k = 0; k < m.D.outerSize(); ++k)
       for (fe::ComplexSparseMatrix::InnerIterator it(m.D, k); it; ++it)
-        row[it.row()] += std::abs(it.value());
+        row[it.row()] += std::sqrt(std::norm(it.value()));  // |z| without hypot's cost
     m.norm_inf = row.maxCoeff();
     for (int i = 0; i < n_; ++i) {
       const double scale = m.row_stiffness[i] + w2 * m.row_mass[i] + omega * m.row_damping[i] +
@@ -308,21 +349,21 @@ void DynamicStiffness::factorize(double omega) {
     }
   }
 
-  if (!m.analysed) {
-    const int status = m.lu.analyze(m.D);
-    if (status != UMFPACK_OK)
-      throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of D(w) "
-                                                  "(status {})",
-                                                  status));
-    m.analysed = true;
+  if (!m.analysed) analyze();
+  bool regular = true;
+  if (m.banded_path) {
+    regular = m.banded.factorize(m.D.valuePtr()) == Status::Ok;
+    rcond_ = regular ? m.banded.pivot_ratio() : 0.0;
+  } else {
+    const int status = m.lu.factorize(m.D);
+    rcond_ = status == UMFPACK_OK ? m.lu.pivot_ratio() : 0.0;
+    if (status != UMFPACK_OK && status != UMFPACK_WARNING_singular_matrix)
+      throw NumericalError(analysis_, fmt::format("UMFPACK numeric factorisation failed (status "
+                                                  "{}) at f = {:.6g} Hz; out of memory?",
+                                                  status, omega * kHzPerRadS));
+    regular = status == UMFPACK_OK;
   }
-  const int status = m.lu.factorize(m.D);
-  rcond_ = status == UMFPACK_OK ? m.lu.pivot_ratio() : 0.0;
-  if (status != UMFPACK_OK && status != UMFPACK_WARNING_singular_matrix)
-    throw NumericalError(analysis_, fmt::format("UMFPACK numeric factorisation failed (status "
-                                                "{}) at f = {:.6g} Hz; out of memory?",
-                                                status, omega * kHzPerRadS));
-  if (status != UMFPACK_OK || !(rcond_ >= kSingularPivotRatio))
+  if (!regular || !(rcond_ >= kSingularPivotRatio))
     throw singular(fmt::format("LU pivot ratio {:.2g}", rcond_));
 
   if (modal) {
@@ -336,7 +377,7 @@ void DynamicStiffness::factorize(double omega) {
   }
   if (m.modal_path) {
     m.s = iw * (m.c.array() - m.s0).matrix().cast<Complex>();
-    if (!m.lu.solve(m.D, m.B, m.Y)) throw singular("UMFPACK solve failed");
+    if (!m.factor_solve(m.B, m.Y)) throw singular("UMFPACK solve failed");
     const Eigen::Index r = m.B.cols();
     const Eigen::MatrixXcd cap =
         Eigen::MatrixXcd::Identity(r, r) + m.s.asDiagonal() * (m.B.transpose() * m.Y);
@@ -347,12 +388,38 @@ void DynamicStiffness::factorize(double omega) {
   }
 }
 
+void DynamicStiffness::analyze() {
+  Impl& m = *impl_;
+  const int n = static_cast<int>(m.D.rows());
+  const bool sparse_needed = requested_ != FactorPath::Banded;
+  if (sparse_needed) {
+    const int status = m.lu.analyze(m.D);
+    if (status != UMFPACK_OK)
+      throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of D(w) "
+                                                  "(status {})",
+                                                  status));
+  }
+  if (requested_ != FactorPath::Sparse)
+    m.banded.analyze(n, m.D.outerIndexPtr(), m.D.innerIndexPtr());
+  m.banded_path = requested_ == FactorPath::Banded ||
+                  (requested_ == FactorPath::Automatic &&
+                   m.banded.storage_entries() <= kBandedFillRatio * m.lu.factor_entries_estimate());
+  chosen_ = m.banded_path ? FactorPath::Banded : FactorPath::Sparse;
+  if (m.banded_path) m.work.resize(n);
+  m.analysed = true;
+}
+
 Eigen::MatrixXcd DynamicStiffness::solve(const Eigen::MatrixXcd& F) const {
+  Eigen::MatrixXcd X;
+  solve(F, X);
+  return X;
+}
+
+void DynamicStiffness::solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
   if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::solve before factorize");
   if (F.rows() != n_) throw std::invalid_argument("DynamicStiffness::solve: wrong load size");
   const Impl& m = *impl_;
   const double f_hz = omega_ * kHzPerRadS;
-  Eigen::MatrixXcd X;
   if (!m.apply_inverse(F, X))
     throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
   if (m.modal_path) {
@@ -394,12 +461,65 @@ Eigen::MatrixXcd DynamicStiffness::solve(const Eigen::MatrixXcd& F) const {
     throw NumericalError(analysis_, fmt::format("the response at f = {:.6g} Hz is not finite "
                                                 "(overflow near an undamped resonance?)",
                                                 f_hz));
-  return X;
 }
 
 Eigen::MatrixXcd DynamicStiffness::apply(const Eigen::MatrixXcd& x) const {
   if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::apply before factorize");
   return impl_->apply(x);
+}
+
+// ---------------------------------------------------------------------------------------------
+
+unsigned sweep_threads(int requested, std::size_t points, FactorPath path, std::string& note) {
+  unsigned threads = requested > 0 ? static_cast<unsigned>(requested)
+                                   : std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::size_t>(threads, std::max<std::size_t>(points, 1)));
+  note.clear();
+  // The BLAS-safety rule of analyses/sweep.cpp: UMFPACK calls the system BLAS from every thread.
+  const linalg::BlasLibrary& blas = linalg::loaded_blas();
+  if (threads > 1 && path != FactorPath::Banded && !linalg::safe_for_concurrent_calls(blas)) {
+    note = fmt::format(
+        "ran on 1 thread instead of {}: the sparse LU calls the system BLAS ({}), a sequential "
+        "OpenBLAS, which is not safe to call from several threads at once",
+        threads, blas.description);
+    threads = 1;
+  }
+  return threads;
+}
+
+void for_each_point(std::size_t begin, std::size_t end, unsigned threads,
+                    const std::function<void(std::size_t, unsigned)>& work,
+                    const std::function<void(std::size_t)>& done) {
+  std::atomic<std::size_t> next{begin};
+  std::size_t finished = 0;
+  std::size_t failed_at = end;
+  std::exception_ptr failure;
+  std::mutex mutex;
+  auto worker = [&](unsigned t) {
+    for (;;) {
+      const std::size_t i = next++;
+      if (i >= end) return;
+      try {
+        work(i, t);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        if (i < failed_at) {
+          failed_at = i;
+          failure = std::current_exception();
+        }
+        next = end;  // stop handing out points; those already taken finish
+        return;
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      done(++finished);
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker, t);
+    worker(0);
+  }
+  if (failure) std::rethrow_exception(failure);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -698,23 +818,46 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
   const std::size_t m = outputs.size();
   const int power = static_cast<int>(settings.quantity);
 
-  DynamicStiffness D(system, settings.speed, analysis_name);
+  // One DynamicStiffness per thread; the first frequency on this thread fixes the factor path
+  // (and so whether threads may run). Each frequency is independent of the others, so the
+  // samples are bit-identical for any thread count.
   const Eigen::MatrixXcd F = load;
+  std::vector<std::unique_ptr<DynamicStiffness>> solvers;
+  solvers.push_back(std::make_unique<DynamicStiffness>(system, settings.speed, analysis_name));
+  std::vector<Eigen::MatrixXcd> work(1);
+  unsigned threads = 0;  // decided after the first frequency
   std::map<double, Eigen::VectorXcd> samples;
-  auto evaluate = [&](double w) {
-    D.factorize(w);
-    const Eigen::MatrixXcd x = D.solve(F);
-    Eigen::VectorXcd out(static_cast<Eigen::Index>(m));
-    for (std::size_t s = 0; s < m; ++s) out[static_cast<Eigen::Index>(s)] = x(outputs[s], 0);
-    samples[w] = std::move(out);
+  auto evaluate_all = [&](const std::vector<double>& ws,
+                          const std::function<void(std::size_t)>& done) {
+    std::vector<Eigen::VectorXcd> out(ws.size(), Eigen::VectorXcd(static_cast<Eigen::Index>(m)));
+    auto point = [&](std::size_t k, unsigned t) {
+      solvers[t]->factorize(ws[k]);
+      solvers[t]->solve(F, work[t]);
+      for (std::size_t s = 0; s < m; ++s)
+        out[k][static_cast<Eigen::Index>(s)] = work[t](outputs[s], 0);
+    };
+    std::size_t begin = 0;
+    if (threads == 0 && !ws.empty()) {
+      point(0, 0);
+      done(1);
+      begin = 1;
+      std::string note;
+      threads = sweep_threads(settings.threads, std::numeric_limits<std::size_t>::max(),
+                              solvers.front()->factor_path(), note);
+      result.thread_note = note;
+      for (unsigned t = 1; t < threads; ++t)
+        solvers.push_back(
+            std::make_unique<DynamicStiffness>(system, settings.speed, analysis_name));
+      work.resize(threads);
+    }
+    for_each_point(begin, ws.size(), std::max(threads, 1u), point,
+                   [&](std::size_t count) { done(begin + count); });
+    for (std::size_t k = 0; k < ws.size(); ++k) samples[ws[k]] = std::move(out[k]);
   };
 
   const std::vector<double> initial = initial_grid(settings);
   progress.start(fmt::format("{}: {} frequencies", analysis_name, initial.size()), initial.size());
-  for (std::size_t k = 0; k < initial.size(); ++k) {
-    evaluate(initial[k]);
-    progress.update(k + 1);
-  }
+  evaluate_all(initial, [&](std::size_t count) { progress.update(count); });
   progress.finish();
 
   std::vector<double> f;
@@ -752,7 +895,7 @@ FrfResult frequency_response(const fe::LinearSystem& system, const Eigen::Vector
         grid.limit_hit = fmt::format("max_points = {}", options.max_points);
         break;
       }
-      for (double w : fresh) evaluate(w);
+      evaluate_all(fresh, [](std::size_t) {});
       grid.passes = pass + 1;
       to_arrays();
       progress.update(samples.size());
@@ -1028,6 +1171,7 @@ std::vector<std::string> harmonic_notes(const FrfResult& result, const fe::Linea
       "damping_ratio = 1/(2Q) holds for an isolated, lightly damped mode. Peaks whose band "
       "runs out of the range or into a higher peak, or that the grid did not resolve, have no Q "
       "(NaN); their half-power points are still listed.");
+  if (!result.thread_note.empty()) notes.push_back(result.thread_note);
   return notes;
 }
 

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <complex>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -38,21 +39,36 @@ struct HarmonicSettings : model::SettingsOf<HarmonicSettings> {
   std::vector<std::string> forces;   ///< ... or these named harmonic forces (forced response)
   std::vector<std::string> sensors;  ///< empty: all sensors
   ResponseQuantity quantity = ResponseQuantity::Receptance;
+  /// Worker threads over frequencies (library setting; <= 0: all cores). Results are
+  /// bit-identical for any count (tests/analyses/harmonic_threads_test.cpp).
+  int threads = 1;
+};
+
+/// How DynamicStiffness factorises the sparse part of D(w).
+enum class FactorPath {
+  Automatic,  ///< Banded when its band holds at most kBandedFillRatio x the entries UMFPACK's
+              ///< analysis estimates for L + U (shaft lines), UMFPACK otherwise; a property of
+              ///< the pattern, so every frequency and every thread takes the same path
+  Banded,     ///< RCM ordering + banded LU with partial pivoting (linalg/banded_lu.hpp)
+  Sparse      ///< UMFPACK with its fill-reducing ordering, symbolic analysis kept
 };
 
 /// Factorises D(w) for one reference speed and solves D(w) X = F for any number of right-hand
 /// sides. The sparsity pattern (union of M, K(W), C(W), G, K_loss) is analysed once; each
-/// frequency costs one numerical LU (UMFPACK). With modal damping the sparse factor is of
+/// frequency costs one numerical LU (banded or UMFPACK, see FactorPath; the banded path
+/// allocates nothing per frequency). With modal damping the sparse factor is of
 /// A + i w s0 M (s0: smallest modal coefficient, so the factor stays regular at undamped natural
 /// frequencies), the low-rank remainder i w B diag(c - s0) B^T is applied by the Woodbury
 /// identity (r extra solves and an r x r dense LU, r = number of damping modes), and iterative
 /// refinement against the exact D removes the i w s0 (M - B B^T) difference (see the .cpp).
 /// Singularity is judged by UMFPACK's pivot ratio and by rows that cancel to round-off.
-/// Keeps a reference to `system`.
+/// Keeps a reference to `system`. Not thread-safe (solve() uses the object's workspace): give
+/// each thread its own; results do not depend on which object or thread computed them.
 class DynamicStiffness {
  public:
   /// `analysis` names the analysis in error messages.
-  DynamicStiffness(const fe::LinearSystem& system, double speed, std::string analysis);
+  DynamicStiffness(const fe::LinearSystem& system, double speed, std::string analysis,
+                   FactorPath path = FactorPath::Automatic);
   ~DynamicStiffness();
   DynamicStiffness(const DynamicStiffness&) = delete;
   DynamicStiffness& operator=(const DynamicStiffness&) = delete;
@@ -67,23 +83,46 @@ class DynamicStiffness {
   void factorize(double omega);
   /// X = D(omega)^{-1} F for the omega of the last factorize (F: n x m).
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& F) const;
+  /// The same into `X` (resized only when its shape differs: no allocation in a sweep).
+  void solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const;
   /// D(omega) x for the last factorised omega (for residual checks).
   Eigen::MatrixXcd apply(const Eigen::MatrixXcd& x) const;
 
   /// Reciprocal pivot ratio min|U_ii| / max|U_ii| reported by UMFPACK for the last factor.
   double reciprocal_pivot_ratio() const { return rcond_; }
   int size() const { return n_; }
+  /// The path taken (Banded or Sparse; fixed at the first factorize, Automatic before).
+  FactorPath factor_path() const { return chosen_; }
 
  private:
   struct Impl;
+  /// Symbolic analysis of D's pattern; chooses the factor path.
+  void analyze();
   const fe::LinearSystem& system_;
   std::string analysis_;
   int n_ = 0;
   double speed_ = 0.0;
   double omega_ = std::numeric_limits<double>::quiet_NaN();
   double rcond_ = std::numeric_limits<double>::quiet_NaN();
+  FactorPath requested_ = FactorPath::Automatic, chosen_ = FactorPath::Automatic;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Worker threads for a sweep of DynamicStiffness solves: `requested` (<= 0: all hardware
+/// threads), at most `points`; 1 when `path` is Sparse and the system BLAS is not safe to call
+/// from several threads at once (UMFPACK calls it; the banded path does not), and `note` then
+/// says so (otherwise it is left empty).
+unsigned sweep_threads(int requested, std::size_t points, FactorPath path, std::string& note);
+
+/// Calls `work(i, t)` for every i in [begin, end) on `threads` threads (t in [0, threads): the
+/// calling thread is t = 0), handing out indices in increasing order, and `done(count)` (under a
+/// lock) after each point. The results must depend on i only, never on t or on the order, which
+/// makes them bit-identical for any number of threads. When points throw, the exception of the
+/// smallest index is rethrown once all threads have stopped (the one a single thread meets
+/// first), so errors do not depend on the thread count either.
+void for_each_point(std::size_t begin, std::size_t end, unsigned threads,
+                    const std::function<void(std::size_t, unsigned)>& work,
+                    const std::function<void(std::size_t)>& done);
 
 /// Controls of the adaptive frequency grid. A resonance counts as resolved when
 ///  (a) its half-power band [f1, f2] holds at least `min_points_in_band` samples,
@@ -160,6 +199,7 @@ struct FrfResult {
   /// Stability at the speed (run_harmonic only; frequency_response leaves it empty): an
   /// unstable mode makes the status Unstable.
   StabilityScan stability;
+  std::string thread_note;  ///< why fewer threads ran than asked for (empty when none)
 
   /// The requested quantity: displacement x (i w)^p with p = 0, 1, 2.
   Eigen::MatrixXcd response() const;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "geardyn/analyses/harmonic.hpp"
 #include "geardyn/core/error.hpp"
@@ -86,6 +87,27 @@ std::vector<int> sensor_equations(const model::Model& model, const fe::DofMap& d
   return sensor_eq;
 }
 
+// Sensor amplitudes and orbits of speed i, order o from the response X to the unit-speed load
+// (times `scale` = W^2).
+void record_speed(const fe::DofMap& dofs, const std::vector<int>& sensor_eq,
+                  const std::vector<int>& orbit_nodes, const Eigen::Ref<const Eigen::VectorXcd>& X,
+                  double scale, std::size_t i, std::size_t o, UnbalanceResult& result) {
+  for (std::size_t s = 0; s < sensor_eq.size(); ++s)
+    result.response[o](static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(s)) =
+        scale * X(sensor_eq[s]);
+  for (std::size_t k = 0; k < orbit_nodes.size(); ++k) {
+    const int node = orbit_nodes[k];
+    const int ex = dofs.dof(node, model::Component::Ux);
+    const int ey = dofs.dof(node, model::Component::Uy);
+    const Complex x = ex >= 0 ? scale * X(ex) : Complex(0.0);
+    const Complex y = ey >= 0 ? scale * X(ey) : Complex(0.0);
+    NodeOrbit& no = result.orbits[o][i][k];
+    no.orbit = signal::orbit_from_phasors(x, y);
+    no.whirl =
+        dofs.node(node).speed_ratio < 0.0 ? signal::reversed(no.orbit.whirl) : no.orbit.whirl;
+  }
+}
+
 // The stability scan over the speeds; Unstable status and message when a speed is unstable.
 void check_unbalance_stability(const fe::LinearSystem& system, UnbalanceResult& result) {
   const double top_speed = *std::max_element(result.speeds.begin(), result.speeds.end());
@@ -146,35 +168,40 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
   result.orbits.assign(n_orders, std::vector<std::vector<NodeOrbit>>(
                                      n_speeds, std::vector<NodeOrbit>(orbit_nodes.size())));
 
+  // The load is m e (|r| W)^2 times a speed-independent vector: solve for the load at W = 1
+  // and scale the response by W^2 (no load assembly inside the loop).
+  std::vector<Eigen::MatrixXcd> unit_load(n_orders);
+  for (std::size_t o = 0; o < n_orders; ++o)
+    unit_load[o] = fe::unbalance_load(model, system, 1.0, result.orders[o], selected);
+
   const std::string& name = context.name();
   Progress& progress = context.progress();
-  DynamicStiffness D(system, result.speeds.front(), name);
-  progress.start(fmt::format("{}: {} speeds x {} order(s)", name, n_speeds, n_orders), n_speeds);
-  for (std::size_t i = 0; i < n_speeds; ++i) {
+  std::vector<std::unique_ptr<DynamicStiffness>> solvers;
+  std::vector<Eigen::MatrixXcd> responses(1);
+  solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+  auto solve_speed = [&](std::size_t i, unsigned t) {
+    DynamicStiffness& D = *solvers[t];
+    Eigen::MatrixXcd& X = responses[t];
     const double speed = result.speeds[i];
     D.set_speed(speed);
     for (std::size_t o = 0; o < n_orders; ++o) {
-      const double order = result.orders[o];
-      const Eigen::MatrixXcd F = fe::unbalance_load(model, system, speed, order, selected);
-      D.factorize(order * speed);
-      const Eigen::MatrixXcd X = D.solve(F);
-      for (Eigen::Index s = 0; s < n_sensors; ++s)
-        result.response[o](static_cast<Eigen::Index>(i), s) =
-            X(sensor_eq[static_cast<std::size_t>(s)], 0);
-      for (std::size_t k = 0; k < orbit_nodes.size(); ++k) {
-        const int node = orbit_nodes[k];
-        const int ex = dofs.dof(node, model::Component::Ux);
-        const int ey = dofs.dof(node, model::Component::Uy);
-        const Complex x = ex >= 0 ? X(ex, 0) : Complex(0.0);
-        const Complex y = ey >= 0 ? X(ey, 0) : Complex(0.0);
-        NodeOrbit& no = result.orbits[o][i][k];
-        no.orbit = signal::orbit_from_phasors(x, y);
-        no.whirl =
-            dofs.node(node).speed_ratio < 0.0 ? signal::reversed(no.orbit.whirl) : no.orbit.whirl;
-      }
+      D.factorize(result.orders[o] * speed);
+      D.solve(unit_load[o], X);
+      record_speed(dofs, sensor_eq, orbit_nodes, X.col(0), speed * speed, i, o, result);
     }
-    progress.update(i + 1);
-  }
+  };
+  progress.start(fmt::format("{}: {} speeds x {} order(s)", name, n_speeds, n_orders), n_speeds);
+  // The first speed on this thread fixes the factor path, which decides whether threads may run.
+  solve_speed(0, 0);
+  progress.update(1);
+  const unsigned threads = sweep_threads(settings.threads, n_speeds - 1,
+                                         solvers.front()->factor_path(), result.thread_note);
+  for (unsigned t = 1; t < threads; ++t)
+    solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+  responses.resize(threads);
+  result.threads_used = static_cast<int>(threads);
+  for_each_point(1, n_speeds, threads, solve_speed,
+                 [&](std::size_t done) { progress.update(done + 1); });
   progress.finish();
   check_unbalance_stability(system, result);
   return result;
@@ -331,6 +358,7 @@ AnalysisOutput unbalance_output(const model::Model& /*model*/,
       "along e1 at t = 0), -arg(X) in [0, 360) deg with x = Re(X e^(iwt)): for one unbalance it is "
       "the lag of ux behind the ux force; uy reads 90 deg more in forward whirl.");
   out.notes.push_back(stability_note(result.stability));
+  if (!result.thread_note.empty()) out.notes.push_back(result.thread_note);
   out.notes.push_back(
       "Peaks between listed speeds are not resolved: the speed list is the grid (use a harmonic "
       "analysis or a finer list near critical speeds). Whirl is relative to the node's spin "

@@ -31,6 +31,9 @@ struct UnbalanceSettings : model::SettingsOf<UnbalanceSettings> {
   std::vector<double> speeds;           ///< [rad/s]
   std::vector<std::string> unbalances;  ///< empty: all
   std::vector<std::string> sensors;     ///< empty: all
+  /// Worker threads over speeds (library setting; <= 0: all cores). Each speed is solved
+  /// independently, so results are bit-identical for any count.
+  int threads = 1;
 };
 
 /// Orbit of one node at one speed and order.
@@ -55,6 +58,8 @@ struct UnbalanceResult {
   /// Stability of the system at the speeds (analyses/stability_check.hpp); any unstable speed
   /// makes the status Unstable.
   StabilityScan stability;
+  int threads_used = 1;
+  std::string thread_note;  ///< why fewer threads ran than asked for (empty when none)
 
   /// Phase lag [deg] in [0, 360) of a complex amplitude (see the header comment).
   static double phase_lag_deg(std::complex<double> x);

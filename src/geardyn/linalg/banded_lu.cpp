@@ -1,0 +1,272 @@
+#include "geardyn/linalg/banded_lu.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+
+namespace geardyn::linalg {
+namespace {
+
+using Complex = std::complex<double>;
+
+// |z| without std::abs's overflow-safe hypot, which dominated the profile of a sweep; matrix
+// entries of a structural model are far from 1e154, where the square would overflow.
+double magnitude(Complex z) { return std::sqrt(z.real() * z.real() + z.imag() * z.imag()); }
+
+// 1 / z by the conjugate (no libgcc __divdc3 call); z != 0.
+Complex reciprocal(Complex z) {
+  const double d = z.real() * z.real() + z.imag() * z.imag();
+  return {z.real() / d, -z.imag() / d};
+}
+
+// Symmetrised adjacency (no self loops) of a compressed-column pattern, in CSR form.
+struct Graph {
+  std::vector<int> start, adjacent;
+  int degree(int v) const { return start[static_cast<std::size_t>(v) + 1] - start[v]; }
+};
+
+Graph symmetric_graph(int n, const int* outer, const int* inner) {
+  const auto un = static_cast<std::size_t>(n);
+  std::vector<std::vector<int>> lists(un);
+  for (int j = 0; j < n; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int i = inner[k];
+      if (i == j) continue;
+      lists[static_cast<std::size_t>(i)].push_back(j);
+      lists[static_cast<std::size_t>(j)].push_back(i);
+    }
+  Graph g;
+  g.start.assign(un + 1, 0);
+  for (std::size_t v = 0; v < un; ++v) {
+    std::sort(lists[v].begin(), lists[v].end());
+    lists[v].erase(std::unique(lists[v].begin(), lists[v].end()), lists[v].end());
+    g.start[v + 1] = g.start[v] + static_cast<int>(lists[v].size());
+    g.adjacent.insert(g.adjacent.end(), lists[v].begin(), lists[v].end());
+  }
+  return g;
+}
+
+// Breadth-first search from `root` over unnumbered vertices (mark[v] != done); appends the
+// visited vertices to `order` level by level, neighbours by increasing degree (Cuthill-McKee).
+// Returns the number of levels; `last_level_begin` receives where the last level starts.
+int cuthill_mckee_levels(const Graph& g, int root, int done, std::vector<int>& mark,
+                         std::vector<int>& order, std::size_t& last_level_begin) {
+  const std::size_t begin = order.size();
+  order.push_back(root);
+  mark[static_cast<std::size_t>(root)] = done;
+  std::size_t level_begin = begin, level_end = order.size();
+  int levels = 0;
+  std::vector<int> fresh;
+  while (level_begin < level_end) {
+    ++levels;
+    last_level_begin = level_begin;
+    for (std::size_t k = level_begin; k < level_end; ++k) {
+      const int v = order[k];
+      fresh.clear();
+      for (int a = g.start[static_cast<std::size_t>(v)];
+           a < g.start[static_cast<std::size_t>(v) + 1]; ++a) {
+        const int w = g.adjacent[static_cast<std::size_t>(a)];
+        if (mark[static_cast<std::size_t>(w)] == done) continue;
+        mark[static_cast<std::size_t>(w)] = done;
+        fresh.push_back(w);
+      }
+      std::stable_sort(fresh.begin(), fresh.end(),
+                       [&](int x, int y) { return g.degree(x) < g.degree(y); });
+      order.insert(order.end(), fresh.begin(), fresh.end());
+    }
+    level_begin = level_end;
+    level_end = order.size();
+  }
+  return levels;
+}
+
+// y[0..count) -= a[0..count) * s in plain real arithmetic (std::complex's operator* checks for
+// NaN results and calls libgcc on them, which keeps the loop from vectorising).
+void multiply_subtract(const Complex* a, Complex s, Complex* y, int count) {
+  const auto* ar = reinterpret_cast<const double*>(a);
+  auto* yr = reinterpret_cast<double*>(y);
+  const double sr = s.real(), si = s.imag();
+  for (int i = 0; i < count; ++i) {
+    yr[2 * i] -= ar[2 * i] * sr - ar[2 * i + 1] * si;
+    yr[2 * i + 1] -= ar[2 * i] * si + ar[2 * i + 1] * sr;
+  }
+}
+
+}  // namespace
+
+std::vector<int> reverse_cuthill_mckee(int n, const int* outer, const int* inner) {
+  const Graph g = symmetric_graph(n, outer, inner);
+  const auto un = static_cast<std::size_t>(n);
+  std::vector<int> order;
+  order.reserve(un);
+  std::vector<int> numbered(un, 0), scratch(un, 0);
+  std::vector<int> by_degree(un);
+  std::iota(by_degree.begin(), by_degree.end(), 0);
+  std::stable_sort(by_degree.begin(), by_degree.end(),
+                   [&](int x, int y) { return g.degree(x) < g.degree(y); });
+  int search = 0;  // distinct mark per trial search, so `scratch` is never cleared
+  for (int seed : by_degree) {
+    if (numbered[static_cast<std::size_t>(seed)] != 0) continue;
+    // Pseudo-peripheral start (George and Liu's algorithm): move to a vertex of least degree in
+    // the last level while the number of levels grows.
+    int root = seed, levels = 0;
+    for (;;) {
+      // The search stays inside this component, none of which is numbered yet.
+      std::vector<int> trial;
+      std::size_t last = 0;
+      const int depth = cuthill_mckee_levels(g, root, ++search, scratch, trial, last);
+      if (depth <= levels) break;
+      levels = depth;
+      root = *std::min_element(trial.begin() + static_cast<std::ptrdiff_t>(last), trial.end(),
+                               [&](int x, int y) { return g.degree(x) < g.degree(y); });
+    }
+    std::size_t last = 0;
+    cuthill_mckee_levels(g, root, 1, numbered, order, last);
+  }
+  std::reverse(order.begin(), order.end());
+  return order;
+}
+
+std::pair<int, int> bandwidths(int n, const int* outer, const int* inner,
+                               const std::vector<int>& perm) {
+  std::vector<int> new_index(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k)
+    new_index[static_cast<std::size_t>(perm[static_cast<std::size_t>(k)])] = k;
+  int kl = 0, ku = 0;
+  for (int j = 0; j < n; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int d =
+          new_index[static_cast<std::size_t>(inner[k])] - new_index[static_cast<std::size_t>(j)];
+      kl = std::max(kl, d);
+      ku = std::max(ku, -d);
+    }
+  return {kl, ku};
+}
+
+void BandedLU::analyze(int n, const int* outer, const int* inner) {
+  if (n <= 0) throw std::invalid_argument("BandedLU::analyze: empty matrix");
+  n_ = n;
+  perm_ = reverse_cuthill_mckee(n, outer, inner);
+  std::tie(kl_, ku_) = bandwidths(n, outer, inner, perm_);
+  kv_ = kl_ + ku_;
+  ld_ = static_cast<std::size_t>(2 * kl_ + ku_ + 1);
+  const auto un = static_cast<std::size_t>(n);
+  std::vector<int> new_index(un);
+  for (std::size_t k = 0; k < un; ++k)
+    new_index[static_cast<std::size_t>(perm_[k])] = static_cast<int>(k);
+  const auto nnz = static_cast<std::size_t>(outer[n]);
+  position_.resize(nnz);
+  new_row_.resize(nnz);
+  for (int j = 0; j < n; ++j) {
+    const int c = new_index[static_cast<std::size_t>(j)];
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int r = new_index[static_cast<std::size_t>(inner[k])];
+      new_row_[static_cast<std::size_t>(k)] = r;
+      position_[static_cast<std::size_t>(k)] =
+          static_cast<std::size_t>(kv_ + r - c) + static_cast<std::size_t>(c) * ld_;
+    }
+  }
+  row_scale_.assign(un, 0.0);
+  pivot_.assign(un, 0);
+  inverse_pivot_.assign(un, Complex(0.0));
+  band_.assign(un * ld_, Complex(0.0));
+  pivot_ratio_ = 0.0;
+}
+
+double BandedLU::factor_operations() const { return static_cast<double>(n_) * kl_ * (kl_ + ku_); }
+
+double BandedLU::storage_entries() const {
+  return static_cast<double>(n_) * static_cast<double>(ld_);
+}
+
+// Step j of the elimination (LAPACK xGBTF2): pivot search in column j, row interchange over
+// the columns it reaches, multipliers, rank-1 update of the band. `last_column`: the last
+// column touched by a pivot row so far.
+void BandedLU::eliminate_column(int j, int& last_column) {
+  const int km = std::min(kl_, n_ - 1 - j);
+  Complex* column = &at(j, j);
+  int p = 0;
+  double best = -1.0;
+  for (int i = 0; i <= km; ++i) {
+    const double a = std::abs(column[i].real()) + std::abs(column[i].imag());
+    if (a > best) {
+      best = a;
+      p = i;
+    }
+  }
+  pivot_[static_cast<std::size_t>(j)] = j + p;
+  if (best == 0.0) return;
+  last_column = std::max(last_column, std::min(j + ku_ + p, n_ - 1));
+  if (p != 0)
+    for (int c = j; c <= last_column; ++c) std::swap(at(j, c), at(j + p, c));
+  const Complex inverse = reciprocal(column[0]);
+  for (int i = 1; i <= km; ++i) column[i] *= inverse;
+  const double* l = reinterpret_cast<const double*>(column);
+  for (int c = j + 1; c <= last_column; ++c) {
+    double* u = reinterpret_cast<double*>(&at(j, c));  // u[0..1] = a(j, c), then rows below
+    const double ur = u[0], ui = u[1];
+    if (ur == 0.0 && ui == 0.0) continue;
+    for (int i = 1; i <= km; ++i) {
+      const double lr = l[2 * i], li = l[2 * i + 1];
+      u[2 * i] -= lr * ur - li * ui;
+      u[2 * i + 1] -= lr * ui + li * ur;
+    }
+  }
+}
+
+Status BandedLU::factorize(const Complex* values) {
+  if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
+  std::fill(band_.begin(), band_.end(), Complex(0.0));
+  std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
+  for (std::size_t k = 0; k < position_.size(); ++k)
+    row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
+  for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
+  for (std::size_t k = 0; k < position_.size(); ++k)
+    band_[position_[k]] += row_scale_[static_cast<std::size_t>(new_row_[k])] * values[k];
+
+  int last_column = 0;
+  for (int j = 0; j < n_; ++j) eliminate_column(j, last_column);
+
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  for (int j = 0; j < n_; ++j) {
+    const double d = magnitude(at(j, j));
+    smallest = std::min(smallest, d);
+    largest = std::max(largest, d);
+    inverse_pivot_[static_cast<std::size_t>(j)] = d > 0.0 ? reciprocal(at(j, j)) : Complex(0.0);
+  }
+  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
+  return smallest > 0.0 ? Status::Ok : Status::Singular;
+}
+
+void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
+  const auto band = [&](int row, int col) -> const Complex& {
+    return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
+  };
+  for (int k = 0; k < n_; ++k) {
+    const auto old = static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)]);
+    work[k] = row_scale_[static_cast<std::size_t>(k)] * b[old];
+  }
+  // L y = P_r c: interchanges and multipliers in the order they were made.
+  for (int j = 0; j < n_; ++j) {
+    const int p = pivot_[static_cast<std::size_t>(j)];
+    if (p != j) std::swap(work[j], work[p]);
+    const Complex y = work[j];
+    if (y == Complex(0.0)) continue;
+    const int km = std::min(kl_, n_ - 1 - j);
+    multiply_subtract(&band(j, j) + 1, y, work + j + 1, km);
+  }
+  // U z = y (upper bandwidth kl + ku after the interchanges).
+  for (int j = n_ - 1; j >= 0; --j) {
+    if (work[j] == Complex(0.0)) continue;
+    work[j] *= inverse_pivot_[static_cast<std::size_t>(j)];
+    const Complex z = work[j];
+    const int top = std::max(0, j - kv_);
+    multiply_subtract(&band(top, j), z, work + top, j - top);
+  }
+  for (int k = 0; k < n_; ++k) x[perm_[static_cast<std::size_t>(k)]] = work[k];
+}
+
+}  // namespace geardyn::linalg
