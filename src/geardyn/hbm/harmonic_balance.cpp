@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <utility>
 
@@ -471,8 +472,9 @@ struct Corrected {
 // Newton on [R(z); t . (z - z0)] = 0 (t empty: omega fixed, X alone), with a backtracking line
 // search on ||R|| (the constraint is linear, so every full or partial step keeps it satisfied
 // once it holds). The algebra keeps the linearization at the final z.
-Corrected correct(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
-                  const Eigen::VectorXd& t, const Eigen::VectorXd& z0, int max_iterations) {
+Corrected correct_unguarded(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
+                            const Eigen::VectorXd& t, const Eigen::VectorXd& z0,
+                            int max_iterations) {
   const int n = p.size();
   Corrected c;
   Eigen::VectorXd R = algebra.residual(z, true);
@@ -507,6 +509,20 @@ Corrected correct(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
     }
     z = trial;
     R = algebra.residual(z, true);
+  }
+}
+
+// A Newton iterate in a state the elements refuse (NumericalError: a squeeze-film journal at or
+// beyond its clearance, a non-finite motion) is a failed correction, not a failed analysis: the
+// continuation then halves its step, and a start point reports no solution.
+Corrected correct(const Scaled& p, NewtonAlgebra& algebra, Eigen::VectorXd& z,
+                  const Eigen::VectorXd& t, const Eigen::VectorXd& z0, int max_iterations) {
+  try {
+    return correct_unguarded(p, algebra, z, t, z0, max_iterations);
+  } catch (const NumericalError&) {
+    Corrected c;
+    c.residual = std::numeric_limits<double>::infinity();
+    return c;
   }
 }
 
