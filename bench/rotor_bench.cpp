@@ -12,6 +12,8 @@
 #include "geardyn/analyses/unbalance.hpp"
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/eig/symmetric_eigen.hpp"
+#include "geardyn/linalg/sparse_factorization.hpp"
 
 namespace {
 
@@ -113,6 +115,59 @@ void BM_Campbell100(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 BENCHMARK(BM_Campbell100)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Arg(10000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity()
+    ->Iterations(1);
+
+// The same sweep on the full solver (the reference path, method sparse: shift-invert Arnoldi
+// per speed), for the projection's speed-up in one binary (issue 19).
+void BM_Campbell100Full(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = assembly::build_system(m);
+  analyses::CampbellSettings settings;
+  settings.n_modes = 6;
+  settings.method = analyses::EigenMethod::Sparse;
+  for (int i = 0; i < 100; ++i) settings.speeds.push_back(units::rpm_to_rad_per_s(i * 100.0));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        analyses::run_campbell(m, settings, analyses::Context("campbell").with_system(&system)));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Campbell100Full)
+    ->Arg(100)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity()
+    ->Iterations(1);
+
+// The bound of the Campbell sweep (docs/performance.md, "Campbell (issue #19)"): the work no
+// projection method can skip -- the undamped modes of the basis (one factorisation and the
+// Lanczos solves), and per speed one check of every returned mode at full size (M, K, D applied
+// to the 2 x 13 real and imaginary parts of the modes and one block solve with the factor).
+void BM_Campbell100Bound(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = assembly::build_system(m);
+  for (auto _ : state) {
+    eig::SymmetricEigenOptions so;
+    so.n_modes = 15;
+    const auto modes = eig::solve_symmetric(system.K, system.M, so);
+    linalg::SymmetricFactorization f;
+    const double sigma = eig::automatic_shift(system.K, system.M);
+    f.compute(Eigen::SparseMatrix<double>(system.K - sigma * system.M));
+    const Eigen::MatrixXd X = Eigen::MatrixXd::Ones(system.size(), 26);
+    for (int i = 0; i < 100; ++i) {
+      const double speed = units::rpm_to_rad_per_s(i * 100.0);
+      Eigen::MatrixXd R = system.M * X + system.K * X + speed * (system.G * X);
+      benchmark::DoNotOptimize(f.solve(R));
+    }
+    benchmark::DoNotOptimize(modes);
+  }
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_Campbell100Bound)
     ->Arg(100)
     ->Arg(1000)
     ->Arg(10000)

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "geardyn/assembly/system_pencil.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/eig/projected_quadratic.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 
 namespace geardyn::analyses {
@@ -152,6 +154,54 @@ void validate(const CampbellSettings& settings, const fe::LinearSystem& system,
                      "a system without DOFs");
 }
 
+// The eigen-solves of a sweep. Method Auto on models above kProjectionMinDofs: the projection
+// onto one speed-independent basis (eig/projected_quadratic.hpp), kept and enriched from speed to
+// speed; a speed where it cannot certify every mode (NotConverged, FewerModes, a failed basis) is
+// solved again by solve_quadratic, the reference path, and counted. Dense / Sparse: the
+// reference path only.
+class ModeSolver {
+ public:
+  ModeSolver(const fe::LinearSystem& system, const CampbellSettings& settings)
+      : system_(system), settings_(settings) {
+    if (settings.method == EigenMethod::Auto && system.size() > kProjectionMinDofs)
+      projection_.emplace(assembly::pencil_parts(system));
+  }
+
+  // The modes of `pencil` (= assembly::pencil_at(system, speed)); `label` gets the method used.
+  eig::QuadraticEigenResult solve(const eig::QuadraticPencil& pencil, double speed,
+                                  const eig::QuadraticEigenOptions& qo, std::string& label) {
+    if (projection_) {
+      if (!settings_.warm_start) projection_.emplace(assembly::pencil_parts(system_));
+      const assembly::SpeedIncrements inc = assembly::speed_increments(system_, speed);
+      eig::QuadraticEigenResult r = projection_->solve(pencil, speed, inc.dK, inc.dC, qo);
+      if (r.status == Status::Ok) {
+        label = "projected";
+        return r;
+      }
+      ++fallbacks_;
+      if (first_fallback_.empty())
+        first_fallback_ = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, r.message);
+    }
+    eig::QuadraticEigenOptions reference = qo;
+    reference.method = to_eig_method(settings_.method);
+    eig::QuadraticEigenResult r = eig::solve_quadratic(pencil, reference);
+    label = std::string(eig::to_string(r.method_used));
+    return r;
+  }
+  int fallbacks() const { return fallbacks_; }
+  const std::string& first_fallback() const { return first_fallback_; }
+  Eigen::Index basis_size() const { return projection_ ? projection_->basis_size() : 0; }
+
+ private:
+  // Below this size the full dense solve is as cheap as the projected one.
+  static constexpr int kProjectionMinDofs = 30;
+  const fe::LinearSystem& system_;
+  const CampbellSettings& settings_;
+  std::optional<eig::ProjectedQuadratic> projection_;
+  int fallbacks_ = 0;
+  std::string first_fallback_;
+};
+
 // The elastic modes computed at one speed, and how the solve went.
 struct SpeedSolve {
   std::vector<Mode> candidates;  // every elastic mode computed, in the solver's order
@@ -163,8 +213,9 @@ struct SpeedSolve {
 // Tracks modes from speed to speed: the tracking state and the solver's memory.
 class Tracker {
  public:
-  Tracker(const fe::LinearSystem& system, const CampbellSettings& settings, CampbellResult& result)
-      : system_(system), settings_(settings), result_(result) {
+  Tracker(const fe::LinearSystem& system, const CampbellSettings& settings, ModeSolver& solver,
+          CampbellResult& result)
+      : system_(system), settings_(settings), solver_(solver), result_(result) {
     n_tracks_ = settings.n_modes;
     // Spare modes give the tracking room when a mode climbs out of the computed window.
     n_candidates_ = settings.n_modes + std::max(2, settings.n_modes / 2);
@@ -184,6 +235,7 @@ class Tracker {
 
   const fe::LinearSystem& system_;
   const CampbellSettings& settings_;
+  ModeSolver& solver_;
   CampbellResult& result_;
   int n_tracks_ = 0;
   int n_candidates_ = 0;
@@ -209,9 +261,10 @@ SpeedSolve Tracker::solve(double speed) {
   eig::QuadraticEigenResult cx;
   std::vector<Mode> modes;
   int found_rigid = 0;
+  std::string method;
   for (int attempt = 0; attempt < 2; ++attempt) {
     qo.n_modes = n_candidates_ + rigid_roots_;
-    cx = eig::solve_quadratic(pencil, qo);
+    cx = solver_.solve(pencil, speed, qo, method);
     result_.total_operations += cx.operations;
     modes.clear();
     found_rigid = 0;
@@ -224,17 +277,16 @@ SpeedSolve Tracker::solve(double speed) {
     rigid_roots_ = found_rigid;  // one more solve with room for the rigid-body roots
   }
   result_.rigid_body_roots = std::max(result_.rigid_body_roots, found_rigid);
-  const std::string method(eig::to_string(cx.method_used));
   if (std::find(methods_.begin(), methods_.end(), method) == methods_.end())
     methods_.push_back(method);
   SpeedSolve out;
   // The spares are optional: fewer modes only matters below the number of tracks.
   out.status = cx.status;
-  out.complete = cx.method_used == eig::Method::Dense;
+  out.complete = method == "dense";
   if (out.status == Status::FewerModes && (cx.converged - found_rigid >= n_tracks_ || out.complete))
     out.status = Status::Ok;
   out.message = cx.message;
-  if (cx.method_used == eig::Method::Sparse) start_vector_ = eig::start_vector(cx);
+  if (method == "sparse" && settings_.warm_start) start_vector_ = eig::start_vector(cx);
 
   for (Mode& m : modes) {
     if (m.rigid_body) continue;
@@ -367,8 +419,9 @@ struct Bracket {
 // (otherwise another mode is too close to tell them apart by eigenvalue).
 class RootProbe {
  public:
-  RootProbe(const fe::LinearSystem& system, const CampbellSettings& settings, int& solves)
-      : system_(system), settings_(settings), solves_(solves) {}
+  RootProbe(const fe::LinearSystem& system, const CampbellSettings& settings, ModeSolver& solver,
+            int& solves)
+      : system_(system), settings_(settings), solver_(solver), solves_(solves) {}
 
   bool enabled() const { return settings_.refine_crossings; }
 
@@ -378,7 +431,8 @@ class RootProbe {
     qo.method = to_eig_method(settings_.method);
     qo.n_modes = std::min<int>(3, static_cast<int>(system_.size()));
     qo.target = predicted;
-    const eig::QuadraticEigenResult cx = eig::solve_quadratic(pencil, qo);
+    std::string method;
+    const eig::QuadraticEigenResult cx = solver_.solve(pencil, speed, qo, method);
     ++solves_;
     const double inf = std::numeric_limits<double>::infinity();
     double nearest = inf, second = inf;
@@ -415,6 +469,7 @@ class RootProbe {
  private:
   const fe::LinearSystem& system_;
   const CampbellSettings& settings_;
+  ModeSolver& solver_;
   int& solves_;
 };
 
@@ -590,7 +645,8 @@ CampbellResult run_campbell(const model::Model& model, const CampbellSettings& s
   result.speeds = settings.speeds;
   result.lines = engine_order_lines(model, system, settings);
   const std::size_t n_speeds = settings.speeds.size();
-  Tracker tracker(system, settings, result);
+  ModeSolver solver(system, settings);
+  Tracker tracker(system, settings, solver, result);
   Status status = Status::Ok;
   std::string first_problem;
   int problem_speeds = 0;
@@ -608,10 +664,13 @@ CampbellResult run_campbell(const model::Model& model, const CampbellSettings& s
   }
   progress.finish();
 
-  const RootProbe probe(system, settings, result.refinement_solves);
+  const RootProbe probe(system, settings, solver, result.refinement_solves);
   result.critical_speeds = find_critical_speeds(result, probe);
   result.onsets = find_onsets(result, probe);
   for (const auto& m : tracker.methods()) result.method += (result.method.empty() ? "" : ", ") + m;
+  result.projection_basis = static_cast<int>(solver.basis_size());
+  result.projection_fallbacks = solver.fallbacks();
+  result.first_fallback = solver.first_fallback();
   result.status = status;
   if (status != Status::Ok)
     result.message = fmt::format("eigen-solve trouble at {} of {} speeds; first {}", problem_speeds,
@@ -895,6 +954,16 @@ std::vector<std::string> campbell_notes(const CampbellResult& result) {
                                     "too close) and are linear interpolations (refined = 0)",
                                     unrefined)
                       : std::string()));
+  if (result.projection_basis > 0)
+    notes.push_back(fmt::format(
+        "Projection onto {} speed-independent vectors (undamped modes at rest, enriched until "
+        "every returned mode passes the full-size residual checks){}.",
+        result.projection_basis,
+        result.projection_fallbacks > 0
+            ? fmt::format("; {} solves it could not certify were redone by the full solver, "
+                          "first {}",
+                          result.projection_fallbacks, result.first_fallback)
+            : std::string()));
   if (!result.fewer_modes_note.empty()) notes.push_back(result.fewer_modes_note + ".");
   if (!result.onsets.empty()) {
     std::string list;

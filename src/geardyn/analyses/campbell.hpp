@@ -28,6 +28,10 @@ struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   /// regenerated model reference); set by library callers.
   bool refine_crossings = true;
   EigenMethod method = EigenMethod::Auto;
+  /// Start each speed from the previous one's solver state (the projection basis, enriched so
+  /// far; the Arnoldi start vector). false: every speed is solved from scratch (the cold start
+  /// that tests compare against; slower). Not a model key; set by library callers.
+  bool warm_start = true;
 };
 
 /// One tracked mode at one speed (shapes are not kept: n_speeds x n_modes x n would be large).
@@ -98,7 +102,13 @@ struct CampbellResult {
   int candidates_per_speed = 0;  ///< elastic modes computed per speed (tracks + spares)
   int rigid_body_roots = 0;      ///< roots at 0 Hz (rigid-body motion) left out of the tracking
   double max_residual = 0;
-  std::string method;  ///< solver method(s) used
+  std::string method;  ///< solver method(s) used: "projected", "dense", "sparse"
+  /// Size of the projection basis at the end of the sweep (0: no projection; see ModeSolver in
+  /// campbell.cpp and eig/projected_quadratic.hpp).
+  int projection_basis = 0;
+  /// Solves the projection could not certify, redone by the reference solver (method lists it).
+  int projection_fallbacks = 0;
+  std::string first_fallback;  ///< where and why the first of them happened
   int total_operations = 0;
   double run_time_s = 0;
 };

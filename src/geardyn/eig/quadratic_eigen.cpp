@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <type_traits>
 
@@ -54,6 +55,8 @@ std::vector<std::string> QuadraticEigenOptions::validate() const {
   if (!std::isnan(target.real()) &&
       (!std::isfinite(target.real()) || !std::isfinite(target.imag())))
     problems.push_back("target must be finite (or NaN for automatic)");
+  if (!std::isnan(dense_shift) && !std::isfinite(dense_shift))
+    problems.push_back("dense_shift must be finite (or NaN for automatic)");
   if (dense_limit < 0)
     problems.push_back(fmt::format("dense_limit must be >= 0, found {}", dense_limit));
   if (!(residual_limit > 0.0))
@@ -180,6 +183,14 @@ std::vector<RitzPair> one_of_each_pair(std::vector<RitzPair> pairs) {
   return kept;
 }
 
+// The member of a conjugate pair with Im lambda >= 0; real roots from real arithmetic may carry
+// rounding-level imaginary parts, which are dropped.
+Complex upper_root(Complex lambda) {
+  Complex l = lambda.imag() < 0.0 ? std::conj(lambda) : lambda;
+  if (std::abs(l.imag()) <= 1e-12 * std::abs(l)) l.imag(0.0);
+  return l;
+}
+
 // Turns a state eigenvector and eigenvalue into a mode: x from the first block, or from the
 // second block / lambda, whichever satisfies the quadratic equation better (for large |lambda|
 // the second block carries more significant digits).
@@ -191,14 +202,15 @@ Mode make_mode(const QuadraticPencil& p, const Norms& norms, Complex lambda,
     return flip ? Eigen::VectorXcd(v.conjugate()) : v;
   };
   Mode m;
-  m.lambda = flip ? std::conj(lambda) : lambda;
-  // Real roots from real arithmetic may carry rounding-level imaginary parts.
-  if (std::abs(m.lambda.imag()) <= 1e-12 * std::abs(m.lambda)) m.lambda.imag(0.0);
+  m.lambda = upper_root(lambda);
   m.x = orient(z.head(n));
-  m.residual = backward_error(p, norms, m.lambda, m.x);
+  // A zero block (the state eigenvector of a defective zero root can have one) is no mode shape,
+  // whatever its residual.
+  const double inf = std::numeric_limits<double>::infinity();
+  m.residual = m.x.norm() > 0.0 ? backward_error(p, norms, m.lambda, m.x) : inf;
   if (std::abs(lambda) > 0.0) {
     const Eigen::VectorXcd alt = orient(z.tail(n) / lambda);
-    const double r_alt = backward_error(p, norms, m.lambda, alt);
+    const double r_alt = alt.norm() > 0.0 ? backward_error(p, norms, m.lambda, alt) : inf;
     if (r_alt < m.residual) {
       m.x = alt;
       m.residual = r_alt;
@@ -249,7 +261,8 @@ void solve_dense(const QuadraticPencil& p, const QuadraticEigenOptions& options,
   r.factorizations = 1;
   // A real shift of the order of the lowest natural frequency keeps T = (A - sigma B)^{-1} B
   // well scaled; all eigenvalues are computed, so the target only selects afterwards.
-  const double sigma = -std::sqrt(lowest_ratio(p.K, p.M));
+  const double sigma =
+      std::isnan(options.dense_shift) ? -std::sqrt(lowest_ratio(p.K, p.M)) : options.dense_shift;
   r.shift_used = sigma;
   const Eigen::MatrixXd Md(p.M), Kd(p.K), Dd = p.damping_dense();
   const Eigen::MatrixXd P = Kd + sigma * Dd + sigma * sigma * Md;
@@ -291,13 +304,24 @@ void solve_dense(const QuadraticPencil& p, const QuadraticEigenOptions& options,
   for (Eigen::Index i = 0; i < nu.size(); ++i)
     if (std::abs(nu[i]) > 1e-13 * nu_max) pairs.push_back({nu[i], Z.col(i)});  // else infinite
   pairs = one_of_each_pair(std::move(pairs));
+  const std::size_t finite = pairs.size();
+  // Only the n_modes nearest the target become modes (make_mode costs two residuals each):
+  // the same choice finish() makes, on the same distances, in the same stable order.
+  std::vector<double> distance(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    distance[i] = std::abs(upper_root(sigma + 1.0 / pairs[i].value) - upper(target));
+  std::vector<std::size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
+  order.resize(std::min(order.size(), static_cast<std::size_t>(options.n_modes)));
+  std::sort(order.begin(), order.end());  // the solver's order, as finish() expects
   std::vector<Mode> modes;
-  for (const auto& pr : pairs) {
-    Mode m = make_mode(p, norms, sigma + 1.0 / pr.value, pr.z);
-    m.distance = std::abs(m.lambda - upper(target));
+  for (std::size_t i : order) {
+    Mode m = make_mode(p, norms, sigma + 1.0 / pairs[i].value, pairs[i].z);
+    m.distance = distance[i];
     modes.push_back(std::move(m));
   }
-  const std::size_t finite = modes.size();
   finish(std::move(modes), options, r);
   r.status = Status::Ok;
   if (r.converged < r.requested) {
@@ -513,9 +537,8 @@ QuadraticEigenResult solve_pencil(const QuadraticPencil& p, const QuadraticEigen
   check_dense_size(method, n);
   if (method == Method::Sparse && n < 3) method = Method::Dense;  // Arnoldi needs 2n > 4
 
-  const bool automatic = std::isnan(options.target.real());
   const Complex target =
-      automatic ? Complex(-1e-3 * std::sqrt(lowest_ratio(p.K, p.M)), 0.0) : options.target;
+      std::isnan(options.target.real()) ? Complex(automatic_target(p), 0.0) : options.target;
   if (method == Method::Dense) {
     solve_dense(p, options, target, r);
   } else if (target.imag() == 0.0) {
@@ -533,6 +556,33 @@ QuadraticEigenResult solve_pencil(const QuadraticPencil& p, const QuadraticEigen
 }
 
 }  // namespace
+
+double automatic_target(const QuadraticPencil& pencil) {
+  return -1e-3 * std::sqrt(lowest_ratio(pencil.K, pencil.M));
+}
+
+Eigen::VectorXd backward_errors(const QuadraticPencil& pencil, const Eigen::VectorXcd& eigenvalues,
+                                const Eigen::MatrixXcd& vectors) {
+  const Norms norms = pencil_norms(pencil);
+  Eigen::VectorXd eta(eigenvalues.size());
+  for (Eigen::Index k = 0; k < eigenvalues.size(); ++k)
+    eta[k] = backward_error(pencil, norms, eigenvalues[k], vectors.col(k));
+  return eta;
+}
+
+Eigen::VectorXd backward_errors_from_residuals(const QuadraticPencil& pencil,
+                                               const Eigen::VectorXcd& eigenvalues,
+                                               const Eigen::MatrixXcd& vectors,
+                                               const Eigen::MatrixXcd& residuals) {
+  const Norms norms = pencil_norms(pencil);
+  Eigen::VectorXd eta(eigenvalues.size());
+  for (Eigen::Index k = 0; k < eigenvalues.size(); ++k) {
+    const double a = std::abs(eigenvalues[k]), r = residuals.col(k).norm();
+    const double scale = (a * a * norms.M + a * norms.D + norms.K) * vectors.col(k).norm();
+    eta[k] = scale > 0.0 ? r / scale : r;
+  }
+  return eta;
+}
 
 QuadraticEigenResult solve_quadratic(const QuadraticPencil& p,
                                      const QuadraticEigenOptions& options) {

@@ -61,6 +61,11 @@ struct QuadraticEigenOptions {
   /// state-space solve costs O((2n)^3) with eigenvectors, about 0.05 s at n = 100 and 4 s at
   /// n = 400, which a Campbell sweep pays per speed; the sparse solve is far cheaper above that.
   int dense_limit = 100;
+  /// Real shift sigma of the dense state-space solve (all eigenvalues are computed, sigma only
+  /// keeps T = (A - sigma B)^{-1} B well scaled). NaN: automatic, -sqrt(min_i K_ii / M_ii).
+  /// A projected (reduced) pencil passes the full model's value, since min K_ii / M_ii of a
+  /// modal basis is 0 for rigid-body modes.
+  double dense_shift = kNaN;
   KrylovOptions krylov;
   /// A mode whose backward error exceeds this sets Status::NotConverged.
   double residual_limit = 1e-8;
@@ -101,6 +106,23 @@ struct QuadraticEigenResult {
 /// matrix sizes; numerical trouble is returned in `status` / `message`.
 QuadraticEigenResult solve_quadratic(const QuadraticPencil& pencil,
                                      const QuadraticEigenOptions& options = {});
+
+/// The backward errors (QuadraticEigenResult::residuals) of the pairs (eigenvalues[k],
+/// vectors.col(k)) for `pencil`: the norms are computed once, the residuals with one pencil
+/// application per pair.
+Eigen::VectorXd backward_errors(const QuadraticPencil& pencil, const Eigen::VectorXcd& eigenvalues,
+                                const Eigen::MatrixXcd& vectors);
+
+/// The backward errors from residual vectors already computed: eta_k = ||R.col(k)|| /
+/// ((|lambda_k|^2 ||M||_1 + |lambda_k| ||D||_1 + ||K||_1) ||vectors.col(k)||), the norms of
+/// `pencil` as backward_errors() uses them.
+Eigen::VectorXd backward_errors_from_residuals(const QuadraticPencil& pencil,
+                                               const Eigen::VectorXcd& eigenvalues,
+                                               const Eigen::MatrixXcd& vectors,
+                                               const Eigen::MatrixXcd& residuals);
+
+/// The automatic target of QuadraticEigenOptions (NaN target): -1e-3 sqrt(min_i K_ii / M_ii).
+double automatic_target(const QuadraticPencil& pencil);
 
 /// A start vector for the Arnoldi iteration from known modes (e.g. the previous speed of a
 /// Campbell sweep): sum over modes of the normalised real and imaginary parts of
