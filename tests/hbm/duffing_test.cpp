@@ -11,6 +11,10 @@
 // AFT is exact for a cubic with 64 samples per period); crossings and the peak are located by
 // interpolating between points at most 0.005 apart in arc length: errors O(0.005^2) ~ 3e-5 for
 // the crossings, and the quadratic vertex fit for the peak; 1e-4 is asserted, the digits.
+// The continuation predicts along the secant of the last two points once they exist, and along
+// the tangent where the curve bends (harmonic_balance.hpp): this test is the check that the
+// secant predictor traces the same curve through both folds (these assertions held with the
+// tangent predictor before it, unchanged).
 #include <gtest/gtest.h>
 
 #include <cmath>

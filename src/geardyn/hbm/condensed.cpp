@@ -53,7 +53,33 @@ struct CondensedHarmonicBalance::Structure {
   std::vector<Modal> modal;                   // per harmonic
   int capacity = 0;
   bool residual_couples_clusters = false;
+  // Every harmonic with the same real modes and real residual flexibility (a real structure,
+  // H_n(w) = H(n w)): J is applied on all 2H + 1 coefficient columns at once (U, V, R_res real).
+  bool shared = false;
+  Eigen::MatrixXd shared_left, shared_right, shared_residual;
 };
+
+namespace {
+
+// True when every harmonic has the same real left and right modes and the same real residual
+// flexibility, with at least one mode.
+bool shares_real_modes(const std::vector<ModalReceptance>& harmonics) {
+  const ModalReceptance& first = harmonics.front();
+  if (first.modes() == 0) return false;
+  for (const ModalReceptance& r : harmonics) {
+    if (!r.left.imag().isZero(0.0) || !r.right.imag().isZero(0.0) || !r.residual.imag().isZero(0.0))
+      return false;
+    if (r.left.rows() != first.left.rows() || r.left.cols() != first.left.cols() ||
+        r.left != first.left || r.right.rows() != first.right.rows() ||
+        r.right.cols() != first.right.cols() || r.right != first.right ||
+        r.residual.size() != first.residual.size() ||
+        (r.residual.size() > 0 && r.residual != first.residual))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 Eigen::VectorXcd ModalReceptance::modal_factors(double w, Eigen::VectorXcd* d) const {
   const Eigen::Index m = modes();
@@ -344,6 +370,13 @@ CondensedHarmonicBalance::CondensedHarmonicBalance(int coordinates, HarmonicBasi
         }
     }
   }
+  st->shared = shares_real_modes(harmonics_);
+  if (st->shared) {
+    st->shared_left = harmonics_.front().left.real();
+    st->shared_right = harmonics_.front().right.real();
+    if (harmonics_.front().residual.size() > 0)
+      st->shared_residual = harmonics_.front().residual.real();
+  }
   local_forces_ = std::move(forces);
   structure_ = std::move(st);
 }
@@ -624,6 +657,33 @@ Eigen::VectorXcd CondensedHarmonicBalance::sensor_response(const Eigen::VectorXd
   return harmonics_.at(static_cast<std::size_t>(n)).sensor_response(n * omega, f);
 }
 
+namespace {
+
+// out += H q for a structure whose harmonics share real modes (Structure::shared), s = 2H + 1
+// coefficients per coordinate, `factors` the modal factors of each harmonic.
+void apply_shared(const CondensedHarmonicBalance::Structure& st,
+                  const std::vector<Eigen::VectorXcd>& factors, int s, int n_c,
+                  const Eigen::VectorXd& q, Eigen::VectorXd& out) {
+  // Q(c, d) = q[d s + c]: the coefficient columns side by side. Modal coefficients of each
+  // column G = Q V; harmonic n's complex f = a - i b has V^T f = G_a - i G_b, scaled by the
+  // factors d_n, and U (d_n V^T f) returns on rows a (real part) and b (minus the imaginary).
+  const Eigen::Map<const Eigen::MatrixXd> Q(q.data(), s, n_c);
+  Eigen::MatrixXd G = Q * st.shared_right;
+  G.row(0).array() *= factors[0].real().transpose().array();
+  for (int n = 1; 2 * n < s; ++n) {
+    const int ca = HarmonicBasis::cos_index(n), sb = HarmonicBasis::sin_index(n);
+    const Eigen::VectorXcd& d = factors[static_cast<std::size_t>(n)];
+    const Eigen::RowVectorXd re = G.row(ca), im = -G.row(sb);
+    G.row(ca) = d.real().transpose().cwiseProduct(re) - d.imag().transpose().cwiseProduct(im);
+    G.row(sb) = -(d.real().transpose().cwiseProduct(im) + d.imag().transpose().cwiseProduct(re));
+  }
+  Eigen::Map<Eigen::MatrixXd> O(out.data(), s, n_c);
+  O.noalias() += G * st.shared_left.transpose();
+  if (st.shared_residual.size() > 0) O.noalias() += Q * st.shared_residual.transpose();
+}
+
+}  // namespace
+
 Eigen::VectorXd CondensedJacobian::apply(const Eigen::VectorXd& v) const {
   const CondensedHarmonicBalance& sys = *system_;
   const auto& st = *sys.structure_;
@@ -642,6 +702,10 @@ Eigen::VectorXd CondensedJacobian::apply(const Eigen::VectorXd& v) const {
   }
   // v + H q, harmonic by harmonic, H applied as its modal sum plus residual.
   Eigen::VectorXd out = v;
+  if (st.shared) {
+    apply_shared(st, factors_, s, n_c, q, out);
+    return out;
+  }
   for (int n = 0; n <= sys.basis_.harmonics(); ++n) {
     const ModalReceptance& rec = sys.harmonics_[static_cast<std::size_t>(n)];
     if (rec.modes() == 0 && rec.residual.size() == 0) continue;

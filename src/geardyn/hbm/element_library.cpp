@@ -82,7 +82,8 @@ void JenkinsElementHb::harmonic_force(const HarmonicBasis& basis, const Eigen::V
                                       double /*omega*/, Eigen::VectorXd& f, Eigen::MatrixXd* J,
                                       Eigen::VectorXd* /*df_domega*/) const {
   check_coefficients(*this, basis, w);
-  const JenkinsResponse r = jenkins_response(law_, basis, w);
+  // The force-only march when no Jacobian is asked (a line search's trial).
+  const JenkinsResponse r = jenkins_response(law_, basis, w, J != nullptr);
   f += r.coefficients;
   if (J != nullptr) *J += r.jacobian;
   // df/domega = 0: the law is rate-independent.
@@ -91,7 +92,7 @@ void JenkinsElementHb::harmonic_force(const HarmonicBasis& basis, const Eigen::V
 ElementLoop JenkinsElementHb::loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,
                                    double /*omega*/) const {
   check_coefficients(*this, basis, w);
-  const JenkinsResponse r = jenkins_response(law_, basis, w);
+  const JenkinsResponse r = jenkins_response(law_, basis, w, false);
   ElementLoop l;
   l.displacement = sample_coordinates(basis, w);
   l.force = r.force;

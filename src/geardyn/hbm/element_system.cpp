@@ -84,6 +84,23 @@ std::vector<int> support(const Eigen::MatrixXd& B) {
   return d;
 }
 
+// J += B^T Je B in the DOF-major layout, on the DOFs `dofs` of B's support: block (d, g) gets
+// sum_{k, l} B(k, d) B(l, g) Je(k, l) (blocks of s x s).
+void add_placed(const PlacedNonlinearElement& placed, const std::vector<int>& dofs,
+                const Eigen::MatrixXd& Je, int s, Eigen::MatrixXd& J) {
+  const int ne = placed.element->size();
+  for (int d : dofs)
+    for (int g : dofs) {
+      Eigen::MatrixXd block = Eigen::MatrixXd::Zero(s, s);
+      for (int k = 0; k < ne; ++k)
+        for (int l = 0; l < ne; ++l) {
+          const double bb = placed.B(k, d) * placed.B(l, g);
+          if (bb != 0.0) block += bb * Je.block(k * s, l * s, s, s);
+        }
+      J.block(d * s, g * s, s, s) += block;
+    }
+}
+
 }  // namespace
 
 ElementHarmonicBalance::ElementHarmonicBalance(ElementSystem system, HarmonicBasis basis)
@@ -182,19 +199,27 @@ Eigen::VectorXd ElementHarmonicBalance::residual(const Eigen::VectorXd& X, doubl
         R.segment(d * s, s) += b * f.segment(k * s, s);
         if (dR_domega != nullptr) dR_domega->segment(d * s, s) += b * dfw.segment(k * s, s);
       }
-    if (J == nullptr) continue;
-    for (int d : dofs)
-      for (int g : dofs) {
-        Eigen::MatrixXd block = Eigen::MatrixXd::Zero(s, s);
-        for (int k = 0; k < ne; ++k)
-          for (int l = 0; l < ne; ++l) {
-            const double bb = placed.B(k, d) * placed.B(l, g);
-            if (bb != 0.0) block += bb * Je.block(k * s, l * s, s, s);
-          }
-        J->block(d * s, g * s, s, s) += block;
-      }
+    if (J != nullptr) add_placed(placed, dofs, Je, s, *J);
   }
   return R;
+}
+
+Eigen::MatrixXd ElementHarmonicBalance::velocity_jacobian(const Eigen::VectorXd& X,
+                                                          double omega) const {
+  const int s = basis_.size();
+  if (X.size() != size())
+    throw InputError({}, "unknowns", fmt::format("{} coefficients", size()),
+                     fmt::format("{}", X.size()));
+  Eigen::MatrixXd Jv = Eigen::MatrixXd::Zero(size(), size());
+  for (std::size_t e = 0; e < system_.elements.size(); ++e) {
+    const auto& placed = system_.elements[e];
+    const int ne = placed.element->size();
+    Eigen::MatrixXd Je = Eigen::MatrixXd::Zero(ne * s, ne * s);
+    placed.element->harmonic_velocity_jacobian(basis_, element_coordinates(X, static_cast<int>(e)),
+                                               omega, Je);
+    if (!Je.isZero(0.0)) add_placed(placed, support(placed.B), Je, s, Jv);
+  }
+  return Jv;
 }
 
 double ElementHarmonicBalance::residual_scale(const Eigen::VectorXd& X, double omega) const {

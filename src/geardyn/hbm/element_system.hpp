@@ -61,6 +61,11 @@ class ElementHarmonicBalance final : public HarmonicSystem {
   /// R(X, omega) = D(omega) X + F_nl(X, omega) - lambda F_ext, lambda = load_factor().
   Eigen::VectorXd residual(const Eigen::VectorXd& X, double omega, Eigen::MatrixXd* J = nullptr,
                            Eigen::VectorXd* dR_domega = nullptr) const override;
+  /// dF_nl/dV (size() square): the derivative of the elements' force coefficients with respect
+  /// to the coefficients V of the velocity q' (DOF-major), sum_e B_e^T (P diag(df_e/dv) Q) B_e
+  /// per harmonic block (NonlinearElement::harmonic_velocity_jacobian). Zero when no element
+  /// depends on the velocity. Hill's method adds it to its first-order term (stability.hpp).
+  Eigen::MatrixXd velocity_jacobian(const Eigen::VectorXd& X, double omega) const;
   /// max(||lambda F_ext||, ||K X||, ||(n omega)^2 M X_n||, tiny): no element is evaluated.
   double residual_scale(const Eigen::VectorXd& X, double omega) const override;
 

@@ -453,6 +453,11 @@ std::unique_ptr<NewtonAlgebra> newton_algebra(const HarmonicSystem& hb, const Sc
   return std::make_unique<DenseAlgebra>(p, condensed ? condensed->statistics() : nullptr);
 }
 
+// The secant of the last two points predicts the next one while it stays within about 6 degrees
+// of the direction that led to it (cos 6 deg = 0.9945); where the curve bends more, the tangent
+// is solved for.
+constexpr double kSecantAlignment = 0.9945;
+
 // Unit tangent of R(y) = 0 at the last point linearized, oriented along `previous`.
 Eigen::VectorXd tangent(const Scaled& p, NewtonAlgebra& algebra, const Eigen::VectorXd& previous) {
   const auto n = previous.size() - 1;
@@ -499,16 +504,19 @@ Corrected correct_unguarded(const Scaled& p, NewtonAlgebra& algebra, Eigen::Vect
       delta.head(n) = algebra.solve(Eigen::VectorXd(), R, target);
     }
     if (!delta.allFinite()) return c;
+    // The full step is evaluated with its linearization (it is usually taken, and is then the
+    // next Newton point); the line search's halvings without, and the one taken is linearized.
     double alpha = 1.0;
     Eigen::VectorXd trial = z - delta;
-    Eigen::VectorXd R_trial = algebra.residual(trial, false);
-    for (int halvings = 0; halvings < 4 && !(R_trial.norm() < c.residual); ++halvings) {
+    Eigen::VectorXd R_trial = algebra.residual(trial, true);
+    int halvings = 0;
+    for (; halvings < 4 && !(R_trial.norm() < c.residual); ++halvings) {
       alpha *= 0.5;
       trial = z - alpha * delta;
       R_trial = algebra.residual(trial, false);
     }
     z = trial;
-    R = algebra.residual(z, true);
+    R = halvings == 0 ? std::move(R_trial) : algebra.residual(z, true);
   }
 }
 
@@ -614,6 +622,7 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
 
   Eigen::VectorXd t_prev = Eigen::VectorXd::Unit(n + 1, n) * direction;
   Eigen::VectorXd t = tangent(p, *algebra, t_prev);
+  bool t_is_tangent = true;  // false: t is the secant of the last two points
   double step = o.step;
   Eigen::VectorXd y_before = y - o.step * t;  // the previous point (a guess at the start)
   while (static_cast<int>(out.points.size()) < o.max_points) {
@@ -625,11 +634,17 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
     if (c.converged && (z - predicted).norm() > step) c.converged = false;
     if (!c.converged) {
       step *= 0.5;
+      if (!t_is_tangent) {  // a refused step from a secant: the tangent at y from now on
+        algebra->residual(y, true);
+        t = tangent(p, *algebra, t);
+        t_is_tangent = true;
+      }
       double radius = 0.0;
       Corrected turned;
       if (step < o.min_step && turn_sharp_fold(p, *algebra, y, y_before, t, o.max_iterations,
                                                o.min_step, z, radius, turned)) {
         t = tangent(p, *algebra, (z - y).normalized());
+        t_is_tangent = true;
         y_before = y;
         y = z;
         out.points.push_back({p.omega(y), p.X(y), turned.iterations, turned.residual});
@@ -649,7 +664,17 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
       }
       continue;
     }
-    t = tangent(p, *algebra, t);
+    // Secant predictor: the chord just traced, unless it turned from the direction followed by
+    // more than acos(kSecantAlignment) (the curve bends: near a turning point or a corner), where
+    // the tangent at the new point (the algebra holds its linearization) is solved for.
+    const Eigen::VectorXd chord = (z - y).normalized();
+    if (chord.dot(t) >= kSecantAlignment) {
+      t = chord;
+      t_is_tangent = false;
+    } else {
+      t = tangent(p, *algebra, t);
+      t_is_tangent = true;
+    }
     y_before = y;
     y = z;
     out.points.push_back({p.omega(y), p.X(y), c.iterations, c.residual});

@@ -9,14 +9,58 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <vector>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/hbm/jenkins.hpp"
+#include "geardyn/hbm/nonlinear_element.hpp"
 
 namespace geardyn::hbm {
 
+namespace {
+
+// sum_j P.col(j) over the samples j of [first, last) of the steady period.
+Eigen::VectorXd projected_interval(const Eigen::MatrixXd& P, int first, int last) {
+  return P.middleCols(first, last - first).rowwise().sum();
+}
+
+// The AFT Jacobian P G from the stick intervals of the steady period. In stick after the last
+// clipped (slip) sample a, the incremental gradient telescopes to dT_j/dc = k (Q_j - Q_a); with
+// no clipped sample before j in the whole march it is k (Q_j - e_0) (the start T = k (u_0 - a_0));
+// in slip it is 0. So P G = k (P diag(stick) Q - sum over the stick runs of the same anchor a of
+// (sum_{j in run} P_j) Q_a), P diag(stick) Q by projected_diagonal.
+Eigen::MatrixXd stick_jacobian(const HarmonicBasis& basis, double k, const Eigen::VectorXd& stick,
+                               const std::vector<int>& anchor) {
+  const Eigen::MatrixXd& Q = basis.sampling();
+  const Eigen::MatrixXd& P = basis.projection();
+  const int n = basis.time_samples(), m = basis.size();
+  Eigen::MatrixXd J = projected_diagonal(basis, stick);
+  Eigen::RowVectorXd row(m);
+  for (int j = 0; j < n;) {
+    if (stick[j] == 0.0) {
+      ++j;
+      continue;
+    }
+    int last = j + 1;
+    while (last < n && stick[last] != 0.0 &&
+           anchor[static_cast<std::size_t>(last)] == anchor[static_cast<std::size_t>(j)])
+      ++last;
+    const int a = anchor[static_cast<std::size_t>(j)];
+    if (a < 0)
+      row = Eigen::RowVectorXd::Unit(m, 0);
+    else
+      row = Q.row(a);
+    J.noalias() -= projected_interval(P, j, last) * row;
+    j = last;
+  }
+  return k * J;
+}
+
+}  // namespace
+
 JenkinsResponse jenkins_response(const JenkinsElement& e, const HarmonicBasis& basis,
-                                 const Eigen::Ref<const Eigen::VectorXd>& u_coefficients) {
+                                 const Eigen::Ref<const Eigen::VectorXd>& u_coefficients,
+                                 bool with_jacobian) {
   if (!(e.stiffness > 0.0) || !std::isfinite(e.stiffness))
     throw InputError({}, "stiffness", "a finite tangential stiffness > 0 N/m",
                      fmt::format("{}", e.stiffness));
@@ -24,44 +68,41 @@ JenkinsResponse jenkins_response(const JenkinsElement& e, const HarmonicBasis& b
     throw InputError({}, "slip_force", "a finite slip force mu N >= 0 N",
                      fmt::format("{}", e.slip_force));
   const int n = basis.time_samples();
-  const int m = basis.size();
   const Eigen::VectorXd u = basis.to_time(u_coefficients);
-  const Eigen::MatrixXd& Q = basis.sampling();  // d u_j / d coefficients = Q.row(j)
   const double k = e.stiffness, F = e.slip_force;
 
-  // State: force T and its gradient g = dT / d coefficients.
+  // The force march; `anchor` is the last clipped sample (-1: none yet), whose gradient the
+  // stick samples after it inherit (stick_jacobian).
   double T = k * (u[0] - u_coefficients[0]);
-  // d a_0 / d coefficients = e_0.
-  Eigen::RowVectorXd g = k * (Q.row(0) - Eigen::RowVectorXd::Unit(m, 0));
-  auto clip = [&](double& force, Eigen::RowVectorXd& gradient) {
+  int anchor = -1;
+  auto clip = [&](double& force, int sample) {
     if (std::abs(force) >= F) {
       force = F * (force >= 0.0 ? 1.0 : -1.0);
-      gradient.setZero();
+      anchor = sample;
       return false;
     }
     return true;
   };
-  clip(T, g);
+  clip(T, 0);
 
   JenkinsResponse r;
   r.force.resize(n);
-  Eigen::MatrixXd G(n, m);  // per sample of the second period: dT_j / d coefficients
-  int stuck = 0;
+  Eigen::VectorXd stick(n);
+  std::vector<int> anchors(static_cast<std::size_t>(n), -1);
   // Steps s = 1 .. 2n - 1 from sample 0 of the first period; the second period (s >= n) is kept.
   for (int s = 1; s < 2 * n; ++s) {
     const int j = s % n, previous = (s - 1) % n;
     T += k * (u[j] - u[previous]);
-    g += k * (Q.row(j) - Q.row(previous));
-    const bool stick = clip(T, g);
+    const bool stuck = clip(T, j);
     if (s >= n) {
       r.force[j] = T;
-      G.row(j) = g;
-      stuck += stick ? 1 : 0;
+      stick[j] = stuck ? 1.0 : 0.0;
+      anchors[static_cast<std::size_t>(j)] = anchor;
     }
   }
   r.coefficients = basis.to_frequency(r.force);
-  r.jacobian = basis.projection() * G;
-  r.stick_fraction = static_cast<double>(stuck) / n;
+  if (with_jacobian) r.jacobian = stick_jacobian(basis, k, stick, anchors);
+  r.stick_fraction = stick.sum() / n;
   // Closed-loop integral of T du by the trapezoidal rule over the periodic samples.
   double w = 0.0;
   for (int j = 0; j < n; ++j) {

@@ -33,15 +33,21 @@ struct JenkinsElement {
 struct JenkinsResponse {
   Eigen::VectorXd force;         ///< T(theta_j) over the steady period, j = 0 .. n - 1
   Eigen::VectorXd coefficients;  ///< Fourier coefficients of T (HarmonicBasis layout)
-  /// d coefficients(T) / d coefficients(u): the AFT Jacobian, size() x size().
+  /// d coefficients(T) / d coefficients(u): the AFT Jacobian, size() x size() (empty when not
+  /// asked).
   Eigen::MatrixXd jacobian;
   double stick_fraction = 0.0;    ///< share of the samples in stick
   double energy_per_cycle = 0.0;  ///< closed-loop integral of T du over the samples [J]
 };
 
 /// The steady periodic force of `element` for the relative displacement with Fourier
-/// coefficients `u` in `basis`. Throws InputError for k <= 0 or F < 0.
+/// coefficients `u` in `basis`. Throws InputError for k <= 0 or F < 0. The march carries the
+/// force alone; with `with_jacobian` (else `jacobian` is left empty) the Jacobian is built from
+/// the stick intervals of the steady period: in stick after the last slip sample a,
+/// dT_j/du = k (Q_j - Q_a) (the spring stretched from where the slider stopped), in slip 0, and
+/// k (Q_j - e_0) in a loop that never slips (the spring about the mean a_0).
 JenkinsResponse jenkins_response(const JenkinsElement& element, const HarmonicBasis& basis,
-                                 const Eigen::Ref<const Eigen::VectorXd>& u);
+                                 const Eigen::Ref<const Eigen::VectorXd>& u,
+                                 bool with_jacobian = true);
 
 }  // namespace geardyn::hbm

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <complex>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/signal/fft.hpp"
 
 namespace geardyn::hbm {
 
@@ -21,6 +23,66 @@ Eigen::MatrixXd sampling_derivative(const HarmonicBasis& basis) {
   for (int h = 1; h <= basis.harmonics(); ++h) {
     D.col(HarmonicBasis::cos_index(h)) = -h * Q.col(HarmonicBasis::sin_index(h));
     D.col(HarmonicBasis::sin_index(h)) = h * Q.col(HarmonicBasis::cos_index(h));
+  }
+  return D;
+}
+
+namespace {
+
+// C_k + i S_k = (1/n) sum_j c_j e^{i k theta_j}, k = 0 .. 2H, from the real FFT of c (which holds
+// k <= n / 2; above, X_k = conj(X_{n - k}); n >= 2H + 1 keeps 2H < n).
+Eigen::VectorXcd sample_spectrum(const HarmonicBasis& basis,
+                                 const Eigen::Ref<const Eigen::VectorXd>& c) {
+  const int n = basis.time_samples(), top = 2 * basis.harmonics();
+  const Eigen::VectorXcd X = signal::real_fft(c);
+  Eigen::VectorXcd z(top + 1);
+  for (int k = 0; k <= top; ++k) {
+    const std::complex<double> x = 2 * k <= n ? X[k] : std::conj(X[n - k]);
+    z[k] = std::conj(x) / static_cast<double>(n);
+  }
+  return z;
+}
+
+}  // namespace
+
+Eigen::MatrixXd projected_diagonal(const HarmonicBasis& basis,
+                                   const Eigen::Ref<const Eigen::VectorXd>& c) {
+  if (c.size() != basis.time_samples())
+    throw InputError({}, "samples", fmt::format("{} time samples", basis.time_samples()),
+                     fmt::format("{}", c.size()));
+  const int H = basis.harmonics(), s = basis.size();
+  const Eigen::VectorXcd z = sample_spectrum(basis, c);
+  auto C = [&](int k) { return z[std::abs(k)].real(); };
+  auto S = [&](int k) { return k >= 0 ? z[k].imag() : -z[-k].imag(); };
+  Eigen::MatrixXd W(s, s);
+  W(0, 0) = C(0);
+  for (int g = 1; g <= H; ++g) {
+    W(0, HarmonicBasis::cos_index(g)) = C(g);
+    W(0, HarmonicBasis::sin_index(g)) = S(g);
+  }
+  for (int h = 1; h <= H; ++h) {
+    const int ch = HarmonicBasis::cos_index(h), sh = HarmonicBasis::sin_index(h);
+    W(ch, 0) = 2.0 * C(h);
+    W(sh, 0) = 2.0 * S(h);
+    for (int g = 1; g <= H; ++g) {
+      const int cg = HarmonicBasis::cos_index(g), sg = HarmonicBasis::sin_index(g);
+      W(ch, cg) = C(h - g) + C(h + g);
+      W(ch, sg) = S(h + g) - S(h - g);
+      W(sh, cg) = S(h + g) + S(h - g);
+      W(sh, sg) = C(h - g) - C(h + g);
+    }
+  }
+  return W;
+}
+
+Eigen::MatrixXd projected_diagonal_derivative(const HarmonicBasis& basis,
+                                              const Eigen::Ref<const Eigen::VectorXd>& c) {
+  const Eigen::MatrixXd W = projected_diagonal(basis, c);
+  // Q' = Q with the columns of harmonic h swapped and scaled (sampling_derivative).
+  Eigen::MatrixXd D = Eigen::MatrixXd::Zero(W.rows(), W.cols());
+  for (int h = 1; h <= basis.harmonics(); ++h) {
+    D.col(HarmonicBasis::cos_index(h)) = -h * W.col(HarmonicBasis::sin_index(h));
+    D.col(HarmonicBasis::sin_index(h)) = h * W.col(HarmonicBasis::cos_index(h));
   }
   return D;
 }
@@ -77,70 +139,103 @@ double loop_energy(const Eigen::MatrixXd& u, const Eigen::MatrixXd& f) {
   return w;
 }
 
-void PointwiseElement::harmonic_force(const HarmonicBasis& basis, const Eigen::VectorXd& w,
-                                      double omega, Eigen::VectorXd& f, Eigen::MatrixXd* J,
-                                      Eigen::VectorXd* df_domega) const {
-  const int nc = size(), s = basis.size(), n = basis.time_samples();
+namespace {
+
+// The pointwise law over the samples of one period: the force (n x nc) and, as asked, per sample
+// j the entries (i, k) of df_i/du_k and df_i/dv_k (column-major: i + k nc) and df/domega at
+// fixed u, v. One u, v and ElementStep are reused over the samples: no allocation per sample.
+struct LawSamples {
+  Eigen::MatrixXd u, v, force, dfdu, dfdv, direct;
+};
+
+LawSamples sample_law(const PointwiseElement& e, const HarmonicBasis& basis,
+                      const Eigen::VectorXd& w, double omega, bool slopes, bool rates,
+                      bool direct) {
+  const int nc = e.size(), s = basis.size(), n = basis.time_samples();
   if (w.size() != nc * s)
-    throw InputError({}, describe(), fmt::format("{} Fourier coefficients", nc * s),
+    throw InputError({}, e.describe(), fmt::format("{} Fourier coefficients", nc * s),
                      fmt::format("{}", w.size()));
-  const Eigen::MatrixXd u = sample_coordinates(basis, w);
-  const bool rate = velocity_dependent();
-  const Eigen::MatrixXd v =
-      rate ? sample_velocities(basis, w, omega) : Eigen::MatrixXd::Zero(n, nc);
-  const Eigen::MatrixXd& Q = basis.sampling();
-  const Eigen::MatrixXd& P = basis.projection();
-  const Eigen::MatrixXd Qd =
-      (J != nullptr && rate) ? sampling_derivative(basis) : Eigen::MatrixXd();
-  Eigen::MatrixXd force(n, nc);
-  // Per sample j, the entries (i, k) of df_i/du_k and df_i/dv_k (column-major: i + k nc).
-  Eigen::MatrixXd dfdu, dfdv;
-  if (J != nullptr) dfdu.resize(n, nc * nc);
-  if (J != nullptr || df_domega != nullptr) dfdv.resize(n, nc * nc);
-  Eigen::MatrixXd direct;  // df/domega at fixed u, v per sample (n x nc)
-  if (df_domega != nullptr) direct.setZero(n, nc);
+  LawSamples r;
+  r.u = sample_coordinates(basis, w);
+  r.v = e.velocity_dependent() ? sample_velocities(basis, w, omega) : Eigen::MatrixXd::Zero(n, nc);
+  r.force.resize(n, nc);
+  if (slopes) r.dfdu.resize(n, nc * nc);
+  if (rates) r.dfdv.resize(n, nc * nc);
+  if (direct) r.direct.setZero(n, nc);
   ElementStep step;
-  Eigen::VectorXd d(nc);
+  Eigen::VectorXd uj(nc), vj(nc), d(nc);
   for (int j = 0; j < n; ++j) {
     step.force.setZero(nc);
     step.stiffness.setZero(nc, nc);
     step.damping.setZero(nc, nc);
+    uj = r.u.row(j).transpose();
+    vj = r.v.row(j).transpose();
     const double theta = units::kTwoPi * j / n;
-    pointwise(u.row(j).transpose(), v.row(j).transpose(), theta, omega, step);
-    if (df_domega != nullptr) {
+    e.pointwise(uj, vj, theta, omega, step);
+    if (direct) {
       d.setZero();
-      pointwise_omega_derivative(u.row(j).transpose(), v.row(j).transpose(), theta, omega, d);
-      direct.row(j) = d.transpose();
+      e.pointwise_omega_derivative(uj, vj, theta, omega, d);
+      r.direct.row(j) = d.transpose();
     }
     if (!step.force.allFinite())
-      throw NumericalError(describe(), fmt::format("the force is not finite at phase {:.4g} rad "
-                                                   "of the period (a non-finite motion?)",
-                                                   theta));
-    force.row(j) = step.force.transpose();
-    if (dfdu.size() > 0) dfdu.row(j) = step.stiffness.reshaped().transpose();
-    if (dfdv.size() > 0) dfdv.row(j) = step.damping.reshaped().transpose();
+      throw NumericalError(e.describe(), fmt::format("the force is not finite at phase {:.4g} rad "
+                                                     "of the period (a non-finite motion?)",
+                                                     theta));
+    r.force.row(j) = step.force.transpose();
+    if (slopes) r.dfdu.row(j) = step.stiffness.reshaped().transpose();
+    if (rates) r.dfdv.row(j) = step.damping.reshaped().transpose();
   }
-  for (int i = 0; i < nc; ++i) f.segment(i * s, s) += P * force.col(i);
+  return r;
+}
+
+}  // namespace
+
+void PointwiseElement::harmonic_force(const HarmonicBasis& basis, const Eigen::VectorXd& w,
+                                      double omega, Eigen::VectorXd& f, Eigen::MatrixXd* J,
+                                      Eigen::VectorXd* df_domega) const {
+  const int nc = size(), s = basis.size(), n = basis.time_samples();
+  const bool rate = velocity_dependent();
+  const LawSamples l =
+      sample_law(*this, basis, w, omega, J != nullptr,
+                 rate && (J != nullptr || df_domega != nullptr), df_domega != nullptr);
+  for (int i = 0; i < nc; ++i) f.segment(i * s, s) += basis.to_frequency(l.force.col(i));
   if (J != nullptr) {
     for (int i = 0; i < nc; ++i)
       for (int k = 0; k < nc; ++k) {
-        // Column-major reshape: entry (i, k) of an nc x nc matrix is at i + k nc.
+        // Column-major reshape: entry (i, k) of an nc x nc matrix is at i + k nc;
+        // J = P diag(df/du) Q + omega P diag(df/dv) Q'.
         const Eigen::Index ik = i + k * nc;
-        Eigen::MatrixXd block = P * dfdu.col(ik).asDiagonal() * Q;
-        if (rate) block += omega * (P * dfdv.col(ik).asDiagonal() * Qd);
-        J->block(i * s, k * s, s, s) += block;
+        if (!l.dfdu.col(ik).isZero(0.0))
+          J->block(i * s, k * s, s, s) += projected_diagonal(basis, l.dfdu.col(ik));
+        if (rate && !l.dfdv.col(ik).isZero(0.0))
+          J->block(i * s, k * s, s, s) +=
+              omega * projected_diagonal_derivative(basis, l.dfdv.col(ik));
       }
   }
   if (df_domega != nullptr && rate) {
     // v = omega Q' w: df/domega = P diag(df/dv) (v / omega).
+    Eigen::VectorXd g(n);
     for (int i = 0; i < nc; ++i) {
-      Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
-      for (int k = 0; k < nc; ++k) g += dfdv.col(i + k * nc).cwiseProduct(v.col(k));
-      df_domega->segment(i * s, s) += P * g / omega;
+      g.setZero();
+      for (int k = 0; k < nc; ++k) g += l.dfdv.col(i + k * nc).cwiseProduct(l.v.col(k));
+      df_domega->segment(i * s, s) += basis.to_frequency(g) / omega;
     }
   }
   if (df_domega != nullptr)
-    for (int i = 0; i < nc; ++i) df_domega->segment(i * s, s) += P * direct.col(i);
+    for (int i = 0; i < nc; ++i)
+      df_domega->segment(i * s, s) += basis.to_frequency(l.direct.col(i));
+}
+
+void PointwiseElement::harmonic_velocity_jacobian(const HarmonicBasis& basis,
+                                                  const Eigen::VectorXd& w, double omega,
+                                                  Eigen::MatrixXd& Jv) const {
+  if (!velocity_dependent()) return;
+  const int nc = size(), s = basis.size();
+  const LawSamples l = sample_law(*this, basis, w, omega, false, true, false);
+  for (int i = 0; i < nc; ++i)
+    for (int k = 0; k < nc; ++k)
+      if (!l.dfdv.col(i + k * nc).isZero(0.0))
+        Jv.block(i * s, k * s, s, s) += projected_diagonal(basis, l.dfdv.col(i + k * nc));
 }
 
 ElementLoop PointwiseElement::loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,

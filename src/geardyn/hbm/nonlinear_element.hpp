@@ -67,6 +67,17 @@ class NonlinearElement {
                               Eigen::VectorXd& f, Eigen::MatrixXd* J,
                               Eigen::VectorXd* df_domega) const = 0;
 
+  /// The AFT derivative of the force coefficients with respect to the Fourier coefficients z of
+  /// the coordinates' velocity u' = du/dt (coordinate-major like w): per coordinate pair
+  /// P diag(df/dv) Q at the motion w, omega. Jv (n (2H+1) square, sized and zero on entry)
+  /// gets it added. Hill's method needs it: a perturbation e^{lambda t} p(t) of the motion adds
+  /// e^{lambda t} (lambda p + p') to the velocity, and harmonic_force's J (through
+  /// v = omega Q' w) carries the p' part only. Default: nothing (laws without velocity
+  /// dependence; the hysteretic laws here are rate-independent).
+  virtual void harmonic_velocity_jacobian(const HarmonicBasis& /*basis*/,
+                                          const Eigen::VectorXd& /*w*/, double /*omega*/,
+                                          Eigen::MatrixXd& /*Jv*/) const {}
+
   /// The periodic loop of the solution with coordinate coefficients w: samples of u and f over
   /// the steady period, the energy dissipated per cycle and the share of each regime.
   virtual ElementLoop loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,
@@ -108,6 +119,10 @@ class PointwiseElement : public NonlinearElement {
   void harmonic_force(const HarmonicBasis& basis, const Eigen::VectorXd& w, double omega,
                       Eigen::VectorXd& f, Eigen::MatrixXd* J,
                       Eigen::VectorXd* df_domega) const override;
+  /// P diag(df/dv) Q per coordinate pair from the pointwise law (nothing when not
+  /// velocity_dependent()).
+  void harmonic_velocity_jacobian(const HarmonicBasis& basis, const Eigen::VectorXd& w,
+                                  double omega, Eigen::MatrixXd& Jv) const override;
   ElementLoop loop(const HarmonicBasis& basis, const Eigen::VectorXd& w,
                    double omega) const override;
   void time_force(const Eigen::VectorXd& u, const Eigen::VectorXd& v, double theta, double omega,
@@ -122,6 +137,20 @@ Eigen::MatrixXd sample_velocities(const HarmonicBasis& basis, const Eigen::Vecto
 
 /// The theta-derivative matrix Q' of the sampling matrix: d/dtheta of x(theta_j) = Q'_j c.
 Eigen::MatrixXd sampling_derivative(const HarmonicBasis& basis);
+
+/// P diag(c) Q (size() x size()) for the samples c (time_samples()): the AFT Jacobian
+/// d(P f(Q w))/dw of a pointwise law with slope c_j = df/du at sample j. Formed from the sums
+/// C_k + i S_k = (1/n) sum_j c_j e^{i k theta_j}, k = 0 .. 2H (one real FFT of c), by
+/// 2 cos a cos b = cos(a - b) + cos(a + b) and the like: entry (cos h, cos g) is
+/// C_{h-g} + C_{h+g}, (cos h, sin g) S_{h+g} - S_{h-g}, (sin h, cos g) S_{h+g} + S_{h-g},
+/// (sin h, sin g) C_{h-g} - C_{h+g}; row a_0: C_g, S_g; column a_0: 2 C_h, 2 S_h. Equal to the
+/// product of the matrices to round-off, in O(n log n + H^2) instead of O(n H^2).
+Eigen::MatrixXd projected_diagonal(const HarmonicBasis& basis,
+                                   const Eigen::Ref<const Eigen::VectorXd>& c);
+/// P diag(c) Q' (Q' = sampling_derivative(basis)): the columns of projected_diagonal mixed as
+/// those of Q' are.
+Eigen::MatrixXd projected_diagonal_derivative(const HarmonicBasis& basis,
+                                              const Eigen::Ref<const Eigen::VectorXd>& c);
 
 /// Closed-loop integral sum_j f_{j+1/2} . (u_{j+1} - u_j) over periodic samples (trapezoidal
 /// rule), rows = samples.

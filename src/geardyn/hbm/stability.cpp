@@ -91,8 +91,10 @@ double centroid(const Eigen::Ref<const Eigen::VectorXcd>& P, int dofs, int harmo
 namespace {
 
 // The Hill matrix A of the first-order eigenproblem.
-Eigen::MatrixXd hill_matrix(const Eigen::MatrixXd& J, const Eigen::FullPivLU<Eigen::MatrixXd>& lu,
-                            const Eigen::MatrixXd& C, int harmonics, double omega) {
+// Jv (empty: none) is dF_nl/dV, added to D1.
+Eigen::MatrixXd hill_matrix(const Eigen::MatrixXd& J, const Eigen::MatrixXd& Jv,
+                            const Eigen::FullPivLU<Eigen::MatrixXd>& lu, const Eigen::MatrixXd& C,
+                            int harmonics, double omega) {
   const auto nd = static_cast<int>(C.rows());
   const int s = 2 * harmonics + 1, N = nd * s;
   // First-order form of (1): A z = lambda z, z = [P; lambda P]. D2^-1 = M^-1 (x) I, so
@@ -104,8 +106,10 @@ Eigen::MatrixXd hill_matrix(const Eigen::MatrixXd& J, const Eigen::FullPivLU<Eig
   A.topRightCorner(N, N).setIdentity();
   for (int i = 0; i < nd; ++i) {
     for (int k = 0; k < nd; ++k) {
-      if (Minv(i, k) != 0.0) A.block(N + i * s, 0, s, N) -= Minv(i, k) * J.middleRows(k * s, s);
       if (MinvC(i, k) != 0.0) A.block(N + i * s, N + k * s, s, s).diagonal().array() -= MinvC(i, k);
+      if (Minv(i, k) == 0.0) continue;
+      A.block(N + i * s, 0, s, N) -= Minv(i, k) * J.middleRows(k * s, s);
+      if (Jv.size() > 0) A.block(N + i * s, N, s, N) -= Minv(i, k) * Jv.middleRows(k * s, s);
     }
     for (int n = 1; n <= harmonics; ++n) {
       const int ci = N + i * s + HarmonicBasis::cos_index(n);
@@ -198,6 +202,20 @@ std::vector<int> select_exponents(const std::vector<int>& order, const Eigen::Ve
 FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                              const Eigen::MatrixXd& C, int harmonics, double omega,
                              const HillOptions& options) {
+  return hill_stability(J, Eigen::MatrixXd(), M, C, harmonics, omega, options);
+}
+
+FloquetResult hill_stability(const ElementHarmonicBalance& hb, const Eigen::VectorXd& X,
+                             double omega, const HillOptions& options) {
+  Eigen::MatrixXd J;
+  hb.residual(X, omega, &J);
+  return hill_stability(J, hb.velocity_jacobian(X, omega), hb.system().M, hb.system().C,
+                        hb.basis().harmonics(), omega, options);
+}
+
+FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& Jv,
+                             const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, int harmonics,
+                             double omega, const HillOptions& options) {
   options.validate();
   const auto nd = static_cast<int>(M.rows());
   if (harmonics < 0)
@@ -212,6 +230,9 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                      "square M, C of one size n_dof and J of size n_dof (2H + 1)",
                      fmt::format("M {}x{}, C {}x{}, J {}x{} (H = {})", M.rows(), M.cols(), C.rows(),
                                  C.cols(), J.rows(), J.cols(), harmonics));
+  if (Jv.size() > 0 && (Jv.rows() != N || Jv.cols() != N))
+    throw InputError({}, "hbm.hill_stability.Jv", fmt::format("empty or {0}x{0}", N),
+                     fmt::format("{}x{}", Jv.rows(), Jv.cols()));
   const Eigen::FullPivLU<Eigen::MatrixXd> lu(M);
   if (!lu.isInvertible())
     throw InputError({}, "hbm.hill_stability.M", "an invertible mass matrix",
@@ -219,13 +240,13 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                      "condense massless DOFs out of the harmonic-balance system first");
 
   FloquetResult out;
-  if (!J.allFinite() || !C.allFinite()) {
-    out.message = "J or C has non-finite entries";
+  if (!J.allFinite() || !C.allFinite() || !Jv.allFinite()) {
+    out.message = "J, Jv or C has non-finite entries";
     return out;
   }
 
   // First-order form of (1): A z = lambda z, z = [P; lambda P].
-  const Eigen::MatrixXd A = hill_matrix(J, lu, C, harmonics, omega);
+  const Eigen::MatrixXd A = hill_matrix(J, Jv, lu, C, harmonics, omega);
 
   const Eigen::EigenSolver<Eigen::MatrixXd> es(A, true);
   if (es.info() != Eigen::Success) {

@@ -60,8 +60,14 @@
 // response curve, or a branch point), omega / 2 (multiplier < -1: period doubling), otherwise a
 // complex pair (Neimark-Sacker, quasi-periodic response).
 //
-// Limits: J must be the Jacobian of forces depending on q only; a force depending on q' adds
-// lambda-dependent terms to D1 that J does not carry (pass their linearisation in C). For
+// Forces depending on the velocity, f_nl(q, q'): the perturbed velocity e^{lambda t}
+// (lambda p + p') enters f_nl through df_nl/dv; J (= dR/dX, with v = omega Q' X) carries the p'
+// part, and the lambda p part adds to D1 the harmonic-balance derivative of the force
+// coefficients with respect to the velocity's coefficients, Jv = dF_nl/dV (per DOF pair
+// P diag(df/dv) Q, the AFT of df/dv the way df/du enters J):
+//   (lambda^2 D2 + lambda (D1 + Jv) + J) P = 0.
+// Pass Jv (ElementHarmonicBalance::velocity_jacobian), or use the overload on an
+// ElementHarmonicBalance that forms J and Jv itself. For
 // hysteretic (friction) forces the Jacobian is that of the force's harmonic description and the
 // result is the common engineering approximation, not a proven Floquet analysis.
 #include <Eigen/Dense>
@@ -71,6 +77,7 @@
 #include <vector>
 
 #include "geardyn/core/status.hpp"
+#include "geardyn/hbm/element_system.hpp"
 #include "geardyn/hbm/harmonic_balance.hpp"
 
 namespace geardyn::hbm {
@@ -130,6 +137,17 @@ FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& M,
                              const Eigen::MatrixXd& C, int harmonics, double omega,
                              const HillOptions& options = {});
 
+/// The same with velocity-dependent forces: Jv = dF_nl/dV (n_dof (2H+1) square, or empty for
+/// none) is added to the first-order term D1 (see the header comment). InputError also for a Jv
+/// of another size.
+FloquetResult hill_stability(const Eigen::MatrixXd& J, const Eigen::MatrixXd& Jv,
+                             const Eigen::MatrixXd& M, const Eigen::MatrixXd& C, int harmonics,
+                             double omega, const HillOptions& options = {});
+/// Hill stability of the solution X of `hb` at omega, its elements' velocity dependence included:
+/// J = dR/dX and Jv = hb.velocity_jacobian(X, omega) with the system's M and C. Cost: one
+/// linearization, one AFT of df/dv per velocity-dependent element and the eigen-solve.
+FloquetResult hill_stability(const ElementHarmonicBalance& hb, const Eigen::VectorXd& X,
+                             double omega, const HillOptions& options = {});
 /// The kind of instability an exponent lambda with Re lambda > 0 stands for at frequency omega:
 /// Fold when Im lambda, reduced modulo omega, is within kind_tolerance omega of 0, period
 /// doubling when within it of omega / 2, Neimark-Sacker otherwise (see the header comment).
