@@ -349,5 +349,160 @@ TEST(NonlinearResponse, AStartTheSolverCannotConvergeIsReported) {
   EXPECT_NE(out.output.message.find("could not start"), std::string::npos) << out.output.message;
 }
 
+// A Duffing oscillator with a tanh-regularised Coulomb damper in parallel: a velocity-dependent
+// element. Hill's method takes its velocity Jacobian in the first-order term (hbm/stability.hpp),
+// so its verdicts must agree with the monodromy matrix of a time march through the same laws
+// (Seydel, "Practical Bifurcation and Stability Analysis", 2010, ch. 7: both give the Floquet
+// multipliers of the same periodic solution). The two may differ only at the one or two points
+// next to each fold, where the critical multiplier is within the truncation (H = 5) and the
+// march's frequency error ((w h)^2 / 12 at 1024 steps) of the unit circle.
+TEST(NonlinearResponse, HillWithAVelocityDependentElementAgreesWithTheMonodromy) {
+  auto with_coulomb = [](const std::string& stability) {
+    std::string text = duffing_model(R"(frequency_start_hz = 0.0795774715
+frequency_stop_hz = 0.3183098862
+harmonics = 5
+time_samples = 64
+max_step = 0.03
+stability = ")" + stability + "\"\n");
+    text.replace(text.find("[[analyses]]"), 12,
+                 "[[nonlinear_elements]]\nname = \"damper\"\ntype = \"coulomb\"\nnode2 = \"p\"\n"
+                 "direction = [0.0, 0.0, 1.0]\nslip_force = 0.01\nregularisation_velocity = 0.05\n"
+                 "[[analyses]]");
+    return text;
+  };
+  const model::Model hill_model = load(fresh_dir("nonlinear_hill_coulomb"), with_coulomb("hill"));
+  const model::Model mono_model =
+      load(fresh_dir("nonlinear_monodromy_coulomb"), with_coulomb("monodromy"));
+  const Solved hill = run(hill_model), mono = run(mono_model);
+  ASSERT_EQ(hill.outcome.output.status, Status::Ok) << hill.outcome.output.message;
+  ASSERT_EQ(mono.outcome.output.status, Status::Ok) << mono.outcome.output.message;
+  const auto &h = hill.result(), &m = mono.result();
+  ASSERT_EQ(h.frequency.size(), m.frequency.size());
+  ASSERT_EQ(h.turning_points.size(), 2u);  // the hardening curve still folds twice
+  int unstable = 0, differ = 0;
+  for (std::size_t i = 0; i < h.frequency.size(); ++i) {
+    unstable += h.unstable[i] ? 1 : 0;
+    if (h.unstable[i] != m.unstable[i]) ++differ;
+  }
+  EXPECT_GT(unstable, 3);  // the middle branch is found unstable
+  EXPECT_LE(differ, 4);    // at most two points next to each fold (see above)
+}
+
+// Two identical Duffing oscillators (tests above) joined by a linear spring k_c, forced in phase:
+// the symmetric motion x1 = x2 is the single Duffing's, and the antisymmetric perturbation
+// d = x1 - x2 sees the single oscillator's linearisation with k + 2 k_c. Where that block is
+// singular on the symmetric curve away from its folds, an antisymmetric family branches off: a
+// symmetry-breaking pitchfork (Vakakis et al., "Normal Modes and Localization in Nonlinear
+// Systems", Wiley 1996). At H = 1 the block is the 2 x 2 Jacobian of the averaged equations,
+//   [k' - w^2 + 3/4 alpha (A^2 + 2 a^2), c w + 3/2 alpha a b; -c w + 3/2 alpha a b,
+//    k' - w^2 + 3/4 alpha (A^2 + 2 b^2)],  x1 = a cos wt + b sin wt,  A^2 = a^2 + b^2,
+// whose determinant must change sign exactly between each reported branch point and the point
+// before it, and nowhere else on the curve (the test function of the continuation is the sign of
+// the full bordered determinant, whose symmetric block keeps its sign through the folds).
+TEST(NonlinearResponse, SymmetryBreakingBranchPointsOfCoupledDuffings) {
+  std::string text = R"(version = 1
+dofs = "axial"
+[[nodes]]
+name = "p1"
+position = [0.0, 0.0, 0.0]
+[[nodes]]
+name = "p2"
+position = [1.0, 0.0, 0.0]
+[[point_masses]]
+node = "p1"
+mass = 1.0
+[[point_masses]]
+node = "p2"
+mass = 1.0
+[[bearings]]
+name = "s1"
+node = "p1"
+kzz = 1.0
+czz = 0.05
+[[bearings]]
+name = "s2"
+node = "p2"
+kzz = 1.0
+czz = 0.05
+[[forces]]
+name = "F1"
+node = "p1"
+dof = "uz"
+amplitude = 0.18
+[[forces]]
+name = "F2"
+node = "p2"
+dof = "uz"
+amplitude = 0.18
+[[sensors]]
+name = "x1"
+node = "p1"
+dof = "uz"
+[[sensors]]
+name = "x2"
+node = "p2"
+dof = "uz"
+[[nonlinear_elements]]
+name = "cubic1"
+type = "cubic"
+node2 = "p1"
+direction = [0.0, 0.0, 1.0]
+stiffness = 0.1
+[[nonlinear_elements]]
+name = "cubic2"
+type = "cubic"
+node2 = "p2"
+direction = [0.0, 0.0, 1.0]
+stiffness = 0.1
+[[nonlinear_elements]]
+name = "coupling"
+type = "polynomial"
+node1 = "p1"
+node2 = "p2"
+direction = [0.0, 0.0, 1.0]
+powers = [1]
+coefficients = [0.02]
+[[analyses]]
+name = "nl"
+type = "nonlinear_response"
+forces = ["F1", "F2"]
+frequency_start_hz = 0.0795774715
+frequency_stop_hz = 0.3183098862
+harmonics = 1
+time_samples = 16
+tolerance = 1e-12
+max_step = 0.02
+)";
+  const model::Model m = load(fresh_dir("nonlinear_coupled_duffing"), text);
+  const Solved run_result = run(m);
+  ASSERT_EQ(run_result.outcome.output.status, Status::Ok) << run_result.outcome.output.message;
+  const auto& r = run_result.result();
+  const double k = 1.0 + 2.0 * 0.02, c = 0.05, alpha = 0.1;
+  auto antisymmetric_det = [&](std::size_t i) {
+    const Eigen::MatrixXd& x = r.sensor_coefficients[i];  // row 0: x1
+    const double a = x(0, hbm::HarmonicBasis::cos_index(1));
+    const double b = x(0, hbm::HarmonicBasis::sin_index(1));
+    const double w = r.frequency[i], A2 = a * a + b * b;
+    const double d11 = k - w * w + 0.75 * alpha * (A2 + 2.0 * a * a);
+    const double d22 = k - w * w + 0.75 * alpha * (A2 + 2.0 * b * b);
+    const double s = 1.5 * alpha * a * b;
+    return d11 * d22 - (s * s - c * c * w * w);
+  };
+  std::vector<int> expected;
+  for (std::size_t i = 1; i < r.frequency.size(); ++i) {
+    // The motion stays symmetric (the continuation follows the symmetric family).
+    EXPECT_NEAR((r.sensor_coefficients[i].row(0) - r.sensor_coefficients[i].row(1)).norm(), 0.0,
+                1e-9);
+    if ((antisymmetric_det(i) > 0.0) != (antisymmetric_det(i - 1) > 0.0))
+      expected.push_back(static_cast<int>(i));
+  }
+  ASSERT_FALSE(expected.empty()) << "k_c chosen so that the symmetric curve has branch points";
+  EXPECT_EQ(r.branch_points, expected);
+  EXPECT_EQ(r.turning_points.size(), 2u);
+  // The branch_points table lists them.
+  const Table& branches = table(run_result.outcome.output, "branch_points");
+  EXPECT_EQ(branches.rows(), expected.size());
+}
+
 }  // namespace
 }  // namespace geardyn::analyses

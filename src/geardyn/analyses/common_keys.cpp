@@ -123,6 +123,17 @@ F unbalances_key() {
 
 F sensors_key() { return names("sensors", Ref::Sensor, "Sensors reported.").note("all sensors"); }
 
+F point_threads_key() {
+  return integer("threads",
+                 "Worker threads over the frequencies or speeds (0: all cores). Each point is "
+                 "solved on its own, so the results are bit-identical for any count; 1 on the "
+                 "sparse (UMFPACK) path when the system BLAS is a sequential OpenBLAS (the notes "
+                 "say so). Inside a sweep, whose points already run on threads, keep 1.")
+      .def("1")
+      .ge(0)
+      .le(4096);
+}
+
 F gear_pair_name_key() {
   return reference("pair", Ref::GearPair, "The [[gear_pairs]] entry analysed.")
       .note("gear_pair: every pair; otherwise the model's only pair");

@@ -66,6 +66,10 @@ model::keys::F unbalances_key();
 /// `sensors` (used by harmonic, unbalance, transient, gear_forced_response).
 model::keys::F sensors_key();
 
+/// `threads`: worker threads over the points of a frequency or speed sweep (used by harmonic,
+/// unbalance).
+model::keys::F point_threads_key();
+
 /// `pair` (used by gear_pair, mesh_force, mesh_harmonics).
 model::keys::F gear_pair_name_key();
 

@@ -77,6 +77,7 @@ std::vector<model::Field> keys() {
                             {ResponseQuantity::Receptance, ResponseQuantity::Mobility,
                              ResponseQuantity::Accelerance}),
       sensors_key().to_settings(&HarmonicSettings::sensors),
+      point_threads_key().to_settings(&HarmonicSettings::threads),
   };
 }
 

@@ -225,7 +225,12 @@ void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& force
   r.max_real_exponent.assign(np, kNaN);
   r.instability.assign(np, "");
   if (s.stability == NonlinearStability::Fold) {
-    r.unstable = unstable_after(r.turning_points, np);
+    // One real multiplier crosses +1 at each turning point and at each simple branch point.
+    // (A branch point lies before point b: the points from b on are on its other side.)
+    std::vector<int> crossings = r.turning_points;
+    for (int b : r.branch_points) crossings.push_back(b - 1);
+    std::sort(crossings.begin(), crossings.end());
+    r.unstable = unstable_after(crossings, np);
     for (std::size_t i = 0; i < np; ++i) r.instability[i] = r.unstable[i] ? "fold" : "none";
     return;
   }
@@ -253,20 +258,10 @@ void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& force
     }
     return;
   }
-  for (const auto& e : hb.system().elements) {
-    const auto* pointwise = dynamic_cast<const hbm::PointwiseElement*>(e.element.get());
-    if (pointwise != nullptr && pointwise->velocity_dependent())
-      throw context.error("stability", "\"fold\" with velocity-dependent elements",
-                          fmt::format("\"hill\" with {}", e.element->describe()),
-                          "Hill's method here takes the elements' stiffness only; their damping "
-                          "would be left out of the variational equation");
-  }
-  Eigen::MatrixXd J;
+  // Hill's method with the elements' velocity Jacobian in the first-order term (friction
+  // regularised by tanh, squeeze films, dampers in contacts): hbm/stability.hpp.
   for (std::size_t i = 0; i < np; ++i) {
-    const hbm::ElementHarmonicBalance& b = at(i);
-    b.residual(points[i].X, r.frequency[i], &J);
-    const hbm::FloquetResult f =
-        hbm::hill_stability(J, b.system().M, b.system().C, b.basis().harmonics(), r.frequency[i]);
+    const hbm::FloquetResult f = hbm::hill_stability(at(i), points[i].X, r.frequency[i]);
     record_floquet(f, i, r);
   }
 }
@@ -368,6 +363,7 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
                                     : by_speed ? r.speed
                                                : r.level,
                                     1e-3 * std::abs(o.omega_end - o.omega_start));
+  r.branch_points = curve.branch_points;
   stability(hb, forced, s, curve.points, context, r);
   r.loop_point = largest_point(r);
   if (r.loop_point >= 0)

@@ -98,6 +98,11 @@ struct NonlinearResponseResult {
   std::vector<double> max_real_exponent;  ///< Hill: max Re lambda [1/s] (NaN: fold method)
   std::vector<std::string> instability;   ///< Hill: kind per point ("none", "fold", ...)
   std::vector<int> turning_points;        ///< point indices where the parameter turns
+  /// Point indices i where the branch-point test function changed sign since the point before
+  /// (hbm::ContinuationResult::branch_points): a simple bifurcation of the same period lies
+  /// between them. Known for the physical and modal forms (dense Newton algebra), not for the
+  /// condensed form (iterative solves).
+  std::vector<int> branch_points;
 
   /// Hysteresis loops of every element at the point of largest response (loop_point).
   int loop_point = -1;

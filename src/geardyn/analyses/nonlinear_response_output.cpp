@@ -146,12 +146,14 @@ Table energy_table(const NonlinearResponseResult& r) {
   return t;
 }
 
-Table turning_table(const NonlinearResponseResult& r) {
+// The points `at` of the curve: parameter values and first-harmonic amplitudes.
+Table points_table(const NonlinearResponseResult& r, const std::vector<int>& at, std::string name,
+                   std::string title) {
   Table t;
-  t.name = "turning_points";
-  t.title = "Turning points of the response curve (folds: the jump frequencies of a sweep)";
+  t.name = std::move(name);
+  t.title = std::move(title);
   std::vector<double> point, hz, level;
-  for (int i : r.turning_points) {
+  for (int i : at) {
     const auto k = static_cast<std::size_t>(i);
     point.push_back(i);
     hz.push_back(r.frequency[k] / units::kTwoPi);
@@ -162,12 +164,25 @@ Table turning_table(const NonlinearResponseResult& r) {
   t.add("force_factor", "", level);
   for (std::size_t s = 0; s < r.sensors.size(); ++s) {
     std::vector<double> h1;
-    for (int i : r.turning_points)
+    for (int i : at)
       h1.push_back(harmonic_amplitude(
           r.sensor_coefficients[static_cast<std::size_t>(i)].row(static_cast<Eigen::Index>(s)), 1));
     t.add(fmt::format("{}_h1_{}", r.sensors[s], unit_of(r, s)), unit_of(r, s), h1);
   }
   return t;
+}
+
+Table turning_table(const NonlinearResponseResult& r) {
+  return points_table(r, r.turning_points, "turning_points",
+                      "Turning points of the response curve (folds: the jump frequencies of a "
+                      "sweep)");
+}
+
+Table branch_table(const NonlinearResponseResult& r) {
+  return points_table(r, r.branch_points, "branch_points",
+                      "Branch points (simple bifurcations of the same period: another family of "
+                      "periodic solutions crosses the curve between this point and the one "
+                      "before; e.g. a symmetry-breaking response)");
 }
 
 Table loops_table(const NonlinearResponseResult& r) {
@@ -298,6 +313,16 @@ std::vector<std::string> notes(const NonlinearResponseResult& r) {
     n.push_back(fmt::format("Largest relative residual of a converged point: {:.3g}.",
                             *std::max_element(r.residual.begin(), r.residual.end())));
   const auto unstable = std::count(r.unstable.begin(), r.unstable.end(), 1);
+  if (!r.branch_points.empty())
+    n.push_back(fmt::format(
+        "{} branch point(s) on the curve (table branch_points): another family of periodic "
+        "solutions crosses it there, which this continuation does not follow; the stability "
+        "changes at each.",
+        r.branch_points.size()));
+  else if (r.condensed)
+    n.push_back(
+        "Branch points are not detected in the condensed form (its Newton systems are "
+        "solved iteratively, without the determinant the test needs).");
   n.push_back(
       fmt::format("{} turning point(s); {} of {} points unstable ({}).", r.turning_points.size(),
                   unstable, r.unstable.size(),
@@ -317,8 +342,8 @@ AnalysisOutput nonlinear_response_output(const model::Model& /*model*/,
   out.type = "nonlinear_response";
   out.status = r.status;
   out.message = r.message;
-  out.tables = {response_table(r), harmonics_table(r), energy_table(r), turning_table(r),
-                loops_table(r)};
+  out.tables = {response_table(r), harmonics_table(r), energy_table(r),
+                turning_table(r),  branch_table(r),    loops_table(r)};
   out.plots = plots(r);
   out.notes = notes(r);
   return out;

@@ -45,6 +45,7 @@ std::vector<model::Field> keys() {
       speed_count_key().read_by_finish<model::Analysis>(),
       unbalances_key().to_settings(&UnbalanceSettings::unbalances),
       sensors_key().to_settings(&UnbalanceSettings::sensors),
+      point_threads_key().to_settings(&UnbalanceSettings::threads),
   };
 }
 

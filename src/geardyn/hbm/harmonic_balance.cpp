@@ -171,6 +171,9 @@ class NewtonAlgebra {
   virtual Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) = 0;
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& border, const Eigen::VectorXd& rhs,
                                 double target) = 0;
+  /// Sign of det [A; border^T] of the last bordered solve (the branch-point test function);
+  /// 0 when the algebra does not know it (iterative solves).
+  virtual int bordered_sign() const { return 0; }
 };
 
 // Any HarmonicSystem: its dense Jacobian and a partial-pivoting LU per solve.
@@ -191,7 +194,15 @@ class DenseAlgebra final : public NewtonAlgebra {
       Eigen::MatrixXd B(n + 1, n + 1);
       B.topRows(n) = A_;
       B.bottomRows(1) = border.transpose();
-      d = B.partialPivLu().solve(rhs);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(B);
+      d = lu.solve(rhs);
+      // det = det(P) prod U_ii: its sign without the product's overflow.
+      int sign = lu.permutationP().determinant() > 0 ? 1 : -1;
+      for (Eigen::Index i = 0; i <= n; ++i) {
+        const double u = lu.matrixLU()(i, i);
+        sign = u > 0.0 ? sign : u < 0.0 ? -sign : 0;
+      }
+      sign_ = sign;
     }
     if (statistics_) {
       ++statistics_->linear_solves;
@@ -200,11 +211,13 @@ class DenseAlgebra final : public NewtonAlgebra {
     }
     return d;
   }
+  int bordered_sign() const override { return sign_; }
 
  private:
   const Scaled& p_;
   CondensedStatistics* statistics_;
   Eigen::MatrixXd A_;
+  int sign_ = 0;
 };
 
 struct Krylov {
@@ -618,7 +631,7 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
         o.omega_start, c.residual, c.iterations);
     return out;
   }
-  out.points.push_back({o.omega_start, p.X(y), c.iterations, c.residual});
+  out.points.push_back({o.omega_start, p.X(y), c.iterations, c.residual, 0});
 
   Eigen::VectorXd t_prev = Eigen::VectorXd::Unit(n + 1, n) * direction;
   Eigen::VectorXd t = tangent(p, *algebra, t_prev);
@@ -647,7 +660,7 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
         t_is_tangent = true;
         y_before = y;
         y = z;
-        out.points.push_back({p.omega(y), p.X(y), turned.iterations, turned.residual});
+        out.points.push_back({p.omega(y), p.X(y), turned.iterations, turned.residual, 0});
         step = radius;
         if (direction * (p.omega(y) - o.omega_end) >= 0.0) break;
         continue;
@@ -664,6 +677,9 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
       }
       continue;
     }
+    // The corrector's last bordered matrix [A(z); t^T] (t along the direction of travel) gives
+    // the branch-point test function's sign at z; read before the tangent solve replaces it.
+    const int corrected_sign = c.iterations > 0 ? algebra->bordered_sign() : 0;
     // Secant predictor: the chord just traced, unless it turned from the direction followed by
     // more than acos(kSecantAlignment) (the curve bends: near a turning point or a corner), where
     // the tangent at the new point (the algebra holds its linearization) is solved for.
@@ -677,7 +693,7 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
     }
     y_before = y;
     y = z;
-    out.points.push_back({p.omega(y), p.X(y), c.iterations, c.residual});
+    out.points.push_back({p.omega(y), p.X(y), c.iterations, c.residual, corrected_sign});
     if (direction * (p.omega(y) - o.omega_end) >= 0.0) break;
     if (direction * (p.omega(y) - o.omega_start) < -0.1 * std::abs(o.omega_end - o.omega_start)) {
       out.status = Status::NotConverged;
@@ -697,7 +713,20 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
     out.message = fmt::format("continuation reached max_points = {} at frequency {:.8g}",
                               o.max_points, p.omega(y));
   }
+  out.branch_points = branch_points(out.points);
   return out;
+}
+
+std::vector<int> branch_points(const std::vector<ContinuationPoint>& points) {
+  std::vector<int> found;
+  int last = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int s = points[i].test_sign;
+    if (s == 0) continue;
+    if (last != 0 && s != last) found.push_back(static_cast<int>(i));
+    last = s;
+  }
+  return found;
 }
 
 }  // namespace geardyn::hbm

@@ -125,13 +125,25 @@ struct ContinuationPoint {
   Eigen::VectorXd X;
   int iterations = 0;
   double residual = 0.0;  ///< ||R|| at the converged point
+  /// Sign of the branch-point test function det [dR/dy; t^T] at the point (t the unit tangent
+  /// along the direction of travel; Seydel 2010, sec. 5.3): regular along a branch and through
+  /// its turning points, it changes sign at a simple branch point (a bifurcation of the same
+  /// period). 0: not known (the first point, a point found on a sphere, a condensed system
+  /// solved iteratively).
+  int test_sign = 0;
 };
 
 struct ContinuationResult {
   Status status = Status::Ok;
   std::string message;  ///< empty when ok; otherwise where and why the curve ended
   std::vector<ContinuationPoint> points;
+  /// Indices i of points where test_sign differs from the last known sign before i: a simple
+  /// branch point lies between point i and the one before it with a known sign.
+  std::vector<int> branch_points;
 };
+
+/// The branch points of a traced curve (see ContinuationResult::branch_points).
+std::vector<int> branch_points(const std::vector<ContinuationPoint>& points);
 
 /// Traces the periodic solutions from omega_start to omega_end, starting from the guess X0 at
 /// omega_start (corrected by Newton first).
