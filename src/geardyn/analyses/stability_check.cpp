@@ -6,9 +6,11 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 
 #include "geardyn/assembly/system_pencil.hpp"
 #include "geardyn/core/units.hpp"
+#include "geardyn/eig/projected_quadratic.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 
 namespace geardyn::analyses {
@@ -22,8 +24,99 @@ constexpr double kRigidFraction = 1e-4;
 
 }  // namespace
 
+// Tisseur's normwise backward error of (lambda, x) for `pencil`: ||P(lambda) x|| /
+// ((|lambda|^2 ||M|| + |lambda| ||D|| + ||K||) ||x||), the norms those of backward_errors().
+double axis_backward_error(const eig::QuadraticPencil& pencil, std::complex<double> lambda,
+                           const Eigen::VectorXcd& x) {
+  const Eigen::VectorXcd r =
+      pencil.K * x + lambda * pencil.apply_damping(x) + (lambda * lambda) * (pencil.M * x);
+  return eig::backward_errors_from_residuals(pencil, Eigen::VectorXcd::Constant(1, lambda), x,
+                                             r)[0];
+}
+
+bool certified_growing(const eig::QuadraticPencil& pencil, std::complex<double> lambda,
+                       const Eigen::VectorXcd& x, double backward_error) {
+  const double eta = std::max(kBackwardErrorFactor * backward_error, kRoundoffBackwardError);
+  return axis_backward_error(pencil, {0.0, lambda.imag()}, x) > eta;
+}
+
+// The solver of the scan: the projection (one basis for every speed) on models above
+// kProjectionMinDofs, the full solver (solve_quadratic) below that and wherever the projection
+// cannot certify every mode (counted).
+class StabilitySolver {
+ public:
+  StabilitySolver(const fe::LinearSystem& system, bool project) : system_(system) {
+    if (project && system.size() > kProjectionMinDofs)
+      projection_.emplace(assembly::pencil_parts(system));
+  }
+  eig::QuadraticEigenResult solve(const eig::QuadraticPencil& pencil, double speed,
+                                  const eig::QuadraticEigenOptions& qo) {
+    if (projection_) {
+      const assembly::SpeedIncrements inc = assembly::speed_increments(system_, speed);
+      eig::QuadraticEigenResult r = projection_->solve(pencil, speed, inc.dK, inc.dC, qo);
+      if (r.status == Status::Ok) {
+        ++projected_;
+        failures_in_a_row_ = 0;
+        return r;
+      }
+      ++fallbacks_;
+      if (first_fallback_.empty())
+        first_fallback_ = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, r.message);
+      // A failed projected solve costs several enrichment rounds on top of the full solve:
+      // after kMaxFailuresInARow the projection is given up for the rest of the scan.
+      if (++failures_in_a_row_ >= kMaxFailuresInARow) {
+        projection_.reset();
+        given_up_ = true;
+      }
+    } else if (given_up_) {
+      ++fallbacks_;
+    }
+    return eig::solve_quadratic(pencil, qo);
+  }
+  int projected() const { return projected_; }
+  int fallbacks() const { return fallbacks_; }
+  bool given_up() const { return given_up_; }
+  const std::string& first_fallback() const { return first_fallback_; }
+
+ private:
+  // Below this size the full dense solve is as cheap as the projected one (as in Campbell).
+  static constexpr int kProjectionMinDofs = 30;
+  static constexpr int kMaxFailuresInARow = 2;
+  const fe::LinearSystem& system_;
+  std::optional<eig::ProjectedQuadratic> projection_;
+  int projected_ = 0, fallbacks_ = 0, failures_in_a_row_ = 0;
+  bool given_up_ = false;
+  std::string first_fallback_;
+};
+
+namespace {
+
+// The verdict from the modes computed (see the header: growth limit and backward error).
+void judge(const eig::QuadraticPencil& pencil, const eig::QuadraticEigenResult& cx, double top,
+           StabilityAtSpeed& out) {
+  const double growth_limit = kGrowthTolerance * top;
+  bool have_least = false;
+  for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
+    const std::complex<double> l = cx.eigenvalues[j];
+    StabilityMode m;
+    m.mode = static_cast<int>(j) + 1;
+    m.eigenvalue = l;
+    m.frequency = std::abs(l);
+    m.damping_ratio = eig::damping_ratio(l);
+    const double eta = j < cx.residuals.size() ? cx.residuals[j] : 0.0;
+    if (l.real() > growth_limit && certified_growing(pencil, l, cx.eigenvectors.col(j), eta))
+      out.unstable.push_back(m);
+    if (m.frequency <= kRigidFraction * top) continue;
+    if (!have_least || m.damping_ratio < out.least_damped.damping_ratio) out.least_damped = m;
+    have_least = true;
+  }
+  out.stable = out.unstable.empty();
+}
+
+}  // namespace
+
 StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, double band_top,
-                                 int* n_modes_hint) {
+                                 int* n_modes_hint, StabilitySolver* solver) {
   StabilityAtSpeed out;
   out.speed = speed;
   const eig::QuadraticPencil pencil = assembly::pencil_at(system, speed);
@@ -38,7 +131,7 @@ StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, d
   double top = 0.0;
   for (;;) {
     qo.n_modes = n;
-    cx = eig::solve_quadratic(pencil, qo);
+    cx = solver != nullptr ? solver->solve(pencil, speed, qo) : eig::solve_quadratic(pencil, qo);
     top = cx.eigenvalues.size() > 0 ? cx.eigenvalues.cwiseAbs().maxCoeff() : 0.0;
     // Enough: the band is covered, the system has no more modes, or nothing more to ask for.
     if (top >= want || cx.converged < n || n >= n_max) break;
@@ -56,23 +149,13 @@ StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, d
   // FewerModes only says that the system has fewer modes than asked for (every one computed).
   out.solver_status = cx.status == Status::FewerModes ? Status::Ok : cx.status;
   out.solver_message = cx.status == Status::FewerModes ? "" : cx.message;
-
-  const double growth_limit = kGrowthTolerance * top;
-  bool have_least = false;
-  for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
-    const std::complex<double> l = cx.eigenvalues[j];
-    StabilityMode m;
-    m.mode = static_cast<int>(j) + 1;
-    m.eigenvalue = l;
-    m.frequency = std::abs(l);
-    m.damping_ratio = eig::damping_ratio(l);
-    if (l.real() > growth_limit) out.unstable.push_back(m);
-    if (m.frequency <= kRigidFraction * top) continue;
-    if (!have_least || m.damping_ratio < out.least_damped.damping_ratio) out.least_damped = m;
-    have_least = true;
-  }
-  out.stable = out.unstable.empty();
+  judge(pencil, cx, top, out);
   return out;
+}
+
+StabilityAtSpeed check_stability(const fe::LinearSystem& system, double speed, double band_top,
+                                 int* n_modes_hint) {
+  return check_stability(system, speed, band_top, n_modes_hint, nullptr);
 }
 
 bool StabilityScan::all_stable() const {
@@ -91,12 +174,14 @@ namespace {
 
 class Scanner {
  public:
-  Scanner(const fe::LinearSystem& system, double band_top) : system_(system), band_top_(band_top) {}
+  Scanner(const fe::LinearSystem& system, double band_top, StabilitySolver& solver)
+      : system_(system), band_top_(band_top), solver_(solver) {}
 
   const StabilityAtSpeed& at(double speed) {
     auto it = solves_.find(speed);
     if (it == solves_.end())
-      it = solves_.emplace(speed, check_stability(system_, speed, band_top_, &hint_)).first;
+      it = solves_.emplace(speed, check_stability(system_, speed, band_top_, &hint_, &solver_))
+               .first;
     return it->second;
   }
   // Onset between speeds a < b of different verdicts: where the least damping ratio of the
@@ -127,6 +212,7 @@ class Scanner {
  private:
   const fe::LinearSystem& system_;
   double band_top_;
+  StabilitySolver& solver_;
   int hint_ = kMinModes;
   std::map<double, StabilityAtSpeed> solves_;
 };
@@ -134,7 +220,7 @@ class Scanner {
 }  // namespace
 
 StabilityScan scan_stability(const fe::LinearSystem& system, const std::vector<double>& speeds,
-                             double band_top) {
+                             double band_top, bool project) {
   StabilityScan scan;
   scan.band_top = band_top;
   const std::size_t n = speeds.size();
@@ -147,7 +233,8 @@ StabilityScan scan_stability(const fe::LinearSystem& system, const std::vector<d
                    [&](std::size_t a, std::size_t b) { return speeds[a] < speeds[b]; });
   auto speed_at = [&](std::size_t pos) { return speeds[order[pos]]; };
 
-  Scanner scanner(system, band_top);
+  StabilitySolver solver(system, project);
+  Scanner scanner(system, band_top, solver);
   // Sampled positions of the sorted list: all, or kMaxSampledSpeeds spread evenly.
   std::vector<std::size_t> sampled;
   scan.subsampled = n > static_cast<std::size_t>(kMaxSampledSpeeds);
@@ -188,6 +275,10 @@ StabilityScan scan_stability(const fe::LinearSystem& system, const std::vector<d
   }
   scan.solves = scanner.all();
   scan.n_solves = static_cast<int>(scan.solves.size());
+  scan.projected_solves = solver.projected();
+  scan.projection_fallbacks = solver.fallbacks();
+  scan.first_fallback = solver.first_fallback();
+  scan.projection_given_up = solver.given_up();
   return scan;
 }
 
@@ -236,6 +327,11 @@ std::string ranges_text(const StabilityScan& scan) {
 std::string unstable_message(const StabilityScan& scan) {
   const StabilityAtSpeed* w = scan.worst();
   if (w == nullptr) return "";
+  // The mode that grows fastest (the least-damped elastic mode may be another, neutral one).
+  const StabilityMode& grows = *std::max_element(
+      w->unstable.begin(), w->unstable.end(), [](const StabilityMode& a, const StabilityMode& b) {
+        return a.eigenvalue.real() < b.eigenvalue.real();
+      });
   std::string others;
   if (w->unstable.size() > 1)
     others = fmt::format(" ({} growing modes at that speed)", w->unstable.size());
@@ -245,7 +341,7 @@ std::string unstable_message(const StabilityScan& scan) {
       "unstable at {}: {} grows{}{}; the steady state computed is never reached (a growing "
       "vibration instead, limited only by nonlinearity): add damping or remove the destabilising "
       "terms (e.g. cross-coupled bearing coefficients kxy, kyx)",
-      ranges_text(scan), describe(w->least_damped), where, others);
+      ranges_text(scan), describe(grows), where, others);
 }
 
 std::string stability_note(const StabilityScan& scan) {
@@ -271,7 +367,8 @@ std::string stability_note(const StabilityScan& scan) {
       "Stability: complex modes of M q'' + (C + W G) q' + K q = 0 at {} speed(s){} ({} "
       "eigen-solves), {} modes each, up to at least {:.6g} Hz (wanted: {} x the highest "
       "excitation frequency {:.6g} Hz{}); a mode is unstable when Re(lambda) > {:g} x the "
-      "highest frequency checked. "
+      "highest frequency checked and the mode moved onto the imaginary axis has a backward "
+      "error above {:g} x its own (at least {:g}). "
       "Least damping ratio {:.3g} (at {:.6g} rpm).",
       scan.stable.size(),
       scan.subsampled
@@ -286,7 +383,16 @@ std::string stability_note(const StabilityScan& scan) {
            : fmt::format("; not reached everywhere: the check stops at the system's last mode "
                          "or at {} modes",
                          kMaxModes),
-      kGrowthTolerance, least, least_speed * kRpmPerRadS);
+      kGrowthTolerance, kBackwardErrorFactor, kRoundoffBackwardError, least,
+      least_speed * kRpmPerRadS);
+  if (scan.projected_solves + scan.projection_fallbacks > 0)
+    text += fmt::format(
+        " Solver: projection onto one basis of undamped modes for the scan, {} solve(s) "
+        "certified; {} by the full solver{}{}.",
+        scan.projected_solves, scan.projection_fallbacks,
+        scan.first_fallback.empty() ? "" : " (first " + scan.first_fallback + ")",
+        scan.projection_given_up ? "; the projection was given up after two failures in a row"
+                                 : "");
   if (!scan.all_stable()) {
     text += fmt::format(" UNSTABLE at {}", ranges_text(scan));
     for (const auto& c : scan.changes)
