@@ -56,7 +56,7 @@ Eigen::MatrixXcd residual_vectors(const QuadraticPencil& p, const Eigen::VectorX
 void normalise_columns(Eigen::MatrixXcd& X) {
   for (Eigen::Index k = 0; k < X.cols(); ++k) {
     Eigen::Index imax = 0;
-    X.col(k).cwiseAbs().maxCoeff(&imax);
+    X.col(k).cwiseAbs2().maxCoeff(&imax);  // squared moduli: no hypot per entry
     const Complex top = X(imax, k);
     if (std::abs(top) > 0.0) X.col(k) /= top;
   }
