@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "geardyn/core/error.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
@@ -28,17 +29,21 @@ std::vector<std::string> ProjectedQuadraticOptions::validate() const {
 
 namespace {
 
+// Row-major blocks: a sparse matrix times a row-major block is one pass over the sparse matrix
+// for all columns (Eigen streams it once per column of a column-major block).
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
 // Columns of the pencil residuals r_k = (lambda_k^2 M + lambda_k D + K) x_k, with one sparse
 // product per matrix over the real and imaginary parts of all columns at once.
 Eigen::MatrixXcd residual_vectors(const QuadraticPencil& p, const Eigen::VectorXcd& lambda,
-                                  const Eigen::MatrixXd& Xri) {
+                                  const RowMatrix& Xri) {
   const Eigen::Index k = lambda.size();
-  const Eigen::MatrixXd MX = p.M * Xri, KX = p.K * Xri;
-  Eigen::MatrixXd DX = p.C * Xri;
+  const RowMatrix MX = p.M * Xri, KX = p.K * Xri;
+  RowMatrix DX = p.C * Xri;
   if (p.low_rank_coefficients.size() > 0)
     DX += p.low_rank_basis *
           (p.low_rank_coefficients.asDiagonal() * (p.low_rank_basis.transpose() * Xri));
-  auto cplx = [k](const Eigen::MatrixXd& A, Eigen::Index j) {
+  auto cplx = [k](const RowMatrix& A, Eigen::Index j) {
     return Eigen::VectorXcd(A.col(j).cast<Complex>() + Complex(0.0, 1.0) * A.col(k + j));
   };
   Eigen::MatrixXcd R(Xri.rows(), k);
@@ -51,7 +56,7 @@ Eigen::MatrixXcd residual_vectors(const QuadraticPencil& p, const Eigen::VectorX
 void normalise_columns(Eigen::MatrixXcd& X) {
   for (Eigen::Index k = 0; k < X.cols(); ++k) {
     Eigen::Index imax = 0;
-    X.col(k).cwiseAbs().maxCoeff(&imax);
+    X.col(k).cwiseAbs2().maxCoeff(&imax);  // squared moduli: no hypot per entry
     const Complex top = X(imax, k);
     if (std::abs(top) > 0.0) X.col(k) /= top;
   }
@@ -61,6 +66,175 @@ SparseMatrix square_or_zero(const SparseMatrix& A, Eigen::Index n) {
   if (A.rows() == n && A.cols() == n) return A;
   SparseMatrix Z(n, n);
   return Z;
+}
+
+// The projected pencil at one speed, dense (m x m); D holds C + B diag(c) B^T.
+struct ReducedPencil {
+  Eigen::MatrixXd M, D, K;
+};
+
+// The wanted modes of the projected pencil: eigenvalues (Im >= 0, ascending |lambda|, the order
+// of QuadraticEigenResult) and their vectors y.
+struct ReducedModes {
+  Status status = Status::Ok;
+  std::string message;
+  Complex shift = 0.0;
+  Eigen::VectorXcd lambda;
+  Eigen::MatrixXcd Y;
+};
+
+double dense_norm1(const Eigen::MatrixXd& A) {
+  return A.size() > 0 ? A.cwiseAbs().colwise().sum().maxCoeff() : 0.0;
+}
+
+Complex upper(Complex z) { return {z.real(), std::abs(z.imag())}; }
+
+// The member of a conjugate pair with Im lambda >= 0, rounding-level imaginary parts dropped.
+Complex upper_root(Complex lambda) {
+  Complex l = lambda.imag() < 0.0 ? std::conj(lambda) : lambda;
+  if (std::abs(l.imag()) <= 1e-12 * std::abs(l)) l.imag(0.0);
+  return l;
+}
+
+// Indices of nu keeping one member of each conjugate pair (one-to-one, so that double
+// eigenvalues both survive): the selection solve_quadratic's dense path makes.
+std::vector<Eigen::Index> one_of_each_pair(const Eigen::VectorXcd& nu) {
+  const auto n = static_cast<std::size_t>(nu.size());
+  std::vector<bool> used(n, false), drop(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    if (nu[ii].imag() >= 0.0) continue;
+    const Complex partner = std::conj(nu[ii]);
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto jj = static_cast<Eigen::Index>(j);
+      if (j == i || used[j] || nu[jj].imag() <= 0.0) continue;
+      if (std::abs(nu[jj] - partner) <= 1e-8 * std::abs(partner)) {
+        used[j] = drop[i] = true;
+        break;
+      }
+    }
+  }
+  std::vector<Eigen::Index> kept;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!drop[i]) kept.push_back(static_cast<Eigen::Index>(i));
+  return kept;
+}
+
+// Eigenvalues lambda = sigma + 1/nu of the projected pencil, nu those of the shift-inverted
+// state operator T = (A - sigma B)^{-1} B on scaled states [y; lambda y / s] (the operator of
+// solve_quadratic's dense path, so the eigenvalues are the same), computed without the Schur
+// vectors: the Hessenberg QR alone costs about a third of the QR with vectors. The finite
+// ones, one per conjugate pair, as upper roots.
+std::vector<Complex> reduced_eigenvalues(const ReducedPencil& p, double sigma, ReducedModes& out) {
+  const Eigen::Index m = p.M.rows();
+  const Eigen::PartialPivLU<Eigen::MatrixXd> lu(p.K + sigma * p.D + sigma * sigma * p.M);
+  if (!(lu.rcond() > 1e-15)) {
+    out.status = Status::Singular;
+    out.message =
+        fmt::format("projected K + sigma D + sigma^2 M is singular at sigma = {:.6g}", sigma);
+    return {};
+  }
+  const double nk = dense_norm1(p.K), nm = dense_norm1(p.M);
+  const double s0 = std::sqrt(nk / nm), s = std::isfinite(s0) && s0 > 0.0 ? s0 : 1.0;
+  const Eigen::MatrixXd X = lu.solve(p.D + sigma * p.M), Y = lu.solve(p.M);
+  Eigen::MatrixXd T(2 * m, 2 * m);
+  T.topLeftCorner(m, m) = -X;
+  T.topRightCorner(m, m) = -s * Y;
+  T.bottomLeftCorner(m, m) = (Eigen::MatrixXd::Identity(m, m) - sigma * X) / s;
+  T.bottomRightCorner(m, m) = -sigma * Y;
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(T, false);
+  if (es.info() != Eigen::Success) {
+    out.status = Status::Failed;
+    out.message = "projected eigen-solve (Hessenberg QR) did not converge";
+    return {};
+  }
+  const Eigen::VectorXcd nu = es.eigenvalues();
+  double nu_max = 0.0;
+  for (Eigen::Index i = 0; i < nu.size(); ++i) nu_max = std::max(nu_max, std::abs(nu[i]));
+  Eigen::VectorXcd finite(nu.size());
+  Eigen::Index n_finite = 0;
+  for (Eigen::Index i = 0; i < nu.size(); ++i)
+    if (std::abs(nu[i]) > 1e-13 * nu_max) finite[n_finite++] = nu[i];  // else infinite
+  finite.conservativeResize(n_finite);
+  std::vector<Complex> lambda;
+  for (Eigen::Index i : one_of_each_pair(finite))
+    lambda.push_back(upper_root(sigma + 1.0 / finite[i]));
+  return lambda;
+}
+
+// y with P(lambda) y = 0 by inverse iteration (J. H. Wilkinson, The Algebraic Eigenvalue Problem,
+// 1965, ch. 9): lambda is exact to rounding, so two solves from a fixed start give y to working
+// precision when lambda is simple. Empty when the projected backward error of y is not at
+// rounding level (an exactly singular P(lambda), or a defective root).
+Eigen::VectorXcd null_vector(const ReducedPencil& p, Complex lambda) {
+  const Eigen::Index m = p.M.rows();
+  const Eigen::MatrixXcd P =
+      (lambda * lambda) * p.M.cast<Complex>() + lambda * p.D.cast<Complex>() + p.K.cast<Complex>();
+  const Eigen::PartialPivLU<Eigen::MatrixXcd> lu(P);
+  Eigen::VectorXcd y(m);
+  for (Eigen::Index k = 0; k < m; ++k)
+    y[k] = 1.0 + 0.5 * std::sin(1.0 + static_cast<double>(k));  // no structure of the modes
+  y.normalize();
+  double growth = 0.0;
+  for (int step = 0; step < 2; ++step) {
+    y = lu.solve(y);
+    growth = y.norm();
+    if (!(growth > 0.0) || !std::isfinite(growth)) return {};
+    y /= growth;
+  }
+  // P y = y_previous / growth: the residual of the unit vector y is 1 / growth.
+  const double a = std::abs(lambda);
+  const double scale = a * a * dense_norm1(p.M) + a * dense_norm1(p.D) + dense_norm1(p.K);
+  if (!(1.0 / growth <= 1e-11 * scale)) return {};
+  return y;
+}
+
+// The n_modes eigenvalues nearest the target (the choice and the order of solve_quadratic's
+// dense path) with their vectors. Status NotConverged when a wanted eigenvalue lies within
+// 1e-6 relative of another one (a double root, e.g. the two whirls of an isotropic rotor at
+// rest, whose vectors inverse iteration cannot separate) or a vector fails: the caller then
+// solves the projected pencil with solve_quadratic's vectors.
+ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target, int n_modes) {
+  ReducedModes out;
+  out.shift = sigma;
+  const std::vector<Complex> lambda = reduced_eigenvalues(p, sigma, out);
+  if (out.status != Status::Ok) return out;
+  std::vector<std::size_t> order(lambda.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::vector<double> distance(lambda.size());
+  for (std::size_t i = 0; i < lambda.size(); ++i) distance[i] = std::abs(lambda[i] - upper(target));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return distance[a] < distance[b]; });
+  order.resize(std::min(order.size(), static_cast<std::size_t>(n_modes)));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double fa = std::abs(lambda[a]), fb = std::abs(lambda[b]);
+    if (fa != fb) return fa < fb;
+    return lambda[a].imag() < lambda[b].imag();
+  });
+  const auto k = static_cast<Eigen::Index>(order.size());
+  out.lambda.resize(k);
+  out.Y.resize(p.M.rows(), k);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const std::size_t i = order[static_cast<std::size_t>(j)];
+    for (std::size_t o = 0; o < lambda.size(); ++o)
+      if (o != i && std::abs(lambda[o] - lambda[i]) <= 1e-6 * std::abs(lambda[i])) {
+        out.status = Status::NotConverged;
+        return out;
+      }
+    const Eigen::VectorXcd y = null_vector(p, lambda[i]);
+    if (y.size() == 0) {
+      out.status = Status::NotConverged;
+      return out;
+    }
+    out.lambda[j] = lambda[i];
+    out.Y.col(j) = y;
+  }
+  if (k < n_modes) {
+    out.status = Status::FewerModes;
+    out.message =
+        fmt::format("the projected pencil has only {} finite modes, {} were asked for", k, n_modes);
+  }
+  return out;
 }
 
 }  // namespace
@@ -80,7 +254,8 @@ struct ProjectedQuadratic::Impl {
   void build(int n_modes);
   int add_columns(const Eigen::MatrixXd& W);
   void project();
-  QuadraticPencil reduced(double speed, const SparseMatrix& dK, const SparseMatrix& dC) const;
+  ReducedPencil reduced(double speed, const SparseMatrix& dK, const SparseMatrix& dC) const;
+  ReducedModes modes(const ReducedPencil& p, const QuadraticEigenOptions& qo) const;
 };
 
 void ProjectedQuadratic::Impl::build(int n_modes) {
@@ -140,18 +315,33 @@ void ProjectedQuadratic::Impl::project() {
            : Eigen::MatrixXd();
 }
 
-QuadraticPencil ProjectedQuadratic::Impl::reduced(double speed, const SparseMatrix& dK,
-                                                  const SparseMatrix& dC) const {
-  Eigen::MatrixXd K = Kr, C = Cr + speed * Gr;
-  if (dK.nonZeros() > 0) K += V.transpose() * (dK * V);
-  if (dC.nonZeros() > 0) C += V.transpose() * (dC * V);
-  QuadraticPencil p;
-  p.M = Mr.sparseView();
-  p.K = K.sparseView();
-  p.C = C.sparseView();
-  p.low_rank_basis = Br;
-  p.low_rank_coefficients = parts.low_rank_coefficients;
+ReducedPencil ProjectedQuadratic::Impl::reduced(double speed, const SparseMatrix& dK,
+                                                const SparseMatrix& dC) const {
+  ReducedPencil p{Mr, Cr + speed * Gr, Kr};
+  if (dK.nonZeros() > 0) p.K += V.transpose() * (dK * V);
+  if (dC.nonZeros() > 0) p.D += V.transpose() * (dC * V);
+  if (parts.low_rank_coefficients.size() > 0)
+    p.D += Br * parts.low_rank_coefficients.asDiagonal() * Br.transpose();
   return p;
+}
+
+ReducedModes ProjectedQuadratic::Impl::modes(const ReducedPencil& p,
+                                             const QuadraticEigenOptions& qo) const {
+  ReducedModes out = solve_reduced(p, qo.dense_shift, qo.target, qo.n_modes);
+  if (out.status != Status::NotConverged) return out;
+  // A double root: the vectors of the Schur form (solve_quadratic's dense path) separate it.
+  QuadraticPencil full;
+  full.M = p.M.sparseView();
+  full.C = p.D.sparseView();
+  full.K = p.K.sparseView();
+  const QuadraticEigenResult red = solve_quadratic(full, qo);
+  out = ReducedModes{};
+  out.status = red.status;
+  out.message = red.message;
+  out.shift = red.shift_used;
+  out.lambda = red.eigenvalues;
+  out.Y = red.eigenvectors;
+  return out;
 }
 
 ProjectedQuadratic::ProjectedQuadratic(SpeedPencilParts parts,
@@ -207,9 +397,9 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
   qo.dense_shift = -std::sqrt(-1e6 * automatic_shift(full.K, full.M));
   qo.residual_limit = 1.0;  // the reduced residuals are not the ones that count
   for (int round = 0;; ++round) {
-    const QuadraticEigenResult red = solve_quadratic(s.reduced(speed, dK, dC), qo);
+    const ReducedModes red = s.modes(s.reduced(speed, dK, dC), qo);
     r.iterations = round;
-    r.shift_used = red.shift_used;
+    r.shift_used = red.shift;
     r.factorization = fmt::format("projected({})", s.V.cols());
     if (red.status != Status::Ok && red.status != Status::FewerModes) {
       r.status = red.status;
@@ -217,19 +407,19 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
       return r;
     }
     // x = V y as two real products (V is real), then the largest entry scaled to 1.
-    const Eigen::MatrixXd Yr = red.eigenvectors.real(), Yi = red.eigenvectors.imag();
+    const Eigen::MatrixXd Yr = red.Y.real(), Yi = red.Y.imag();
     Eigen::MatrixXcd X(s.V.rows(), Yr.cols());
     X.real() = s.V * Yr;
     X.imag() = s.V * Yi;
     normalise_columns(X);
     const Eigen::Index k_modes = X.cols();
-    Eigen::MatrixXd Xri(X.rows(), 2 * k_modes);
+    RowMatrix Xri(X.rows(), 2 * k_modes);
     Xri << X.real(), X.imag();
-    const Eigen::MatrixXcd R = residual_vectors(full, red.eigenvalues, Xri);
-    r.eigenvalues = red.eigenvalues;
-    r.residuals = backward_errors_from_residuals(full, red.eigenvalues, X, R);
+    const Eigen::MatrixXcd R = residual_vectors(full, red.lambda, Xri);
+    r.eigenvalues = red.lambda;
+    r.residuals = backward_errors_from_residuals(full, red.lambda, X, R);
     r.eigenvectors = std::move(X);
-    r.converged = static_cast<int>(red.eigenvalues.size());
+    r.converged = static_cast<int>(red.lambda.size());
     const bool complete = r.converged == options.n_modes || s.V.cols() == full.size();
     if (!complete) {
       r.status = Status::FewerModes;
@@ -244,13 +434,15 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
     RW << R.real(), R.imag();
     const Eigen::MatrixXd W = s.factor.solve(RW);
     r.operations += static_cast<int>(RW.cols());
-    const Eigen::MatrixXd MW = s.parts.M * W, MX = s.parts.M * Xri;
+    const RowMatrix Wr = W;
+    const RowMatrix MW = s.parts.M * Wr, MX = s.parts.M * Xri;
+    const Eigen::RowVectorXd wMw = Wr.cwiseProduct(MW).colwise().sum(),
+                             xMx = Xri.cwiseProduct(MX).colwise().sum();
     std::vector<Eigen::Index> bad;
     double worst = 0.0;
     for (Eigen::Index k = 0; k < k_modes; ++k) {
       const Eigen::Index k2 = k_modes + k;
-      const double wm = W.col(k).dot(MW.col(k)) + W.col(k2).dot(MW.col(k2));
-      const double xm = Xri.col(k).dot(MX.col(k)) + Xri.col(k2).dot(MX.col(k2));
+      const double wm = wMw[k] + wMw[k2], xm = xMx[k] + xMx[k2];
       const double rho = xm > 0.0 ? std::sqrt(std::max(0.0, wm) / xm) : 0.0;
       worst = std::max(worst, rho);
       if (!(rho <= s.options.tolerance) || !(r.residuals[k] <= options.residual_limit))

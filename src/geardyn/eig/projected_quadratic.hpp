@@ -9,6 +9,10 @@
 // (one sparse factorisation and a Lanczos run, symmetric_eigen.hpp), enriched whenever a mode is
 // not accurate enough: the Ritz pair (lambda, x = V y) of the projected pencil
 //     (lambda^2 V^T M V + lambda V^T D V + V^T K V) y = 0      (dense, size 2m state form)
+// (its eigenvalues by the Hessenberg QR of solve_quadratic's dense operator without Schur
+// vectors, each wanted y by inverse iteration on the m x m pencil; J. H. Wilkinson, The Algebraic
+// Eigenvalue Problem, Oxford 1965, ch. 9; a wanted eigenvalue within 1e-6 of another keeps the
+// Schur vectors, which separate double roots)
 // has the full-size residual r = P(lambda) x; V is extended by F^{-1} r (real and imaginary
 // parts), F = K0_sym - sigma_b M the factorisation of the basis (a preconditioned residual, the
 // correction of Davidson's method: E. R. Davidson, J. Comput. Phys. 17 (1975) 87-94; for
