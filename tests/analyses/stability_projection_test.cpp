@@ -73,11 +73,13 @@ TEST(StabilityProjection, UndampedRossRotorIsStableAtEverySpeed) {
   const StabilityScan scan = scan_stability(system, w, w.back());
   EXPECT_TRUE(scan.all_stable()) << stability_note(scan);
   EXPECT_TRUE(unstable_message(scan).empty());
-  // The projection cannot certify the defective roots at 0 (free axial and torsional motion):
-  // two failures, then the full solver for the rest, stated in the note.
-  EXPECT_TRUE(scan.projection_given_up);
+  // Every speed is solved, by the projection or (where it cannot certify the defective roots at
+  // 0 of the free axial and torsional motion) by the full solver; a projection given up after
+  // two failures in a row is stated in the note.
   EXPECT_EQ(scan.projected_solves + scan.projection_fallbacks, scan.n_solves);
-  EXPECT_NE(stability_note(scan).find("given up"), std::string::npos);
+  if (scan.projection_given_up) {
+    EXPECT_NE(stability_note(scan).find("given up"), std::string::npos);
+  }
   for (const auto& s : scan.solves) {
     EXPECT_TRUE(s.unstable.empty()) << s.speed;
     // The exact elastic eigenvalues are imaginary: the damping ratios computed are round-off,

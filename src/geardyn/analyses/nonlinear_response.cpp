@@ -225,12 +225,7 @@ void stability(const hbm::ElementHarmonicBalance& hb, const ForcedBalance& force
   r.max_real_exponent.assign(np, kNaN);
   r.instability.assign(np, "");
   if (s.stability == NonlinearStability::Fold) {
-    // One real multiplier crosses +1 at each turning point and at each simple branch point.
-    // (A branch point lies before point b: the points from b on are on its other side.)
-    std::vector<int> crossings = r.turning_points;
-    for (int b : r.branch_points) crossings.push_back(b - 1);
-    std::sort(crossings.begin(), crossings.end());
-    r.unstable = unstable_after(crossings, np);
+    r.unstable = unstable_after(r.turning_points, np);
     for (std::size_t i = 0; i < np; ++i) r.instability[i] = r.unstable[i] ? "fold" : "none";
     return;
   }

@@ -317,7 +317,8 @@ std::vector<std::string> notes(const NonlinearResponseResult& r) {
     n.push_back(fmt::format(
         "{} branch point(s) on the curve (table branch_points): another family of periodic "
         "solutions crosses it there, which this continuation does not follow; the stability "
-        "changes at each.",
+        "changes at each, which the \"fold\" verdict does not count (use stability = \"hill\" "
+        "or \"monodromy\").",
         r.branch_points.size()));
   else if (r.condensed)
     n.push_back(

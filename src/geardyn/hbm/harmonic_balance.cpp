@@ -174,6 +174,11 @@ class NewtonAlgebra {
   /// Sign of det [A; border^T] of the last bordered solve (the branch-point test function);
   /// 0 when the algebra does not know it (iterative solves).
   virtual int bordered_sign() const { return 0; }
+  /// Whether the secant of the last two points may replace the tangent as predictor: where a
+  /// tangent costs an iterative solve (condensed systems). A dense tangent costs one LU, and the
+  /// secant's different point placement loses the grazing folds of contact laws (examples/
+  /// gear_rattle), so the dense path keeps the tangent.
+  virtual bool prefers_secant() const { return false; }
 };
 
 // Any HarmonicSystem: its dense Jacobian and a partial-pivoting LU per solve.
@@ -301,6 +306,7 @@ Krylov gmres(const Operator& A, const Preconditioner& M, const Eigen::VectorXd& 
 // reused the same way.
 class CondensedAlgebra final : public NewtonAlgebra {
  public:
+  bool prefers_secant() const override { return true; }
   CondensedAlgebra(const CondensedHarmonicBalance& hb, const Scaled& p) : hb_(hb), p_(p) {}
 
   Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) override {
@@ -684,7 +690,7 @@ ContinuationResult continue_in_frequency(const HarmonicSystem& hb, const Eigen::
     // more than acos(kSecantAlignment) (the curve bends: near a turning point or a corner), where
     // the tangent at the new point (the algebra holds its linearization) is solved for.
     const Eigen::VectorXd chord = (z - y).normalized();
-    if (chord.dot(t) >= kSecantAlignment) {
+    if (algebra->prefers_secant() && chord.dot(t) >= kSecantAlignment) {
       t = chord;
       t_is_tangent = false;
     } else {
