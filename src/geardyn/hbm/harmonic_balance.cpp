@@ -184,7 +184,11 @@ class NewtonAlgebra {
 // Any HarmonicSystem: its dense Jacobian and a partial-pivoting LU per solve.
 class DenseAlgebra final : public NewtonAlgebra {
  public:
-  DenseAlgebra(const Scaled& p, CondensedStatistics* statistics) : p_(p), statistics_(statistics) {}
+  // `secant`: a condensed system solved densely (its fallback) keeps the condensed form's
+  // predictor, so both trace the same points.
+  DenseAlgebra(const Scaled& p, CondensedStatistics* statistics, bool secant)
+      : p_(p), statistics_(statistics), secant_(secant) {}
+  bool prefers_secant() const override { return secant_; }
   Eigen::VectorXd residual(const Eigen::VectorXd& y, bool linearize) override {
     return p_.residual(y, linearize ? &A_ : nullptr);
   }
@@ -223,6 +227,7 @@ class DenseAlgebra final : public NewtonAlgebra {
   CondensedStatistics* statistics_;
   Eigen::MatrixXd A_;
   int sign_ = 0;
+  bool secant_ = false;
 };
 
 struct Krylov {
@@ -469,7 +474,8 @@ std::unique_ptr<NewtonAlgebra> newton_algebra(const HarmonicSystem& hb, const Sc
   const auto* condensed = dynamic_cast<const CondensedHarmonicBalance*>(&hb);
   if (condensed && condensed->has_local_forces())
     return std::make_unique<CondensedAlgebra>(*condensed, p);
-  return std::make_unique<DenseAlgebra>(p, condensed ? condensed->statistics() : nullptr);
+  return std::make_unique<DenseAlgebra>(p, condensed ? condensed->statistics() : nullptr,
+                                        condensed != nullptr);
 }
 
 // The secant of the last two points predicts the next one while it stays within about 6 degrees
