@@ -12,11 +12,10 @@
 // the alternating frequency-time method (harmonic_basis.hpp).
 //
 // Continuation: Keller's pseudo-arc-length method on y = (X, omega): Euler predictor along the
-// unit tangent of R(y) = 0 -- or, for condensed systems solved iteratively, once two points
-// exist, along the secant of the last two while it turns less than about 6 degrees from the
-// direction that led to it (no tangent solve; the tangent again where the curve bends, and after
-// a refused step) --, Newton corrector on
-// R(y) = 0 plus t . (y - y_predicted) = 0, step
+// unit tangent of R(y) = 0 -- or, for condensed systems (whose tangent costs an iterative solve),
+// once two points exist, along the secant of the last two while it turns less than about 6 degrees
+// from the direction that led to it (no tangent solve; the tangent again where the curve bends, and
+// after a refused step) --, Newton corrector on R(y) = 0 plus t . (y - y_predicted) = 0, step
 // length adapted to the corrector's iteration count; a corrected point farther from its predictor
 // than the step (it jumped to another part of the curve) is refused and the step halved. It
 // passes turning points (folds) of the
