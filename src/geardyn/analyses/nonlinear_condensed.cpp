@@ -480,13 +480,7 @@ NonlinearResponseResult run_nonlinear_condensed(const NonlinearProblem& p,
           hb.basis(), element_coefficients(hb, st, p.elements, curve.points[at].X, e),
           r.frequency[at]));
   }
-  if (curve.status != Status::Ok) {
-    r.status = Status::NotConverged;
-    r.message = fmt::format(
-        "the continuation ended before the end of the range: {}. The points up to there are "
-        "converged solutions.",
-        curve.message);
-  }
+  mark_ended_early(curve, r);
   return r;
 }
 

@@ -102,5 +102,7 @@ std::vector<char> unstable_after(const std::vector<int>& turns, std::size_t poin
 void record_floquet(const hbm::FloquetResult& f, std::size_t i, NonlinearResponseResult& r);
 /// The point of largest sensor RMS (-1 without points).
 int largest_point(const NonlinearResponseResult& r);
+/// A curve that ended before the end of its range: status NotConverged with the reason.
+void mark_ended_early(const hbm::ContinuationResult& curve, NonlinearResponseResult& r);
 
 }  // namespace geardyn::analyses

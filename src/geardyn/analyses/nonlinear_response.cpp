@@ -368,14 +368,17 @@ NonlinearResponseResult run_nonlinear_response(const model::Model& model,
           hb.element_coordinates(curve.points[static_cast<std::size_t>(r.loop_point)].X,
                                  static_cast<int>(e)),
           r.frequency[static_cast<std::size_t>(r.loop_point)]));
-  if (curve.status != Status::Ok) {
-    r.status = Status::NotConverged;
-    r.message = fmt::format(
-        "the continuation ended before the end of the range: {}. The points "
-        "up to there are converged solutions.",
-        curve.message);
-  }
+  mark_ended_early(curve, r);
   return r;
+}
+
+void mark_ended_early(const hbm::ContinuationResult& curve, NonlinearResponseResult& r) {
+  if (curve.status == Status::Ok) return;
+  r.status = Status::NotConverged;
+  r.message = fmt::format(
+      "the continuation ended before the end of the range: {}. The points up to there are "
+      "converged solutions.",
+      curve.message);
 }
 
 }  // namespace geardyn::analyses
