@@ -120,6 +120,34 @@ TEST(ProjectedQuadratic, MatchesArnoldiOnALargeRotor) {
   EXPECT_LT(worst, 1e-7);
 }
 
+TEST(ProjectedQuadratic, RestoredBasisRepeatsTheSolveBitForBit) {
+  // A sweep split into chunks (threads over speeds) starts every chunk from one kept basis: the
+  // solve at a speed after restore_basis() must be the same, bit for bit, as the solve of that
+  // speed straight after keep_basis(), whatever was solved (and enriched) in between.
+  const auto system = assembly::build_system(test::friswell_591(24));
+  ProjectedQuadratic projected(assembly::pencil_parts(system));
+  QuadraticEigenOptions qo;
+  qo.n_modes = 12;
+  auto solve = [&](double rpm) {
+    const double speed = rpm * kRadPerRpm;
+    const assembly::SpeedIncrements inc = assembly::speed_increments(system, speed);
+    return projected.solve(assembly::pencil_at(system, speed), speed, inc.dK, inc.dC, qo);
+  };
+  solve(0.0);
+  projected.keep_basis();
+  const Eigen::Index kept = projected.basis_size();
+  const QuadraticEigenResult first = solve(3000.0);
+  solve(8000.0);
+  solve(20000.0);  // far above: the basis grows
+  projected.restore_basis();
+  EXPECT_EQ(projected.basis_size(), kept);
+  const QuadraticEigenResult again = solve(3000.0);
+  ASSERT_EQ(first.status, Status::Ok) << first.message;
+  ASSERT_EQ(again.eigenvalues.size(), first.eigenvalues.size());
+  for (Eigen::Index k = 0; k < first.eigenvalues.size(); ++k)
+    EXPECT_EQ(again.eigenvalues[k], first.eigenvalues[k]) << k;  // exact: the same computation
+}
+
 TEST(ProjectedQuadratic, InvalidOptionsThrowInputError) {
   const auto system = assembly::build_system(test::friswell_591(6));
   ProjectedQuadraticOptions bad;

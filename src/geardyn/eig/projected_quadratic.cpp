@@ -250,6 +250,8 @@ struct ProjectedQuadratic::Impl {
   Eigen::MatrixXd Mr, Kr, Cr, Gr, Br;     // V^T (.) V and V^T B
   int enrichments = 0;
   Eigen::Index max_basis = 0;
+  Eigen::Index kept_columns = -1;  // keep_basis(); -1: the starting basis
+  Eigen::Index start_columns = 0;
 
   void build(int n_modes);
   int add_columns(const Eigen::MatrixXd& W);
@@ -282,6 +284,7 @@ void ProjectedQuadratic::Impl::build(int n_modes) {
   }
   V.resize(n, 0);
   add_columns(modes.eigenvectors);
+  start_columns = V.cols();
 }
 
 // Appends the parts of W M-orthogonal to V (classical Gram-Schmidt applied twice, which is
@@ -369,6 +372,16 @@ ProjectedQuadratic::ProjectedQuadratic(SpeedPencilParts parts,
 ProjectedQuadratic::~ProjectedQuadratic() = default;
 ProjectedQuadratic::ProjectedQuadratic(ProjectedQuadratic&&) noexcept = default;
 ProjectedQuadratic& ProjectedQuadratic::operator=(ProjectedQuadratic&&) noexcept = default;
+
+void ProjectedQuadratic::keep_basis() { impl_->kept_columns = impl_->V.cols(); }
+
+void ProjectedQuadratic::restore_basis() {
+  Impl& s = *impl_;
+  const Eigen::Index keep = s.kept_columns >= 0 ? s.kept_columns : s.start_columns;
+  if (!s.built || s.V.cols() <= keep) return;
+  s.V.conservativeResize(Eigen::NoChange, keep);
+  s.project();
+}
 
 Eigen::Index ProjectedQuadratic::basis_size() const { return impl_->V.cols(); }
 int ProjectedQuadratic::enrichments() const { return impl_->enrichments; }

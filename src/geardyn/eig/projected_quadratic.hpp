@@ -85,6 +85,14 @@ class ProjectedQuadratic {
                              const Eigen::SparseMatrix<double>& dC,
                              const QuadraticEigenOptions& options);
 
+  /// Marks the current basis (its columns so far) as the one restore_basis() returns to. A sweep
+  /// split into chunks that each start from one kept basis gives the same results whichever
+  /// order or thread the chunks run in (enrichment only appends columns).
+  void keep_basis();
+  /// Drops the columns added since the last keep_basis() (all enrichments since the start when
+  /// it was never called: the starting basis of undamped modes).
+  void restore_basis();
+
   /// Current basis size m (0 before the first solve).
   Eigen::Index basis_size() const;
   /// Enrichment vectors added so far, over all solves.
