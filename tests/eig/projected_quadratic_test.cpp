@@ -120,6 +120,51 @@ TEST(ProjectedQuadratic, MatchesArnoldiOnALargeRotor) {
   EXPECT_LT(worst, 1e-7);
 }
 
+// The number of exact zeros among the roots, and checks that each is a motion K leaves at rest.
+int deflated_zeros(const fe::LinearSystem& system, const QuadraticEigenResult& r) {
+  int zeros = 0;
+  for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k) {
+    if (r.eigenvalues[k] != std::complex<double>(0.0, 0.0)) continue;
+    ++zeros;
+    const Eigen::VectorXcd x = r.eigenvectors.col(k);
+    // K x = 0 row by row to rounding: relative to the largest stiffness times the motion.
+    const double scale = system.K.cwiseAbs().toDense().rowwise().sum().maxCoeff();
+    EXPECT_LE((system.K * x).cwiseAbs().maxCoeff(), 1e-12 * scale * x.cwiseAbs().maxCoeff());
+  }
+  return zeros;
+}
+
+TEST(ProjectedQuadratic, DeflatesFreeRigidBodyMotionsExactly) {
+  // Friswell 5.9.1 has no axial or torsional support: two free rigid-body motions, each a
+  // defective double root at 0. The projection deflates them (header comment) and returns four
+  // exact zeros, and the elastic roots still match the dense solver (the comparison above, 1e-9).
+  const auto system = assembly::build_system(test::friswell_591(24));
+  ProjectedQuadratic projected(assembly::pencil_parts(system));
+  QuadraticEigenOptions qo;
+  qo.n_modes = 12;
+  for (double rpm : {0.0, 4000.0}) {
+    const double speed = rpm * kRadPerRpm;
+    const assembly::SpeedIncrements inc = assembly::speed_increments(system, speed);
+    const QuadraticEigenResult r =
+        projected.solve(assembly::pencil_at(system, speed), speed, inc.dK, inc.dC, qo);
+    ASSERT_EQ(r.status, Status::Ok) << r.message;
+    EXPECT_EQ(deflated_zeros(system, r), 4) << rpm;
+  }
+  // A torsional damper at one bearing: the free torsion is no longer at rest under C (its root
+  // is -c / J_total, real), so only the axial motion is deflated.
+  auto model = test::friswell_591(24);
+  model.bearings[0].damping = {test::diagonal6(0, 0, 0, 0, 0, 1.0)};
+  const auto damped = assembly::build_system(model);
+  ProjectedQuadratic projected_damped(assembly::pencil_parts(damped));
+  const QuadraticEigenResult r =
+      projected_damped.solve(assembly::pencil_at(damped, 0.0), 0.0, {}, {}, qo);
+  ASSERT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_EQ(deflated_zeros(damped, r), 2);
+  qo.method = Method::Dense;
+  const QuadraticEigenResult ref = solve_quadratic(assembly::pencil_at(damped, 0.0), qo);
+  EXPECT_LT(largest_difference(r.eigenvalues, ref.eigenvalues, false), 1e-9);
+}
+
 TEST(ProjectedQuadratic, RestoredBasisRepeatsTheSolveBitForBit) {
   // A sweep split into chunks (threads over speeds) starts every chunk from one kept basis: the
   // solve at a speed after restore_basis() must be the same, bit for bit, as the solve of that

@@ -29,6 +29,7 @@ eig::SpeedPencilParts pencil_parts(const fe::LinearSystem& system) {
     parts.low_rank_basis = system.modal_basis;
     parts.low_rank_coefficients = system.modal_coefficients;
   }
+  parts.rigid_candidates = fe::rigid_body_candidates(system.dofs);
   return parts;
 }
 

@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "geardyn/core/error.hpp"
+#include "geardyn/eig/rigid_body.hpp"
 #include "geardyn/eig/symmetric_eigen.hpp"
 #include "geardyn/linalg/sparse_factorization.hpp"
 
@@ -81,6 +82,9 @@ struct ReducedModes {
   Complex shift = 0.0;
   Eigen::VectorXcd lambda;
   Eigen::MatrixXcd Y;
+  /// Per column: -1 an elastic mode (x = V y), k >= 0 the deflated rigid-body motion R_k
+  /// (lambda = 0, x = R_k; its column of Y is unused).
+  std::vector<Eigen::Index> rigid;
 };
 
 double dense_norm1(const Eigen::MatrixXd& A) {
@@ -189,16 +193,9 @@ Eigen::VectorXcd null_vector(const ReducedPencil& p, Complex lambda) {
   return y;
 }
 
-// The n_modes eigenvalues nearest the target (the choice and the order of solve_quadratic's
-// dense path) with their vectors. Status NotConverged when a wanted eigenvalue lies within
-// 1e-6 relative of another one (a double root, e.g. the two whirls of an isotropic rotor at
-// rest, whose vectors inverse iteration cannot separate) or a vector fails: the caller then
-// solves the projected pencil with solve_quadratic's vectors.
-ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target, int n_modes) {
-  ReducedModes out;
-  out.shift = sigma;
-  const std::vector<Complex> lambda = reduced_eigenvalues(p, sigma, out);
-  if (out.status != Status::Ok) return out;
+// Indices of the n_modes entries of `lambda` nearest the target, in the order of
+// QuadraticEigenResult (ascending |lambda|, then Im): the choice of solve_quadratic's dense path.
+std::vector<std::size_t> wanted(const std::vector<Complex>& lambda, Complex target, int n_modes) {
   std::vector<std::size_t> order(lambda.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::vector<double> distance(lambda.size());
@@ -211,12 +208,37 @@ ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target,
     if (fa != fb) return fa < fb;
     return lambda[a].imag() < lambda[b].imag();
   });
+  return order;
+}
+
+// The n_modes eigenvalues nearest the target (the choice and the order of solve_quadratic's
+// dense path), n_rigid deflated rigid-body motions counting as two roots at 0 each, with their
+// vectors. Status NotConverged when a wanted eigenvalue lies within
+// 1e-6 relative of another one (a double root, e.g. the two whirls of an isotropic rotor at
+// rest, whose vectors inverse iteration cannot separate) or a vector fails: the caller then
+// solves the projected pencil with solve_quadratic's vectors.
+ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target, int n_modes,
+                           Eigen::Index n_rigid) {
+  ReducedModes out;
+  out.shift = sigma;
+  std::vector<Complex> lambda = reduced_eigenvalues(p, sigma, out);
+  if (out.status != Status::Ok) return out;
+  // The deflated rigid-body roots: two exact zeros per motion, listed first.
+  const auto n_zero = static_cast<std::size_t>(2 * n_rigid);
+  lambda.insert(lambda.begin(), n_zero, Complex(0.0, 0.0));
+  const std::vector<std::size_t> order = wanted(lambda, target, n_modes);
   const auto k = static_cast<Eigen::Index>(order.size());
   out.lambda.resize(k);
-  out.Y.resize(p.M.rows(), k);
+  out.Y.setZero(p.M.rows(), k);
+  out.rigid.assign(static_cast<std::size_t>(k), -1);
   for (Eigen::Index j = 0; j < k; ++j) {
     const std::size_t i = order[static_cast<std::size_t>(j)];
-    for (std::size_t o = 0; o < lambda.size(); ++o)
+    if (i < n_zero) {
+      out.lambda[j] = 0.0;
+      out.rigid[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(i / 2);
+      continue;
+    }
+    for (std::size_t o = n_zero; o < lambda.size(); ++o)
       if (o != i && std::abs(lambda[o] - lambda[i]) <= 1e-6 * std::abs(lambda[i])) {
         out.status = Status::NotConverged;
         return out;
@@ -246,7 +268,8 @@ struct ProjectedQuadratic::Impl {
   Status build_status = Status::Ok;
   std::string build_message;
   linalg::SymmetricFactorization factor;  // K0_sym - sigma_b M
-  Eigen::MatrixXd V;                      // M-orthonormal basis
+  Eigen::MatrixXd V;                      // M-orthonormal basis, M-orthogonal to R
+  Eigen::MatrixXd R;                      // deflated rigid-body motions, M-orthonormal
   Eigen::MatrixXd Mr, Kr, Cr, Gr, Br;     // V^T (.) V and V^T B
   int enrichments = 0;
   Eigen::Index max_basis = 0;
@@ -254,6 +277,8 @@ struct ProjectedQuadratic::Impl {
   Eigen::Index start_columns = 0;
 
   void build(int n_modes);
+  Eigen::MatrixXd deflated_rigid_space() const;
+  bool rests(const SparseMatrix& A) const;
   int add_columns(const Eigen::MatrixXd& W);
   void project();
   ReducedPencil reduced(double speed, const SparseMatrix& dK, const SparseMatrix& dC) const;
@@ -282,12 +307,61 @@ void ProjectedQuadratic::Impl::build(int n_modes) {
     build_message = "K0 - sigma M of the basis is singular: " + factor.message();
     return;
   }
+  R = deflated_rigid_space();
   V.resize(n, 0);
   add_columns(modes.eigenvectors);
   start_columns = V.cols();
 }
 
-// Appends the parts of W M-orthogonal to V (classical Gram-Schmidt applied twice, which is
+// The candidate motions that K0, C0, G and B diag(c) B^T (and their transposes) all leave at
+// rest, row by row to rounding (eig/rigid_body.hpp on the stacked matrices), M-orthonormal.
+Eigen::MatrixXd ProjectedQuadratic::Impl::deflated_rigid_space() const {
+  const Eigen::Index n = parts.M.rows();
+  if (parts.rigid_candidates.cols() == 0 || parts.rigid_candidates.rows() != n)
+    return Eigen::MatrixXd(n, 0);
+  const Eigen::Index r = parts.low_rank_coefficients.size();
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<std::size_t>(2 * (parts.K0.nonZeros() + parts.C0.nonZeros()) +
+                                     parts.G.nonZeros() + r * n));
+  Eigen::Index row0 = 0;
+  auto stack = [&](const SparseMatrix& A, bool transposed) {
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+        t.emplace_back(row0 + (transposed ? it.col() : it.row()), transposed ? it.row() : it.col(),
+                       it.value());
+    row0 += n;
+  };
+  stack(parts.K0, false);
+  stack(parts.K0, true);
+  stack(parts.C0, false);
+  stack(parts.C0, true);
+  stack(parts.G, false);
+  for (Eigen::Index k = 0; k < r; ++k)  // rows c_k b_k^T
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (parts.low_rank_basis(i, k) != 0.0)
+        t.emplace_back(row0 + k, i, parts.low_rank_coefficients[k] * parts.low_rank_basis(i, k));
+  SparseMatrix stacked(row0 + r, n);
+  stacked.setFromTriplets(t.begin(), t.end());
+  return rigid_body_space(stacked, parts.M, parts.rigid_candidates).basis;
+}
+
+// True when A leaves every deflated motion at rest (A R and A^T R zero to rounding, row-scaled
+// as in deflated_rigid_space): the speed increments must, for the deflation to hold at a speed.
+bool ProjectedQuadratic::Impl::rests(const SparseMatrix& A) const {
+  if (R.cols() == 0 || A.nonZeros() == 0) return true;
+  const Eigen::Index n = A.rows();
+  SparseMatrix stacked(2 * n, n);
+  std::vector<Eigen::Triplet<double>> t;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+      t.emplace_back(it.row(), it.col(), it.value());
+      t.emplace_back(n + it.col(), it.row(), it.value());
+    }
+  stacked.setFromTriplets(t.begin(), t.end());
+  return rigid_body_space(stacked, parts.M, R).dimension() == R.cols();
+}
+
+// Appends the parts of W M-orthogonal to R and V (classical Gram-Schmidt applied twice, which is
 // orthogonal to working precision: Giraud et al., Numer. Math. 101 (2005) 87-100); drops
 // columns that V already spans. Returns the number added and re-projects.
 int ProjectedQuadratic::Impl::add_columns(const Eigen::MatrixXd& W) {
@@ -296,7 +370,10 @@ int ProjectedQuadratic::Impl::add_columns(const Eigen::MatrixXd& W) {
     Eigen::VectorXd w = W.col(j);
     const double norm0 = std::sqrt(std::max(0.0, w.dot(parts.M * w)));
     if (!(norm0 > 0.0)) continue;
-    for (int pass = 0; pass < 2; ++pass) w -= V * (V.transpose() * (parts.M * w));
+    for (int pass = 0; pass < 2; ++pass) {
+      if (R.cols() > 0) w -= R * (R.transpose() * (parts.M * w));
+      w -= V * (V.transpose() * (parts.M * w));
+    }
     const double norm = std::sqrt(std::max(0.0, w.dot(parts.M * w)));
     if (!(norm > 1e-10 * norm0)) continue;
     V.conservativeResize(Eigen::NoChange, V.cols() + 1);
@@ -330,7 +407,7 @@ ReducedPencil ProjectedQuadratic::Impl::reduced(double speed, const SparseMatrix
 
 ReducedModes ProjectedQuadratic::Impl::modes(const ReducedPencil& p,
                                              const QuadraticEigenOptions& qo) const {
-  ReducedModes out = solve_reduced(p, qo.dense_shift, qo.target, qo.n_modes);
+  ReducedModes out = solve_reduced(p, qo.dense_shift, qo.target, qo.n_modes, R.cols());
   if (out.status != Status::NotConverged) return out;
   // A double root: the vectors of the Schur form (solve_quadratic's dense path) separate it.
   QuadraticPencil full;
@@ -342,8 +419,24 @@ ReducedModes ProjectedQuadratic::Impl::modes(const ReducedPencil& p,
   out.status = red.status;
   out.message = red.message;
   out.shift = red.shift_used;
-  out.lambda = red.eigenvalues;
-  out.Y = red.eigenvectors;
+  // With the deflated rigid-body roots (two zeros per motion, first), the wanted ones again.
+  const auto n_zero = static_cast<std::size_t>(2 * R.cols());
+  std::vector<Complex> lambda(n_zero, Complex(0.0, 0.0));
+  lambda.insert(lambda.end(), red.eigenvalues.begin(), red.eigenvalues.end());
+  const std::vector<std::size_t> order = wanted(lambda, qo.target, qo.n_modes);
+  const auto k = static_cast<Eigen::Index>(order.size());
+  out.lambda.resize(k);
+  out.Y.setZero(p.M.rows(), k);
+  out.rigid.assign(order.size(), -1);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const std::size_t i = order[static_cast<std::size_t>(j)];
+    out.lambda[j] = lambda[i];
+    if (i < n_zero)
+      out.rigid[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(i / 2);
+    else
+      out.Y.col(j) = red.eigenvectors.col(static_cast<Eigen::Index>(i - n_zero));
+  }
+  if (out.status == Status::FewerModes && k == qo.n_modes) out.status = Status::Ok;
   return out;
 }
 
@@ -409,6 +502,14 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
       std::isnan(options.target.real()) ? Complex(automatic_target(full), 0.0) : options.target;
   qo.dense_shift = -std::sqrt(-1e6 * automatic_shift(full.K, full.M));
   qo.residual_limit = 1.0;  // the reduced residuals are not the ones that count
+  if (!s.rests(dK) || !s.rests(dC)) {
+    r.status = Status::NotConverged;
+    r.message = fmt::format(
+        "the speed-dependent bearing coefficients at this speed act on {} rigid-body motion(s) "
+        "the projection deflates (free at the reference speed)",
+        s.R.cols());
+    return r;
+  }
   for (int round = 0;; ++round) {
     const ReducedModes red = s.modes(s.reduced(speed, dK, dC), qo);
     r.iterations = round;
@@ -424,6 +525,8 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
     Eigen::MatrixXcd X(s.V.rows(), Yr.cols());
     X.real() = s.V * Yr;
     X.imag() = s.V * Yi;
+    for (std::size_t j = 0; j < red.rigid.size(); ++j)
+      if (red.rigid[j] >= 0) X.col(static_cast<Eigen::Index>(j)) = s.R.col(red.rigid[j]);
     normalise_columns(X);
     const Eigen::Index k_modes = X.cols();
     RowMatrix Xri(X.rows(), 2 * k_modes);
@@ -433,7 +536,7 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
     r.residuals = backward_errors_from_residuals(full, red.lambda, X, R);
     r.eigenvectors = std::move(X);
     r.converged = static_cast<int>(red.lambda.size());
-    const bool complete = r.converged == options.n_modes || s.V.cols() == full.size();
+    const bool complete = r.converged == options.n_modes || s.V.cols() + s.R.cols() == full.size();
     if (!complete) {
       r.status = Status::FewerModes;
       r.message = fmt::format("the projection basis ({} vectors) holds {} of {} modes asked",

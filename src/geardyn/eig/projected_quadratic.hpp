@@ -20,6 +20,18 @@
 // fixed subspace the same way). The basis is kept between calls, so a sweep over speed pays the
 // enrichment once: the gyroscopic directions G x are the same at every speed.
 //
+// Rigid-body roots are deflated: a motion r (free axial translation, free torsion) with
+// K r = K^T r = 0, D r = D^T r = 0 decouples exactly from the M-orthogonal complement
+// (r^T M V = 0 gives r^T P(lambda) V y = 0), and contributes lambda^2 r^T M r = 0, a defective
+// double root at 0. Left in the basis, such roots meet the projected solve as a double root
+// whose vectors inverse iteration cannot separate and whose Ritz values round-off splits by
+// sqrt(eps ||K|| / ||M||). So the space R of candidate motions that the speed-independent
+// matrices leave at rest (eig/rigid_body.hpp, then the common null space of the others) is kept
+// out of V (every basis vector is M-orthogonalised against it), and each of its motions is
+// returned as two exact roots lambda = 0 with x = r, among the wanted modes by their distance to
+// the target like any other. A speed whose bearing increments dK, dC do not leave R at rest is
+// not projected (NotConverged: the caller's full solver takes it).
+//
 // Every returned mode is checked at full size: its backward error (QuadraticEigenResult::residuals,
 // Tisseur 2000) is below the caller's residual_limit and its preconditioned residual F^{-1} r is
 // below `tolerance` relative to x in the M-norm (the backward error alone is a weak test on fine
@@ -62,6 +74,9 @@ struct SpeedPencilParts {
   Eigen::SparseMatrix<double> M, K0, C0, G;
   Eigen::MatrixXd low_rank_basis;         ///< B, n x r (r = 0: none)
   Eigen::VectorXd low_rank_coefficients;  ///< c, r
+  /// Candidate rigid-body motions (n x c, e.g. fe::rigid_body_candidates; empty: none). Those
+  /// that K0, C0, G and B diag(c) B^T all leave at rest are deflated (see the header comment).
+  Eigen::MatrixXd rigid_candidates;
 };
 
 class ProjectedQuadratic {

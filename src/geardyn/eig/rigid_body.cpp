@@ -11,7 +11,7 @@ RigidBodySpace rigid_body_space(const Eigen::SparseMatrix<double>& K,
                                 const Eigen::SparseMatrix<double>& M,
                                 const Eigen::MatrixXd& candidates, double tolerance) {
   RigidBodySpace space;
-  const Eigen::Index n = K.rows();
+  const Eigen::Index n = K.cols();
   space.basis.resize(n, 0);
   if (candidates.cols() == 0 || n == 0) return space;
   // Orthonormal basis of the candidates, dependent ones dropped.
@@ -26,12 +26,12 @@ RigidBodySpace rigid_body_space(const Eigen::SparseMatrix<double>& K,
   // Residual of each row relative to the size of its terms, |K| |Q| (per row, the norm over
   // the candidates): rounding gives eps-sized entries whatever the element size.
   const Eigen::VectorXd q_norm = Q.rowwise().norm();
-  Eigen::VectorXd scale = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd scale = Eigen::VectorXd::Zero(K.rows());
   for (Eigen::Index j = 0; j < K.outerSize(); ++j)
     for (Eigen::SparseMatrix<double>::InnerIterator it(K, j); it; ++it)
       scale[it.row()] += std::abs(it.value()) * q_norm[j];
   Eigen::MatrixXd W = K * Q;
-  for (Eigen::Index i = 0; i < n; ++i) W.row(i) *= scale[i] > 0.0 ? 1.0 / scale[i] : 0.0;
+  for (Eigen::Index i = 0; i < W.rows(); ++i) W.row(i) *= scale[i] > 0.0 ? 1.0 / scale[i] : 0.0;
   const Eigen::JacobiSVD<Eigen::MatrixXd, Eigen::ColPivHouseholderQRPreconditioner> svd(
       W, Eigen::ComputeFullV);
   const Eigen::VectorXd& sigma = svd.singularValues();

@@ -29,8 +29,9 @@ struct RigidBodySpace {
 inline constexpr double kRigidResidualTolerance = 3e-12;
 
 /// The part of span(candidates) that K maps to zero to rounding (see above), M-orthonormal.
-/// Candidates that are linearly dependent (relative pivot below 1e-8) are dropped. K and M
-/// symmetric n x n; candidates n x c.
+/// Candidates that are linearly dependent (relative pivot below 1e-8) are dropped. M symmetric
+/// n x n; candidates n x c; K n x n, or any m x n stack of matrices (e.g. [K; C; G]) when the
+/// motions must be at rest under all of them.
 RigidBodySpace rigid_body_space(const Eigen::SparseMatrix<double>& K,
                                 const Eigen::SparseMatrix<double>& M,
                                 const Eigen::MatrixXd& candidates,
