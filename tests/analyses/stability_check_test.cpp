@@ -28,6 +28,7 @@
 #include "geardyn/assembly/system_builder.hpp"
 #include "geardyn/eig/quadratic_eigen.hpp"
 #include "harmonic_test_support.hpp"
+#include "support/rotor_models.hpp"
 
 namespace geardyn::analyses {
 namespace {
@@ -229,6 +230,81 @@ TEST(StabilityCheck, DemoRotorIsStableWithoutAndUnstableWithCrossCoupling) {
       }
     }
   }
+}
+
+// The energy certificate (stability_check.hpp): where it holds, the eigenvalue scan it replaces
+// finds every mode decaying or neutral; it refuses each of the terms that can destabilise a
+// rotor, and the scan then decides as before. Reference: the energy theorem of the header
+// (Meirovitch 1970, ch. 6) and, for the cases it refuses, the eigenvalues of the closed form
+// above.
+double certificate_tau(double band_top) { return kGrowthTolerance * kBandMargin * band_top; }
+
+TEST(StabilityCheck, EnergyCertificateHoldsWhereTheEigenScanFindsNoGrowth) {
+  const std::vector<double> speeds = {0.0, 150.0, 300.0, 450.0};
+  // A damped Jeffcott rotor and the Friswell 5.9.1 rotor (free axial and torsional motion,
+  // undamped: neutral modes and defective roots at 0) with a disk's gyroscopic terms.
+  for (const fe::LinearSystem& s :
+       {fe::assemble(cross_coupled(0.0)), assembly::build_system(test::friswell_591(12))}) {
+    EXPECT_EQ(energy_certificate(s, certificate_tau(450.0)), "");
+    const StabilityScan certified = scan_stability(s, speeds, 450.0, true, true);
+    EXPECT_TRUE(certified.certified);
+    EXPECT_TRUE(certified.all_stable());
+    EXPECT_EQ(certified.n_solves, 0);
+    const StabilityScan scanned = scan_stability(s, speeds, 450.0, false, false);
+    EXPECT_FALSE(scanned.certified);
+    EXPECT_TRUE(scanned.all_stable());
+    EXPECT_EQ(scanned.n_solves, 4);
+  }
+}
+
+TEST(StabilityCheck, EnergyCertificateRefusesEveryDestabilisingTerm) {
+  const double tau = certificate_tau(400.0);
+  const std::vector<double> speeds = {100.0, 200.0, 400.0};
+  auto refused = [&](const fe::LinearSystem& s, const std::string& why, bool stable) {
+    const std::string reason = energy_certificate(s, tau);
+    EXPECT_NE(reason.find(why), std::string::npos) << reason;
+    const StabilityScan scan = scan_stability(s, speeds, 400.0, true, true);
+    EXPECT_FALSE(scan.certified);
+    EXPECT_EQ(scan.all_stable(), stable) << why;
+    EXPECT_NE(stability_note(scan).find("does not apply: " + reason), std::string::npos);
+  };
+  // Cross-coupled stiffness, below the threshold q* = c w_n (stable) and above it (unstable).
+  refused(fe::assemble(cross_coupled(0.8 * threshold())), "not symmetric", true);
+  refused(fe::assemble(cross_coupled(1.5 * threshold())), "not symmetric", false);
+  // Negative stiffness: k - 2k in x, a static divergence (real root sqrt(k / m) = 316 1/s).
+  fe::LinearSystem soft = fe::assemble(cross_coupled(0.0));
+  const int ux = soft.dofs.dof(0, model::Component::Ux);
+  soft.K.coeffRef(ux, ux) -= 2.0 * kStiffness;
+  refused(soft, "negative stiffness", false);
+  // Negative damping: -c in x, growth rate c / (2 m) = 12.6 1/s, far above tau.
+  fe::LinearSystem pumped = fe::assemble(cross_coupled(0.0));
+  pumped.C.coeffRef(ux, ux) = -damping();
+  refused(pumped, "negative damping", false);
+  // Damping below -tau M by a hair is refused; above it, certified (the bound is tau itself).
+  fe::LinearSystem hair = fe::assemble(cross_coupled(0.0));
+  hair.C.coeffRef(ux, ux) = -0.5 * tau * kMass;
+  EXPECT_EQ(energy_certificate(hair, tau), "");
+  hair.C.coeffRef(ux, ux) = -2.0 * tau * kMass;
+  EXPECT_NE(energy_certificate(hair, tau), "");
+}
+
+TEST(StabilityCheck, UnbalanceNotesTheCertificateAndSkipsTheSolves) {
+  const model::Model m = cross_coupled(0.0);
+  const fe::LinearSystem s = fe::assemble(m);
+  const UnbalanceResult r =
+      run_unbalance(m, speed_list({100.0, 200.0, 400.0}), Context("unbalance").with_system(&s));
+  EXPECT_EQ(r.status, Status::Ok) << r.message;
+  EXPECT_TRUE(r.stability.certified);
+  EXPECT_EQ(r.stability.n_solves, 0);
+  const AnalysisOutput out = unbalance_output(m, speed_list({100.0, 200.0, 400.0}), r,
+                                              Context("unbalance").with_system(&s));
+  bool noted = false;
+  for (const auto& note : out.notes)
+    noted = noted || note.find("by the energy certificate") != std::string::npos;
+  EXPECT_TRUE(noted);
+  const Column* stable = find_column(out.tables[0], "stable");
+  ASSERT_NE(stable, nullptr);
+  for (const auto& v : stable->texts) EXPECT_EQ(v, "yes");
 }
 
 }  // namespace

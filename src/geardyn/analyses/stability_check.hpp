@@ -45,6 +45,22 @@
 //      (scale ||x||^2): it is reported when that exceeds 10 eta, i.e. when g is beyond the
 //      first-order error bound of the computed Re(lambda) (e.g. the cross-coupled bearing
 //      instabilities of the tests, damping ratios -1e-3 to -0.06, are far beyond it).
+//
+// Energy certificate (scans that allow it: unbalance): most rotors need no eigen-solve at all.
+// With M positive definite, K symmetric positive semi-definite, G skew-symmetric and the
+// symmetric part of the damping C_s >= -tau M, the energy E = (q'^T M q' + q^T K q) / 2 obeys
+// dE/dt = -q'^T C_s q' <= tau q'^T M q' <= 2 tau E (the gyroscopic forces do no work), so a mode
+// q = Re(x e^(lambda t)) with E != 0 has Re(lambda) <= tau: no mode grows faster than tau
+// (Lyapunov's direct method; for tau = 0 the theorem of Kelvin, Tait and Chetaev, e.g.
+// L. Meirovitch, Methods of Analytical Dynamics, McGraw-Hill 1970, ch. 6). With tau =
+// kGrowthTolerance x kBandMargin x band_top, the growth rule (1) can call no mode unstable, so
+// the verdict "stable" holds at every speed of the list without solving. The checks: exact
+// symmetry of K (to 1e-13 of its largest entry) and skew-symmetry of G; no speed-dependent
+// bearing (their K(W), C(W) would have to be checked at every speed); modal damping
+// coefficients >= 0; Cholesky factorisations of M and of C_s + tau M succeed (positive
+// definite); and K positive semi-definite: its lowest eigenvalues (M-orthogonal to the rigid-
+// body motions K leaves at rest, eig/rigid_body.hpp) are > 0. Cross-coupled bearings, negative
+// stiffness or damping, follower forces fail a check, and the scan solves as before.
 #include <complex>
 #include <string>
 #include <vector>
@@ -133,6 +149,9 @@ struct StabilityScan {
   int projection_fallbacks = 0;      ///< solves the projection could not certify (full solver)
   std::string first_fallback;        ///< why, at the first of them
   bool projection_given_up = false;  ///< two failures in a row: the full solver for the rest
+  bool certified = false;            ///< stable everywhere by the energy certificate (no solves)
+  double certified_growth = 0.0;     ///< tau of the certificate [1/s]
+  std::string not_certified;         ///< why the certificate did not apply (when it was tried)
 
   bool all_stable() const;
   /// The least-damped solve among the unstable ones (nullptr: none).
@@ -144,9 +163,14 @@ constexpr double kOnsetTolerance = 1e-4;
 
 /// `band_top`: highest excitation frequency of the analysis [rad/s] (the same at every speed).
 /// `project`: through the projection (models above 30 DOFs); false: the full solver at every
-/// speed (the reference).
+/// speed (the reference). `certify`: try the energy certificate first (header comment); when it
+/// holds, no speed is solved (solves stays empty).
 StabilityScan scan_stability(const fe::LinearSystem& system, const std::vector<double>& speeds,
-                             double band_top, bool project = true);
+                             double band_top, bool project = true, bool certify = false);
+
+/// The energy certificate of the header comment with growth bound `tau` [1/s]: an empty string
+/// when it holds, otherwise the first check that failed.
+std::string energy_certificate(const fe::LinearSystem& system, double tau);
 
 /// "mode 4 (95.75 Hz, damping ratio -0.052)".
 std::string describe(const StabilityMode& m);

@@ -111,7 +111,8 @@ void record_speed(const fe::DofMap& dofs, const std::vector<int>& sensor_eq,
 // The stability scan over the speeds; Unstable status and message when a speed is unstable.
 void check_unbalance_stability(const fe::LinearSystem& system, UnbalanceResult& result) {
   const double top_speed = *std::max_element(result.speeds.begin(), result.speeds.end());
-  result.stability = scan_stability(system, result.speeds, result.orders.back() * top_speed);
+  result.stability = scan_stability(system, result.speeds, result.orders.back() * top_speed,
+                                    /*project=*/true, /*certify=*/true);
   if (result.stability.all_stable()) return;
   result.status = worse(result.status, Status::Unstable);
   if (result.message.empty()) result.message = unstable_message(result.stability);
