@@ -44,12 +44,13 @@ Eigen::MatrixXcd residual_vectors(const QuadraticPencil& p, const Eigen::VectorX
   if (p.low_rank_coefficients.size() > 0)
     DX += p.low_rank_basis *
           (p.low_rank_coefficients.asDiagonal() * (p.low_rank_basis.transpose() * Xri));
-  auto cplx = [k](const RowMatrix& A, Eigen::Index j) {
-    return Eigen::VectorXcd(A.col(j).cast<Complex>() + Complex(0.0, 1.0) * A.col(k + j));
-  };
+  // One pass over the rows (each a contiguous row of the row-major products), no temporaries.
+  const Eigen::VectorXcd lambda2 = lambda.array().square().matrix();
   Eigen::MatrixXcd R(Xri.rows(), k);
-  for (Eigen::Index j = 0; j < k; ++j)
-    R.col(j) = lambda[j] * lambda[j] * cplx(MX, j) + lambda[j] * cplx(DX, j) + cplx(KX, j);
+  for (Eigen::Index i = 0; i < Xri.rows(); ++i)
+    for (Eigen::Index j = 0; j < k; ++j)
+      R(i, j) = lambda2[j] * Complex(MX(i, j), MX(i, k + j)) +
+                lambda[j] * Complex(DX(i, j), DX(i, k + j)) + Complex(KX(i, j), KX(i, k + j));
   return R;
 }
 
@@ -344,7 +345,7 @@ struct ProjectedQuadratic::Impl {
   Eigen::MatrixXd deflated_rigid_space() const;
   bool rests(const SparseMatrix& A) const;
   int add_columns(const Eigen::MatrixXd& W);
-  void project();
+  void project(Eigen::Index old = 0);
   ReducedPencil reduced(double speed, const SparseMatrix& dK, const SparseMatrix& dC) const;
   ReducedModes modes(const ReducedPencil& p, const QuadraticEigenOptions& qo) const;
 };
@@ -444,11 +445,36 @@ int ProjectedQuadratic::Impl::add_columns(const Eigen::MatrixXd& W) {
     V.col(V.cols() - 1) = w / norm;
     ++added;
   }
-  if (added > 0) project();
+  if (added > 0) project(V.cols() - added);
   return added;
 }
 
-void ProjectedQuadratic::Impl::project() {
+// V^T A V after columns were appended to V (its first `old` columns projected before): only the
+// new rows and columns, V^T (A V_new) and (A^T V_new)^T V_old, so an enrichment costs in
+// proportion to the columns it adds.
+void grow_projection(const SparseMatrix& A, const Eigen::MatrixXd& V, Eigen::Index old,
+                     Eigen::MatrixXd& Ar) {
+  const Eigen::Index m = V.cols(), added = m - old;
+  const Eigen::MatrixXd AVnew = A * V.rightCols(added);
+  const Eigen::MatrixXd AtVnew = A.transpose() * V.rightCols(added);
+  Ar.conservativeResize(m, m);
+  Ar.rightCols(added) = V.transpose() * AVnew;
+  Ar.bottomLeftCorner(added, old) = AtVnew.transpose() * V.leftCols(old);
+}
+
+void ProjectedQuadratic::Impl::project(Eigen::Index old) {
+  if (old > 0 && Mr.rows() == old) {
+    grow_projection(parts.M, V, old, Mr);
+    grow_projection(parts.K0, V, old, Kr);
+    grow_projection(parts.C0, V, old, Cr);
+    grow_projection(parts.G, V, old, Gr);
+    if (parts.low_rank_coefficients.size() > 0) {
+      Br.conservativeResize(V.cols(), Eigen::NoChange);
+      Br.bottomRows(V.cols() - old) =
+          V.rightCols(V.cols() - old).transpose() * parts.low_rank_basis;
+    }
+    return;
+  }
   Mr = V.transpose() * (parts.M * V);
   Kr = V.transpose() * (parts.K0 * V);
   Cr = V.transpose() * (parts.C0 * V);
@@ -536,8 +562,14 @@ void ProjectedQuadratic::restore_basis() {
   Impl& s = *impl_;
   const Eigen::Index keep = s.kept_columns >= 0 ? s.kept_columns : s.start_columns;
   if (!s.built || s.V.cols() <= keep) return;
+  // The projected matrices grow by new rows and columns only (grow_projection), so their
+  // leading blocks are exactly those of the kept basis: the solves repeat bit for bit.
   s.V.conservativeResize(Eigen::NoChange, keep);
-  s.project();
+  s.Mr.conservativeResize(keep, keep);
+  s.Kr.conservativeResize(keep, keep);
+  s.Cr.conservativeResize(keep, keep);
+  s.Gr.conservativeResize(keep, keep);
+  if (s.Br.size() > 0) s.Br.conservativeResize(keep, Eigen::NoChange);
 }
 
 Eigen::Index ProjectedQuadratic::basis_size() const { return impl_->V.cols(); }
@@ -585,14 +617,18 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
       return r;
     }
     // x = V y as two real products (V is real), then the largest entry scaled to 1.
-    const Eigen::MatrixXd Yr = red.Y.real(), Yi = red.Y.imag();
-    Eigen::MatrixXcd X(s.V.rows(), Yr.cols());
-    X.real() = s.V * Yr;
-    X.imag() = s.V * Yi;
+    // x = V y for the real and imaginary parts in one product (V is real), then the largest
+    // entry scaled to 1.
+    const Eigen::Index k_modes = red.Y.cols();
+    Eigen::MatrixXd Yri(red.Y.rows(), 2 * k_modes);
+    Yri << red.Y.real(), red.Y.imag();
+    const Eigen::MatrixXd VY = s.V * Yri;
+    Eigen::MatrixXcd X(s.V.rows(), k_modes);
+    X.real() = VY.leftCols(k_modes);
+    X.imag() = VY.rightCols(k_modes);
     for (std::size_t j = 0; j < red.rigid.size(); ++j)
       if (red.rigid[j] >= 0) X.col(static_cast<Eigen::Index>(j)) = s.R.col(red.rigid[j]);
     normalise_columns(X);
-    const Eigen::Index k_modes = X.cols();
     RowMatrix Xri(X.rows(), 2 * k_modes);
     Xri << X.real(), X.imag();
     const Eigen::MatrixXcd R = residual_vectors(full, red.lambda, Xri);
