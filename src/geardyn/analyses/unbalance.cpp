@@ -176,9 +176,15 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
 
   const std::string& name = context.name();
   Progress& progress = context.progress();
+  // The unbalance loads are lateral: the blocks of D they do not reach (a shaft line's axial
+  // and torsional motion, unless a gear mesh or a bearing couples them) are not factorised and
+  // respond with exactly 0 (DynamicStiffness::restrict_to).
+  Eigen::MatrixXcd load_pattern = Eigen::MatrixXcd::Zero(system.size(), 1);
+  for (const Eigen::MatrixXcd& f : unit_load) load_pattern.col(0) += f.cwiseAbs().rowwise().sum();
   std::vector<std::unique_ptr<DynamicStiffness>> solvers;
   std::vector<Eigen::MatrixXcd> responses(1);
   solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+  solvers.back()->restrict_to(load_pattern);
   auto solve_speed = [&](std::size_t i, unsigned t) {
     DynamicStiffness& D = *solvers[t];
     Eigen::MatrixXcd& X = responses[t];
@@ -196,8 +202,10 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
   progress.update(1);
   const unsigned threads = sweep_threads(settings.threads, n_speeds - 1,
                                          solvers.front()->factor_path(), result.thread_note);
-  for (unsigned t = 1; t < threads; ++t)
+  for (unsigned t = 1; t < threads; ++t) {
     solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+    solvers.back()->restrict_to(load_pattern);
+  }
   responses.resize(threads);
   result.threads_used = static_cast<int>(threads);
   for_each_point(1, n_speeds, threads, solve_speed,

@@ -198,11 +198,20 @@ void BandedLU::eliminate_column(int j, int& last_column) {
     }
   }
   pivot_[static_cast<std::size_t>(j)] = j + p;
-  if (best == 0.0) return;
+  if (best == 0.0) {
+    inverse_pivot_[static_cast<std::size_t>(j)] = Complex(0.0);
+    smallest_pivot_ = 0.0;
+    return;
+  }
   last_column = std::max(last_column, std::min(j + ku_ + p, n_ - 1));
   if (p != 0)
     for (int c = j; c <= last_column; ++c) std::swap(at(j, c), at(j + p, c));
+  // u_jj is final here: later steps interchange and update rows below j only.
+  const double d = magnitude(column[0]);
+  smallest_pivot_ = std::min(smallest_pivot_, d);
+  largest_pivot_ = std::max(largest_pivot_, d);
   const Complex inverse = reciprocal(column[0]);
+  inverse_pivot_[static_cast<std::size_t>(j)] = inverse;
   for (int i = 1; i <= km; ++i) column[i] *= inverse;
   const double* l = reinterpret_cast<const double*>(column);
   for (int c = j + 1; c <= last_column; ++c) {
@@ -219,26 +228,32 @@ void BandedLU::eliminate_column(int j, int& last_column) {
 
 Status BandedLU::factorize(const Complex* values) {
   if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
-  std::fill(band_.begin(), band_.end(), Complex(0.0));
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
   for (std::size_t k = 0; k < position_.size(); ++k)
     row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
+  return factorize_summed(values);
+}
+
+Status BandedLU::factorize(const Complex* values, const double* row_sums) {
+  if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
+  for (std::size_t k = 0; k < row_scale_.size(); ++k)
+    row_scale_[k] = row_sums[static_cast<std::size_t>(perm_[k])];
+  return factorize_summed(values);
+}
+
+// row_scale_ holds the absolute row sums (new numbering) on entry.
+Status BandedLU::factorize_summed(const Complex* values) {
+  std::fill(band_.begin(), band_.end(), Complex(0.0));
   for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
   for (std::size_t k = 0; k < position_.size(); ++k)
     band_[position_[k]] += row_scale_[static_cast<std::size_t>(new_row_[k])] * values[k];
 
+  smallest_pivot_ = std::numeric_limits<double>::infinity();
+  largest_pivot_ = 0.0;
   int last_column = 0;
   for (int j = 0; j < n_; ++j) eliminate_column(j, last_column);
-
-  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
-  for (int j = 0; j < n_; ++j) {
-    const double d = magnitude(at(j, j));
-    smallest = std::min(smallest, d);
-    largest = std::max(largest, d);
-    inverse_pivot_[static_cast<std::size_t>(j)] = d > 0.0 ? reciprocal(at(j, j)) : Complex(0.0);
-  }
-  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
-  return smallest > 0.0 ? Status::Ok : Status::Singular;
+  pivot_ratio_ = largest_pivot_ > 0.0 ? smallest_pivot_ / largest_pivot_ : 0.0;
+  return smallest_pivot_ > 0.0 ? Status::Ok : Status::Singular;
 }
 
 void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {

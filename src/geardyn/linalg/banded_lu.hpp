@@ -49,6 +49,11 @@ class BandedLU {
   /// Returns Status::Ok, or Status::Singular when a pivot column is exactly zero (the factor
   /// is then unusable). pivot_ratio() is min |u_ii| / max |u_ii| of the row-scaled matrix.
   Status factorize(const Complex* values);
+  /// The same with the absolute row sums sum_j |a_ij| given by the caller (row i in the
+  /// analysed numbering, size() entries), who has them from assembling the values: the row
+  /// scaling then costs no second pass over the entries. Results are bit-identical to
+  /// factorize(values) when row_sums holds exactly those sums.
+  Status factorize(const Complex* values, const double* row_sums);
 
   /// x = A^{-1} b (b, x of length size(); they may be the same array). `work`: size() entries.
   void solve(const Complex* b, Complex* x, Complex* work) const;
@@ -61,11 +66,16 @@ class BandedLU {
   /// Entries of the band storage (n (2 kl + ku + 1)).
   double storage_entries() const;
   double pivot_ratio() const { return pivot_ratio_; }
+  /// min |u_ii| and max |u_ii| of the last factor (row-scaled matrix), to combine the pivot
+  /// ratios of several independent blocks.
+  double smallest_pivot() const { return smallest_pivot_; }
+  double largest_pivot() const { return largest_pivot_; }
 
  private:
   Complex& at(int row, int col) {
     return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
   }
+  Status factorize_summed(const Complex* values);
   void eliminate_column(int j, int& last_column);
 
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0;
@@ -77,7 +87,7 @@ class BandedLU {
   std::vector<int> pivot_;              ///< row interchanged with row j at step j
   std::vector<Complex> inverse_pivot_;  ///< 1 / u_jj
   std::vector<Complex> band_;
-  double pivot_ratio_ = 0.0;
+  double pivot_ratio_ = 0.0, smallest_pivot_ = 0.0, largest_pivot_ = 0.0;
 };
 
 }  // namespace geardyn::linalg
