@@ -184,9 +184,11 @@ double BandedLU::storage_entries() const {
 
 // Step j of the elimination (LAPACK xGBTF2): pivot search in column j, row interchange over
 // the columns it reaches, multipliers, rank-1 update of the band. `last_column`: the last
-// column touched by a pivot row so far.
-void BandedLU::eliminate_column(int j, int& last_column) {
-  const int km = std::min(kl_, n_ - 1 - j);
+// column touched by a pivot row so far. KM > 0: the rows below the diagonal are KM (= kl, a
+// compile-time count, so the short loops unroll); KM = 0: `km` of them (the last kl steps).
+template <int KM>
+void BandedLU::eliminate_column(int j, int km_runtime, int& last_column) {
+  const int km = KM > 0 ? KM : km_runtime;
   Complex* column = &at(j, j);
   int p = 0;
   double best = -1.0;
@@ -212,8 +214,13 @@ void BandedLU::eliminate_column(int j, int& last_column) {
   largest_pivot_ = std::max(largest_pivot_, d);
   const Complex inverse = reciprocal(column[0]);
   inverse_pivot_[static_cast<std::size_t>(j)] = inverse;
-  for (int i = 1; i <= km; ++i) column[i] *= inverse;
-  const double* l = reinterpret_cast<const double*>(column);
+  double* l = reinterpret_cast<double*>(column);
+  const double vr = inverse.real(), vi = inverse.imag();
+  for (int i = 1; i <= km; ++i) {
+    const double lr = l[2 * i], li = l[2 * i + 1];
+    l[2 * i] = lr * vr - li * vi;
+    l[2 * i + 1] = lr * vi + li * vr;
+  }
   for (int c = j + 1; c <= last_column; ++c) {
     double* u = reinterpret_cast<double*>(&at(j, c));  // u[0..1] = a(j, c), then rows below
     const double ur = u[0], ui = u[1];
@@ -223,6 +230,56 @@ void BandedLU::eliminate_column(int j, int& last_column) {
       u[2 * i] -= lr * ur - li * ui;
       u[2 * i + 1] -= lr * ui + li * ur;
     }
+  }
+}
+
+// All steps: those with kl rows below the diagonal by the unrolled kernel when KL = kl_.
+template <int KL>
+void BandedLU::eliminate_all() {
+  int last_column = 0;
+  const int interior = KL > 0 ? std::max(0, n_ - KL) : 0;
+  for (int j = 0; j < interior; ++j) eliminate_column<KL>(j, KL, last_column);
+  for (int j = interior; j < n_; ++j)
+    eliminate_column<0>(j, std::min(kl_, n_ - 1 - j), last_column);
+}
+
+void BandedLU::eliminate() {
+  // Unrolled kernels for the narrow bands of shaft lines (kl up to 16); generic beyond.
+  switch (kl_) {
+    case 1:
+      return eliminate_all<1>();
+    case 2:
+      return eliminate_all<2>();
+    case 3:
+      return eliminate_all<3>();
+    case 4:
+      return eliminate_all<4>();
+    case 5:
+      return eliminate_all<5>();
+    case 6:
+      return eliminate_all<6>();
+    case 7:
+      return eliminate_all<7>();
+    case 8:
+      return eliminate_all<8>();
+    case 9:
+      return eliminate_all<9>();
+    case 10:
+      return eliminate_all<10>();
+    case 11:
+      return eliminate_all<11>();
+    case 12:
+      return eliminate_all<12>();
+    case 13:
+      return eliminate_all<13>();
+    case 14:
+      return eliminate_all<14>();
+    case 15:
+      return eliminate_all<15>();
+    case 16:
+      return eliminate_all<16>();
+    default:
+      return eliminate_all<0>();
   }
 }
 
@@ -250,8 +307,7 @@ Status BandedLU::factorize_summed(const Complex* values) {
 
   smallest_pivot_ = std::numeric_limits<double>::infinity();
   largest_pivot_ = 0.0;
-  int last_column = 0;
-  for (int j = 0; j < n_; ++j) eliminate_column(j, last_column);
+  eliminate();
   pivot_ratio_ = largest_pivot_ > 0.0 ? smallest_pivot_ / largest_pivot_ : 0.0;
   return smallest_pivot_ > 0.0 ? Status::Ok : Status::Singular;
 }

@@ -76,7 +76,11 @@ class BandedLU {
     return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
   }
   Status factorize_summed(const Complex* values);
-  void eliminate_column(int j, int& last_column);
+  void eliminate();
+  template <int KL>
+  void eliminate_all();
+  template <int KM>
+  void eliminate_column(int j, int km_runtime, int& last_column);
 
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0;
   std::size_t ld_ = 1;
