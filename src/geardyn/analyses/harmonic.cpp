@@ -209,7 +209,7 @@ std::vector<int> component_labels(const fe::SparseMatrix& pattern, int& count) {
 // One connected component of D's pattern: D is block diagonal over these (after a symmetric
 // permutation) at every frequency and speed, so each block is factorised on its own.
 struct Block {
-  std::vector<int> dofs;          ///< global equations, increasing
+  std::vector<int> dofs;          ///< global equation of each local one (RCM order)
   fe::ComplexSparseMatrix A;      ///< D on the block (local numbering), compressed
   std::vector<std::size_t> slot;  ///< entry of the global pattern behind each entry of A
   Coefficients terms;             ///< per entry of A
@@ -218,11 +218,11 @@ struct Block {
   linalg::BandedLU banded;        ///< when it takes the banded path
   bool banded_path = false;
   bool active = true;             ///< factorised at the last factorize
+  bool identity = false;          ///< the whole system in its own numbering (no gather needed)
   mutable Eigen::MatrixXcd b, x;  ///< gathered load and solution (sparse path)
   mutable Eigen::VectorXcd work;  ///< banded solve workspace
 
   int size() const { return static_cast<int>(dofs.size()); }
-  bool whole(int n) const { return size() == n; }  // the identity numbering
 
   // Values of A (and their absolute row sums) at frequency w, speed W and modal shift w s0.
   void assemble(double w, double speed, double shift, Complex* values, double* sums) const {
@@ -239,7 +239,9 @@ struct Block {
   }
 };
 
-// The blocks of `pattern`, each with its local compressed-column pattern.
+// The blocks of `pattern`, each with its local compressed-column pattern, numbered in
+// reverse Cuthill-McKee order: the banded LU then keeps that order, and its band is filled
+// column after column from values stored in the same order (a stream, not a scatter).
 std::vector<Block> split_blocks(const fe::SparseMatrix& pattern) {
   int count = 0;
   const std::vector<int> label = component_labels(pattern, count);
@@ -253,19 +255,38 @@ std::vector<Block> split_blocks(const fe::SparseMatrix& pattern) {
   const int* outer = pattern.outerIndexPtr();
   const int* inner = pattern.innerIndexPtr();
   for (Block& b : blocks) {
-    std::vector<Eigen::Triplet<Complex>> triplets;
+    // The block's pattern in increasing global order, each entry valued by its slot + 1.
+    std::vector<Eigen::Triplet<double>> triplets;
     for (int j : b.dofs)
-      for (int k = outer[j]; k < outer[j + 1]; ++k) {
-        // Rows are increasing in the pattern and `local` is increasing within a block, so
-        // this is A's storage order.
+      for (int k = outer[j]; k < outer[j + 1]; ++k)
         triplets.emplace_back(local[static_cast<std::size_t>(inner[k])],
-                              local[static_cast<std::size_t>(j)], Complex(0.0));
-        b.slot.push_back(static_cast<std::size_t>(k));
-      }
-    b.A.resize(b.size(), b.size());
-    b.A.setFromTriplets(triplets.begin(), triplets.end());
+                              local[static_cast<std::size_t>(j)], static_cast<double>(k + 1));
+    fe::SparseMatrix slots(b.size(), b.size());
+    slots.setFromTriplets(triplets.begin(), triplets.end());
+    slots.makeCompressed();
+    // Renumbered: order[new] = old local index.
+    const std::vector<int> order =
+        linalg::reverse_cuthill_mckee(b.size(), slots.outerIndexPtr(), slots.innerIndexPtr());
+    std::vector<int> renumber(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      renumber[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+    for (auto& t : triplets)
+      t = Eigen::Triplet<double>(renumber[static_cast<std::size_t>(t.row())],
+                                 renumber[static_cast<std::size_t>(t.col())], t.value());
+    const std::vector<int> increasing = b.dofs;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      b.dofs[k] = increasing[static_cast<std::size_t>(order[k])];
+    slots.setZero();
+    slots.setFromTriplets(triplets.begin(), triplets.end());
+    slots.makeCompressed();
+    for (Eigen::Index k = 0; k < slots.nonZeros(); ++k)
+      b.slot.push_back(static_cast<std::size_t>(slots.valuePtr()[k]) - 1);
+    b.A = slots.cast<Complex>();
     b.A.makeCompressed();
     b.row_sum.setZero(b.size());
+    b.identity = count == 1;
+    for (int i = 0; i < b.size(); ++i)
+      b.identity = b.identity && b.dofs[static_cast<std::size_t>(i)] == i;
   }
   return blocks;
 }
@@ -360,7 +381,7 @@ struct DynamicStiffness::Impl {
         for (int g : b.dofs) X.row(g).setZero();
       } else if (b.banded_path) {
         for (Eigen::Index j = 0; j < F.cols(); ++j) {
-          if (b.whole(n)) {
+          if (b.identity) {
             b.banded.solve(F.col(j).data(), X.col(j).data(), b.work.data());
             continue;
           }
@@ -369,7 +390,7 @@ struct DynamicStiffness::Impl {
           b.banded.solve(x, x, b.work.data());
           for (int i = 0; i < b.size(); ++i) X(b.dofs[static_cast<std::size_t>(i)], j) = x[i];
         }
-      } else if (b.whole(n)) {
+      } else if (b.identity) {
         if (!b.lu->solve(b.A, F, X)) return false;
       } else {
         b.b.resize(b.size(), F.cols());
@@ -400,7 +421,7 @@ struct DynamicStiffness::Impl {
         b.assemble(omega, speed, shift.imag(), fresh.valuePtr(), sums.data());
         A = &fresh;
       }
-      if (b.whole(n)) {
+      if (b.identity) {
         y = *A * x;
         continue;
       }
@@ -655,7 +676,8 @@ void DynamicStiffness::analyze() {
                                                     status));
     }
     if (requested_ != FactorPath::Sparse)
-      b.banded.analyze(b.size(), b.A.outerIndexPtr(), b.A.innerIndexPtr());
+      b.banded.analyze(b.size(), b.A.outerIndexPtr(), b.A.innerIndexPtr(),
+                       linalg::BandedLU::Ordering::Given);
     // Per block: the band when it is narrow (a shaft line), UMFPACK for a branched one.
     b.banded_path =
         requested_ == FactorPath::Banded ||

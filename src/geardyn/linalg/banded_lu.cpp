@@ -146,10 +146,15 @@ std::pair<int, int> bandwidths(int n, const int* outer, const int* inner,
   return {kl, ku};
 }
 
-void BandedLU::analyze(int n, const int* outer, const int* inner) {
+void BandedLU::analyze(int n, const int* outer, const int* inner, Ordering ordering) {
   if (n <= 0) throw std::invalid_argument("BandedLU::analyze: empty matrix");
   n_ = n;
-  perm_ = reverse_cuthill_mckee(n, outer, inner);
+  if (ordering == Ordering::Given) {
+    perm_.resize(static_cast<std::size_t>(n));
+    std::iota(perm_.begin(), perm_.end(), 0);
+  } else {
+    perm_ = reverse_cuthill_mckee(n, outer, inner);
+  }
   std::tie(kl_, ku_) = bandwidths(n, outer, inner, perm_);
   kv_ = kl_ + ku_;
   ld_ = static_cast<std::size_t>(2 * kl_ + ku_ + 1);
@@ -158,15 +163,22 @@ void BandedLU::analyze(int n, const int* outer, const int* inner) {
   for (std::size_t k = 0; k < un; ++k)
     new_index[static_cast<std::size_t>(perm_[k])] = static_cast<int>(k);
   const auto nnz = static_cast<std::size_t>(outer[n]);
-  position_.resize(nnz);
   new_row_.resize(nnz);
+  // Entries grouped by renumbered column (counting sort), so that the elimination assembles
+  // each column just before it first touches it, while it is in cache.
+  column_start_.assign(un + 1, 0);
+  for (int j = 0; j < n; ++j)
+    column_start_[static_cast<std::size_t>(new_index[static_cast<std::size_t>(j)]) + 1] +=
+        outer[j + 1] - outer[j];
+  std::partial_sum(column_start_.begin(), column_start_.end(), column_start_.begin());
+  entries_.resize(nnz);
+  std::vector<int> next(column_start_.begin(), column_start_.end() - 1);
   for (int j = 0; j < n; ++j) {
     const int c = new_index[static_cast<std::size_t>(j)];
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
       const int r = new_index[static_cast<std::size_t>(inner[k])];
       new_row_[static_cast<std::size_t>(k)] = r;
-      position_[static_cast<std::size_t>(k)] =
-          static_cast<std::size_t>(kv_ + r - c) + static_cast<std::size_t>(c) * ld_;
+      entries_[static_cast<std::size_t>(next[static_cast<std::size_t>(c)]++)] = {k, r, kv_ + r - c};
     }
   }
   row_scale_.assign(un, 0.0);
@@ -234,13 +246,32 @@ void BandedLU::eliminate_column(int j, int km_runtime, int& last_column) {
 }
 
 // All steps: those with kl rows below the diagonal by the unrolled kernel when KL = kl_.
+// Column c of the row-scaled matrix into the band storage (its other entries zero).
+void BandedLU::assemble_column(int c) {
+  Complex* column = band_.data() + static_cast<std::size_t>(c) * ld_;
+  std::fill(column, column + ld_, Complex(0.0));
+  for (int e = column_start_[static_cast<std::size_t>(c)];
+       e < column_start_[static_cast<std::size_t>(c) + 1]; ++e) {
+    const Entry& entry = entries_[static_cast<std::size_t>(e)];
+    column[entry.offset] += row_scale_[static_cast<std::size_t>(entry.row)] * values_[entry.source];
+  }
+}
+
+// All steps: those with kl rows below the diagonal by the unrolled kernel when KL = kl_. Step j
+// touches columns j .. j + kl + ku at most, which are assembled just before.
 template <int KL>
 void BandedLU::eliminate_all() {
-  int last_column = 0;
+  int last_column = 0, assembled = 0;
+  const auto step = [&](int j, auto kernel) {
+    for (const int need = std::min(n_ - 1, j + kv_); assembled <= need; ++assembled)
+      assemble_column(assembled);
+    kernel(j);
+  };
   const int interior = KL > 0 ? std::max(0, n_ - KL) : 0;
-  for (int j = 0; j < interior; ++j) eliminate_column<KL>(j, KL, last_column);
+  for (int j = 0; j < interior; ++j)
+    step(j, [&](int i) { eliminate_column<KL>(i, KL, last_column); });
   for (int j = interior; j < n_; ++j)
-    eliminate_column<0>(j, std::min(kl_, n_ - 1 - j), last_column);
+    step(j, [&](int i) { eliminate_column<0>(i, std::min(kl_, n_ - 1 - i), last_column); });
 }
 
 void BandedLU::eliminate() {
@@ -286,7 +317,7 @@ void BandedLU::eliminate() {
 Status BandedLU::factorize(const Complex* values) {
   if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
-  for (std::size_t k = 0; k < position_.size(); ++k)
+  for (std::size_t k = 0; k < new_row_.size(); ++k)
     row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
   return factorize_summed(values);
 }
@@ -300,14 +331,13 @@ Status BandedLU::factorize(const Complex* values, const double* row_sums) {
 
 // row_scale_ holds the absolute row sums (new numbering) on entry.
 Status BandedLU::factorize_summed(const Complex* values) {
-  std::fill(band_.begin(), band_.end(), Complex(0.0));
   for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
-  for (std::size_t k = 0; k < position_.size(); ++k)
-    band_[position_[k]] += row_scale_[static_cast<std::size_t>(new_row_[k])] * values[k];
+  values_ = values;
 
   smallest_pivot_ = std::numeric_limits<double>::infinity();
   largest_pivot_ = 0.0;
   eliminate();
+  values_ = nullptr;
   pivot_ratio_ = largest_pivot_ > 0.0 ? smallest_pivot_ / largest_pivot_ : 0.0;
   return smallest_pivot_ > 0.0 ? Status::Ok : Status::Singular;
 }

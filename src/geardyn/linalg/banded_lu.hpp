@@ -42,8 +42,15 @@ class BandedLU {
  public:
   using Complex = std::complex<double>;
 
+  /// How analyze() numbers the unknowns.
+  enum class Ordering {
+    ReverseCuthillMcKee,  ///< its own RCM ordering
+    Given                 ///< as given (the caller has ordered the pattern, e.g. by RCM)
+  };
+
   /// Orders the pattern (n x n, compressed columns with sorted rows) and sizes the storage.
-  void analyze(int n, const int* outer, const int* inner);
+  void analyze(int n, const int* outer, const int* inner,
+               Ordering ordering = Ordering::ReverseCuthillMcKee);
 
   /// Factors the matrix whose values are `values`, in the order of the analysed pattern.
   /// Returns Status::Ok, or Status::Singular when a pivot column is exactly zero (the factor
@@ -77,6 +84,7 @@ class BandedLU {
   }
   Status factorize_summed(const Complex* values);
   void eliminate();
+  void assemble_column(int c);
   template <int KL>
   void eliminate_all();
   template <int KM>
@@ -84,9 +92,15 @@ class BandedLU {
 
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0;
   std::size_t ld_ = 1;
-  std::vector<int> perm_;               ///< perm_[new] = old
-  std::vector<std::size_t> position_;   ///< band index of each pattern entry
+  std::vector<int> perm_;  ///< perm_[new] = old
+  /// A pattern entry: its index in the values, its renumbered row, its place in its column.
+  struct Entry {
+    int source, row, offset;
+  };
   std::vector<int> new_row_;            ///< row of each pattern entry, renumbered
+  std::vector<int> column_start_;       ///< entries_ of renumbered column c: [start c, c+1)
+  std::vector<Entry> entries_;          ///< by renumbered column
+  const Complex* values_ = nullptr;     ///< the values being factorised
   std::vector<double> row_scale_;       ///< in the new numbering
   std::vector<int> pivot_;              ///< row interchanged with row j at step j
   std::vector<Complex> inverse_pivot_;  ///< 1 / u_jj
