@@ -221,6 +221,7 @@ struct Block {
   bool identity = false;          ///< the whole system in its own numbering (no gather needed)
   mutable Eigen::MatrixXcd b, x;  ///< gathered load and solution (sparse path)
   mutable Eigen::VectorXcd work;  ///< banded solve workspace
+  Eigen::MatrixXcd load;          ///< restrict_to's load on this block (local numbering)
 
   int size() const { return static_cast<int>(dofs.size()); }
 
@@ -324,6 +325,8 @@ struct DynamicStiffness::Impl {
   std::vector<Block> blocks;
   std::vector<char> loaded;  ///< per block: restrict_to's load reaches it
   bool restricted = false;
+  Eigen::MatrixXcd loads;  ///< restrict_to's load
+  bool prepared = false;   ///< the banded blocks forward-substituted `loads` at the last factor
   Eigen::VectorXd row_mass, row_stiffness, row_damping, row_gyroscopic, row_loss;
   bool analysed = false;
   int n = 0;
@@ -374,20 +377,29 @@ struct DynamicStiffness::Impl {
   }
 
   // A^{-1} F block by block (X is resized only when its shape differs); 0 on blocks left out.
-  bool factor_solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
+  // `reuse`: F is the load of restrict_to, forward-substituted during the factorisation.
+  bool factor_solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X, bool reuse = false) const {
     X.resize(F.rows(), F.cols());
     for (const Block& b : blocks) {
       if (!b.active) {
         for (int g : b.dofs) X.row(g).setZero();
       } else if (b.banded_path) {
         for (Eigen::Index j = 0; j < F.cols(); ++j) {
+          const int column = static_cast<int>(j);
           if (b.identity) {
-            b.banded.solve(F.col(j).data(), X.col(j).data(), b.work.data());
+            if (reuse)
+              b.banded.solve_prepared(column, X.col(j).data(), b.work.data());
+            else
+              b.banded.solve(F.col(j).data(), X.col(j).data(), b.work.data());
             continue;
           }
           Complex* x = b.x.data();
-          for (int i = 0; i < b.size(); ++i) x[i] = F(b.dofs[static_cast<std::size_t>(i)], j);
-          b.banded.solve(x, x, b.work.data());
+          if (reuse) {
+            b.banded.solve_prepared(column, x, b.work.data());
+          } else {
+            for (int i = 0; i < b.size(); ++i) x[i] = F(b.dofs[static_cast<std::size_t>(i)], j);
+            b.banded.solve(x, x, b.work.data());
+          }
           for (int i = 0; i < b.size(); ++i) X(b.dofs[static_cast<std::size_t>(i)], j) = x[i];
         }
       } else if (b.identity) {
@@ -403,8 +415,8 @@ struct DynamicStiffness::Impl {
   }
 
   // P^{-1} F (A_s^{-1} F without the modal path).
-  bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
-    if (!factor_solve(F, X)) return false;
+  bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X, bool reuse = false) const {
+    if (!factor_solve(F, X, reuse)) return false;
     if (modal_path) X -= Y * capacitance.solve(s.asDiagonal() * (B.transpose() * X));
     return true;
   }
@@ -529,11 +541,23 @@ void DynamicStiffness::restrict_to(const Eigen::MatrixXcd& loads) {
     for (int g : m.blocks[k].dofs)
       reached = reached || (loads.row(g).array() != Complex(0.0)).any();
     m.loaded[k] = reached ? 1 : 0;
+    // The banded factorisation forward-substitutes this load as it goes (BandedLU::factorize
+    // with right-hand sides), so that solve() with it has only the back substitution left.
+    Block& b = m.blocks[k];
+    b.load.resize(b.size(), loads.cols());
+    if (reached)
+      for (int i = 0; i < b.size(); ++i)
+        b.load.row(i) = loads.row(b.dofs[static_cast<std::size_t>(i)]);
   }
+  m.loads = loads;
   m.restricted = true;
+  m.prepared = false;  // until the next factorize forward-substitutes the new load
 }
 
-void DynamicStiffness::unrestrict() { impl_->restricted = false; }
+void DynamicStiffness::unrestrict() {
+  impl_->restricted = false;
+  impl_->prepared = false;
+}
 
 std::vector<DynamicStiffness::BlockInfo> DynamicStiffness::blocks() const {
   std::vector<BlockInfo> out;
@@ -570,6 +594,7 @@ void DynamicStiffness::factorize(double omega) {
   // returned, and the block's singularity is not reported, since nothing excites its free
   // motion. The modal damping term (w > 0) couples every block: nothing is left out then.
   const bool restricted = m.restricted && !(modal && omega > 0.0);
+  m.prepared = restricted;
   for (std::size_t k = 0; k < m.blocks.size(); ++k) {
     Block& b = m.blocks[k];
     b.active = !restricted || m.loaded[k] != 0;
@@ -642,7 +667,11 @@ bool DynamicStiffness::factor_blocks() {
     if (!b.active) continue;
     any = true;
     if (b.banded_path) {
-      regular = b.banded.factorize(b.A.valuePtr(), b.row_sum.data()) == Status::Ok && regular;
+      const Status status = m.prepared
+                                ? b.banded.factorize(b.A.valuePtr(), b.row_sum.data(),
+                                                     b.load.data(), static_cast<int>(b.load.cols()))
+                                : b.banded.factorize(b.A.valuePtr(), b.row_sum.data());
+      regular = status == Status::Ok && regular;
       smallest = std::min(smallest, b.banded.smallest_pivot());
       largest = std::max(largest, b.banded.largest_pivot());
       continue;
@@ -713,7 +742,11 @@ void DynamicStiffness::solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) con
               "kept",
               g));
   const double f_hz = omega_ * kHzPerRadS;
-  if (!m.apply_inverse(F, X))
+  // The load of restrict_to was forward-substituted during the factorisation: reuse it when F
+  // is that load exactly (bit-identical to the full solve).
+  const bool prepared =
+      m.prepared && F.rows() == m.loads.rows() && F.cols() == m.loads.cols() && F == m.loads;
+  if (!m.apply_inverse(F, X, prepared))
     throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
   if (m.modal_path) {
     // Iterative refinement until the normwise backward error

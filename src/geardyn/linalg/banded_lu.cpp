@@ -262,10 +262,15 @@ void BandedLU::assemble_column(int c) {
 template <int KL>
 void BandedLU::eliminate_all() {
   int last_column = 0, assembled = 0;
+  const auto un = static_cast<std::size_t>(n_);
   const auto step = [&](int j, auto kernel) {
     for (const int need = std::min(n_ - 1, j + kv_); assembled <= need; ++assembled)
       assemble_column(assembled);
     kernel(j);
+    // Column j of L is final: the forward substitution of the prepared loads takes it now,
+    // while it is in cache (the same operations in the same order as solve()).
+    for (std::size_t c = 0; c < static_cast<std::size_t>(prepared_columns_); ++c)
+      forward_step(j, prepared_.data() + c * un);
   };
   const int interior = KL > 0 ? std::max(0, n_ - KL) : 0;
   for (int j = 0; j < interior; ++j)
@@ -319,20 +324,33 @@ Status BandedLU::factorize(const Complex* values) {
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
   for (std::size_t k = 0; k < new_row_.size(); ++k)
     row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
-  return factorize_summed(values);
+  return factorize_summed(values, nullptr, 0);
 }
 
 Status BandedLU::factorize(const Complex* values, const double* row_sums) {
+  return factorize(values, row_sums, nullptr, 0);
+}
+
+Status BandedLU::factorize(const Complex* values, const double* row_sums, const Complex* rhs,
+                           int columns) {
   if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
   for (std::size_t k = 0; k < row_scale_.size(); ++k)
     row_scale_[k] = row_sums[static_cast<std::size_t>(perm_[k])];
-  return factorize_summed(values);
+  return factorize_summed(values, rhs, columns);
 }
 
-// row_scale_ holds the absolute row sums (new numbering) on entry.
-Status BandedLU::factorize_summed(const Complex* values) {
+// row_scale_ holds the absolute row sums (new numbering) on entry. `rhs` (columns of size()
+// entries, analysed numbering) are forward-substituted into prepared_ during the elimination.
+Status BandedLU::factorize_summed(const Complex* values, const Complex* rhs, int columns) {
   for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
   values_ = values;
+  prepared_columns_ = columns;
+  const auto un = static_cast<std::size_t>(n_);
+  if (prepared_.size() < un * static_cast<std::size_t>(columns))
+    prepared_.resize(un * static_cast<std::size_t>(columns));
+  for (std::size_t c = 0; c < static_cast<std::size_t>(columns); ++c)
+    for (std::size_t k = 0; k < un; ++k)
+      prepared_[c * un + k] = row_scale_[k] * rhs[c * un + static_cast<std::size_t>(perm_[k])];
 
   smallest_pivot_ = std::numeric_limits<double>::infinity();
   largest_pivot_ = 0.0;
@@ -342,32 +360,48 @@ Status BandedLU::factorize_summed(const Complex* values) {
   return smallest_pivot_ > 0.0 ? Status::Ok : Status::Singular;
 }
 
-void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
-  const auto band = [&](int row, int col) -> const Complex& {
-    return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
-  };
-  for (int k = 0; k < n_; ++k) {
-    const auto old = static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)]);
-    work[k] = row_scale_[static_cast<std::size_t>(k)] * b[old];
-  }
-  // L y = P_r c: interchanges and multipliers in the order they were made.
-  for (int j = 0; j < n_; ++j) {
-    const int p = pivot_[static_cast<std::size_t>(j)];
-    if (p != j) std::swap(work[j], work[p]);
-    const Complex y = work[j];
-    if (y == Complex(0.0)) continue;
-    const int km = std::min(kl_, n_ - 1 - j);
-    multiply_subtract(&band(j, j) + 1, y, work + j + 1, km);
-  }
-  // U z = y (upper bandwidth kl + ku after the interchanges).
+// One step of L y = P_r c: the interchange and the multipliers of elimination step j.
+void BandedLU::forward_step(int j, Complex* y) const {
+  const int p = pivot_[static_cast<std::size_t>(j)];
+  if (p != j) std::swap(y[j], y[p]);
+  const Complex t = y[j];
+  if (t == Complex(0.0)) return;
+  const Complex* column =
+      band_.data() + static_cast<std::size_t>(kv_) + static_cast<std::size_t>(j) * ld_;  // a(j, j)
+  multiply_subtract(column + 1, t, y + j + 1, std::min(kl_, n_ - 1 - j));
+}
+
+// U z = y (upper bandwidth kl + ku after the interchanges), then x = P_c z.
+void BandedLU::back_substitute(Complex* work, Complex* x) const {
   for (int j = n_ - 1; j >= 0; --j) {
     if (work[j] == Complex(0.0)) continue;
     work[j] *= inverse_pivot_[static_cast<std::size_t>(j)];
     const Complex z = work[j];
     const int top = std::max(0, j - kv_);
-    multiply_subtract(&band(top, j), z, work + top, j - top);
+    const Complex* column = band_.data() + static_cast<std::size_t>(kv_ + top - j) +
+                            static_cast<std::size_t>(j) * ld_;  // a(top, j)
+    multiply_subtract(column, z, work + top, j - top);
   }
   for (int k = 0; k < n_; ++k) x[perm_[static_cast<std::size_t>(k)]] = work[k];
+}
+
+void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
+  for (int k = 0; k < n_; ++k) {
+    const auto old = static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)]);
+    work[k] = row_scale_[static_cast<std::size_t>(k)] * b[old];
+  }
+  // L y = P_r c: interchanges and multipliers in the order they were made.
+  for (int j = 0; j < n_; ++j) forward_step(j, work);
+  back_substitute(work, x);
+}
+
+void BandedLU::solve_prepared(int column, Complex* x, Complex* work) const {
+  if (column < 0 || column >= prepared_columns_)
+    throw std::logic_error("BandedLU::solve_prepared: no such prepared right-hand side");
+  const Complex* y =
+      prepared_.data() + static_cast<std::size_t>(column) * static_cast<std::size_t>(n_);
+  std::copy(y, y + n_, work);
+  back_substitute(work, x);
 }
 
 }  // namespace geardyn::linalg

@@ -62,8 +62,17 @@ class BandedLU {
   /// factorize(values) when row_sums holds exactly those sums.
   Status factorize(const Complex* values, const double* row_sums);
 
+  /// The same, and also the forward substitution L y = P_r R P_c^T b of `columns` right-hand
+  /// sides b (`rhs`: columns x size() entries, column by column, analysed numbering) during the
+  /// elimination, while each column of L is in cache; solve_prepared() finishes them. Storage
+  /// for them is allocated when `columns` first grows, not per factorisation.
+  Status factorize(const Complex* values, const double* row_sums, const Complex* rhs, int columns);
+
   /// x = A^{-1} b (b, x of length size(); they may be the same array). `work`: size() entries.
   void solve(const Complex* b, Complex* x, Complex* work) const;
+  /// x = A^{-1} b for the right-hand side `column` given to the last factorize (bit-identical
+  /// to solve() with that b; only the back substitution is left). `work`: size() entries.
+  void solve_prepared(int column, Complex* x, Complex* work) const;
 
   int size() const { return n_; }
   int lower_bandwidth() const { return kl_; }
@@ -82,7 +91,9 @@ class BandedLU {
   Complex& at(int row, int col) {
     return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
   }
-  Status factorize_summed(const Complex* values);
+  Status factorize_summed(const Complex* values, const Complex* rhs, int columns);
+  void forward_step(int j, Complex* y) const;
+  void back_substitute(Complex* work, Complex* x) const;
   void eliminate();
   void assemble_column(int c);
   template <int KL>
@@ -97,10 +108,12 @@ class BandedLU {
   struct Entry {
     int source, row, offset;
   };
-  std::vector<int> new_row_;            ///< row of each pattern entry, renumbered
-  std::vector<int> column_start_;       ///< entries_ of renumbered column c: [start c, c+1)
-  std::vector<Entry> entries_;          ///< by renumbered column
-  const Complex* values_ = nullptr;     ///< the values being factorised
+  std::vector<int> new_row_;         ///< row of each pattern entry, renumbered
+  std::vector<int> column_start_;    ///< entries_ of renumbered column c: [start c, c+1)
+  std::vector<Entry> entries_;       ///< by renumbered column
+  const Complex* values_ = nullptr;  ///< the values being factorised
+  std::vector<Complex> prepared_;    ///< forward-substituted right-hand sides
+  int prepared_columns_ = 0;
   std::vector<double> row_scale_;       ///< in the new numbering
   std::vector<int> pivot_;              ///< row interchanged with row j at step j
   std::vector<Complex> inverse_pivot_;  ///< 1 / u_jj
