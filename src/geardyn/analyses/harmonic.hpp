@@ -88,7 +88,9 @@ class DynamicStiffness {
   /// requires its F to be zero there (std::invalid_argument otherwise). Exact for any load
   /// with that pattern: an unloaded regular block has response 0. An unloaded singular block
   /// (free axial motion at w = 0) is not reported (0 is returned: nothing excites it). With
-  /// modal damping at w > 0 every block is factorised (the modal term couples them).
+  /// modal damping at w > 0 every block is factorised (the modal term couples them). The
+  /// banded factorisation also forward-substitutes `loads` as it goes, so a solve() with
+  /// exactly these loads only back-substitutes (bit-identical to the full solve).
   void restrict_to(const Eigen::MatrixXcd& loads);
   /// Factorises every block again from the next factorize on (the default).
   void unrestrict();
