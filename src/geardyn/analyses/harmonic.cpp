@@ -230,10 +230,23 @@ struct Block {
     const double w2 = w * w, ww = w * speed;
     std::fill(sums, sums + size(), 0.0);
     const int* inner = A.innerIndexPtr();
+    // A term that is zero on the whole block is stored empty and not read (memory traffic is
+    // most of this loop's cost); the additions keep their order otherwise.
+    const auto data = [](const std::vector<double>& v) { return v.empty() ? nullptr : v.data(); };
+    const double* K = data(terms.stiffness);
+    const double* Ms = data(terms.mass);
+    const double* C = data(terms.damping);
+    const double* G = data(terms.gyroscopic);
+    const double* L = data(terms.loss);
     for (std::size_t k = 0; k < slot.size(); ++k) {
-      const double re = terms.stiffness[k] - w2 * terms.mass[k];
-      const double im =
-          shift * terms.mass[k] + w * terms.damping[k] + ww * terms.gyroscopic[k] + terms.loss[k];
+      double re = K != nullptr ? K[k] : 0.0, im = 0.0;
+      if (Ms != nullptr) {
+        re -= w2 * Ms[k];
+        im = shift * Ms[k];
+      }
+      if (C != nullptr) im += w * C[k];
+      if (G != nullptr) im += ww * G[k];
+      if (L != nullptr) im += L[k];
       values[k] = Complex(re, im);
       sums[inner[k]] += std::sqrt(re * re + im * im);  // |z| without hypot's cost
     }
@@ -292,9 +305,15 @@ std::vector<Block> split_blocks(const fe::SparseMatrix& pattern) {
   return blocks;
 }
 
+// from[slot[k]] for each k; empty when all are zero (Block::assemble skips the term).
 std::vector<double> gather(const std::vector<double>& from, const std::vector<std::size_t>& slot) {
   std::vector<double> out(slot.size());
-  for (std::size_t k = 0; k < slot.size(); ++k) out[k] = from[slot[k]];
+  bool any = false;
+  for (std::size_t k = 0; k < slot.size(); ++k) {
+    out[k] = from[slot[k]];
+    any = any || out[k] != 0.0;
+  }
+  if (!any) out.clear();
   return out;
 }
 
@@ -733,8 +752,12 @@ void DynamicStiffness::solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) con
   if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::solve before factorize");
   if (F.rows() != n_) throw std::invalid_argument("DynamicStiffness::solve: wrong load size");
   const Impl& m = *impl_;
+  // The load of restrict_to was forward-substituted during the factorisation: reuse it when F
+  // is that load exactly (bit-identical to the full solve); it is zero on the skipped blocks.
+  const bool prepared =
+      m.prepared && F.rows() == m.loads.rows() && F.cols() == m.loads.cols() && F == m.loads;
   for (const Block& b : m.blocks)
-    if (!b.active)
+    if (!b.active && !prepared)
       for (int g : b.dofs)
         if ((F.row(g).array() != Complex(0.0)).any())
           throw std::invalid_argument(fmt::format(
@@ -742,10 +765,6 @@ void DynamicStiffness::solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) con
               "kept",
               g));
   const double f_hz = omega_ * kHzPerRadS;
-  // The load of restrict_to was forward-substituted during the factorisation: reuse it when F
-  // is that load exactly (bit-identical to the full solve).
-  const bool prepared =
-      m.prepared && F.rows() == m.loads.rows() && F.cols() == m.loads.cols() && F == m.loads;
   if (!m.apply_inverse(F, X, prepared))
     throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
   if (m.modal_path) {
