@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 
@@ -82,6 +83,9 @@ class UmfpackLu {
     return true;
   }
   double pivot_ratio() const { return pivot_ratio_; }
+  /// min |u_ii| and max |u_ii| of the last factor (row-scaled matrix).
+  double smallest_pivot() const { return info_[UMFPACK_UMIN]; }
+  double largest_pivot() const { return info_[UMFPACK_UMAX]; }
   /// UMFPACK's estimate (after analyze) of the entries of L + U.
   double factor_entries_estimate() const {
     return info_[UMFPACK_LNZ_ESTIMATE] + info_[UMFPACK_UNZ_ESTIMATE];
@@ -102,10 +106,10 @@ class UmfpackLu {
   double pivot_ratio_ = 0.0;
 };
 
-// Values of a real sparse matrix and the positions they take in the value array of D.
-struct Term {
-  std::vector<Eigen::Index> slot;
-  std::vector<double> value;
+// Per-entry real coefficients of the terms of D on a pattern (0 where a term has no entry):
+//   d_k = stiffness_k - w^2 mass_k + i (w s0 mass_k + w damping_k + w W gyroscopic_k + loss_k).
+struct Coefficients {
+  std::vector<double> mass, stiffness, damping, gyroscopic, loss;
 };
 
 bool is_empty(const fe::SparseMatrix& X) { return X.rows() == 0 && X.cols() == 0; }
@@ -116,39 +120,52 @@ void check_square(const fe::SparseMatrix& X, int n, const char* name) {
         fmt::format("LinearSystem::{} is {}x{}, expected {}x{}", name, X.rows(), X.cols(), n, n));
 }
 
-void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<Complex>>& triplets) {
+void add_pattern(const fe::SparseMatrix& X, std::vector<Eigen::Triplet<double>>& triplets) {
   if (is_empty(X)) return;
   // Stored zeros (element blocks assembled whole) are left out: they would couple the lateral,
-  // axial and torsional DOFs of a shaft line in the pattern and widen its band several times.
+  // axial and torsional DOFs of a shaft line in the pattern, join its blocks and widen its band.
   for (Eigen::Index k = 0; k < X.outerSize(); ++k)
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it)
       if (it.value() != 0.0)
-        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), Complex(0.0));
+        triplets.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), 0.0);
 }
 
-// Maps X into the pattern of D; false if X has an entry outside it.
-bool map_term(const fe::SparseMatrix& X, const fe::ComplexSparseMatrix& D, Term& term) {
-  term.slot.clear();
-  term.value.clear();
-  if (is_empty(X)) return true;
-  const int* outer = D.outerIndexPtr();
-  const int* inner = D.innerIndexPtr();
+// Every entry a speed-dependent bearing can give at any speed: K_b(W), C_b(W) interpolate their
+// tables linearly, so an entry is non-zero at some speed only if it is in some table point.
+void add_speed_bearing_pattern(const fe::LinearSystem& system,
+                               std::vector<Eigen::Triplet<double>>& triplets) {
+  for (const fe::SpeedDependentBearing& b : system.speed_bearings)
+    for (int i = 0; i < 12; ++i)
+      for (int j = 0; j < 12; ++j) {
+        const int r = b.equations[static_cast<std::size_t>(i)];
+        const int c = b.equations[static_cast<std::size_t>(j)];
+        if (r < 0 || c < 0) continue;
+        bool used = false;
+        for (const auto* table : {&b.stiffness, &b.damping})
+          for (const auto& point : *table) used = used || point(i, j) != 0.0;
+        if (used) triplets.emplace_back(r, c, 0.0);
+      }
+}
+
+// coefficient[slot of (i, j) in the pattern] = x_ij for the non-zero entries of X; throws if X
+// has a non-zero entry outside the pattern (the pattern is the union of every term).
+void map_term(const fe::SparseMatrix& X, const fe::SparseMatrix& pattern,
+              std::vector<double>& coefficient) {
+  coefficient.assign(static_cast<std::size_t>(pattern.nonZeros()), 0.0);
+  if (is_empty(X)) return;
+  const int* outer = pattern.outerIndexPtr();
+  const int* inner = pattern.innerIndexPtr();
   for (Eigen::Index k = 0; k < X.outerSize(); ++k) {
     const int* begin = inner + outer[k];
     const int* end = inner + outer[k + 1];
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) {
       if (it.value() == 0.0) continue;  // not in the pattern (add_pattern)
       const int* pos = std::lower_bound(begin, end, static_cast<int>(it.row()));
-      if (pos == end || *pos != it.row()) return false;
-      term.slot.push_back(pos - inner);
-      term.value.push_back(it.value());
+      if (pos == end || *pos != it.row())
+        throw std::logic_error("DynamicStiffness: pattern union misses an entry");
+      coefficient[static_cast<std::size_t>(pos - inner)] = it.value();
     }
   }
-  return true;
-}
-
-void scatter(const Term& term, Complex factor, Complex* values) {
-  for (std::size_t k = 0; k < term.slot.size(); ++k) values[term.slot[k]] += factor * term.value[k];
 }
 
 // Absolute row sums of a real sparse matrix (zero vector for an empty one).
@@ -158,6 +175,146 @@ Eigen::VectorXd abs_row_sums(const fe::SparseMatrix& X, int n) {
   for (Eigen::Index k = 0; k < X.outerSize(); ++k)
     for (fe::SparseMatrix::InnerIterator it(X, k); it; ++it) sums[it.row()] += std::abs(it.value());
   return sums;
+}
+
+// Connected components of the (symmetrised) pattern by union-find: label[i] = component of
+// equation i, components numbered by their smallest equation.
+std::vector<int> component_labels(const fe::SparseMatrix& pattern, int& count) {
+  const auto n = static_cast<std::size_t>(pattern.rows());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto root = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      int& p = parent[static_cast<std::size_t>(i)];
+      p = parent[static_cast<std::size_t>(p)];  // path halving
+      i = p;
+    }
+    return i;
+  };
+  for (Eigen::Index j = 0; j < pattern.outerSize(); ++j)
+    for (fe::SparseMatrix::InnerIterator it(pattern, j); it; ++it) {
+      const int a = root(static_cast<int>(it.row())), b = root(static_cast<int>(j));
+      if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<int> label(n, -1);
+  count = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto r = static_cast<std::size_t>(root(static_cast<int>(i)));
+    if (label[r] < 0) label[r] = count++;
+    label[i] = label[r];
+  }
+  return label;
+}
+
+// One connected component of D's pattern: D is block diagonal over these (after a symmetric
+// permutation) at every frequency and speed, so each block is factorised on its own.
+struct Block {
+  std::vector<int> dofs;          ///< global equation of each local one (RCM order)
+  fe::ComplexSparseMatrix A;      ///< D on the block (local numbering), compressed
+  std::vector<std::size_t> slot;  ///< entry of the global pattern behind each entry of A
+  Coefficients terms;             ///< per entry of A
+  Eigen::VectorXd row_sum;        ///< absolute row sums of A's last values
+  std::unique_ptr<UmfpackLu> lu;  ///< when this block takes the sparse path
+  linalg::BandedLU banded;        ///< when it takes the banded path
+  bool banded_path = false;
+  bool active = true;             ///< factorised at the last factorize
+  bool identity = false;          ///< the whole system in its own numbering (no gather needed)
+  mutable Eigen::MatrixXcd b, x;  ///< gathered load and solution (sparse path)
+  mutable Eigen::VectorXcd work;  ///< banded solve workspace
+  Eigen::MatrixXcd load;          ///< restrict_to's load on this block (local numbering)
+
+  int size() const { return static_cast<int>(dofs.size()); }
+
+  // Values of A (and their absolute row sums) at frequency w, speed W and modal shift w s0.
+  void assemble(double w, double speed, double shift, Complex* values, double* sums) const {
+    const double w2 = w * w, ww = w * speed;
+    std::fill(sums, sums + size(), 0.0);
+    const int* inner = A.innerIndexPtr();
+    // A term that is zero on the whole block is stored empty and not read (memory traffic is
+    // most of this loop's cost); the additions keep their order otherwise.
+    const auto data = [](const std::vector<double>& v) { return v.empty() ? nullptr : v.data(); };
+    const double* K = data(terms.stiffness);
+    const double* Ms = data(terms.mass);
+    const double* C = data(terms.damping);
+    const double* G = data(terms.gyroscopic);
+    const double* L = data(terms.loss);
+    for (std::size_t k = 0; k < slot.size(); ++k) {
+      double re = K != nullptr ? K[k] : 0.0, im = 0.0;
+      if (Ms != nullptr) {
+        re -= w2 * Ms[k];
+        im = shift * Ms[k];
+      }
+      if (C != nullptr) im += w * C[k];
+      if (G != nullptr) im += ww * G[k];
+      if (L != nullptr) im += L[k];
+      values[k] = Complex(re, im);
+      sums[inner[k]] += std::sqrt(re * re + im * im);  // |z| without hypot's cost
+    }
+  }
+};
+
+// The blocks of `pattern`, each with its local compressed-column pattern, numbered in
+// reverse Cuthill-McKee order: the banded LU then keeps that order, and its band is filled
+// column after column from values stored in the same order (a stream, not a scatter).
+std::vector<Block> split_blocks(const fe::SparseMatrix& pattern) {
+  int count = 0;
+  const std::vector<int> label = component_labels(pattern, count);
+  std::vector<Block> blocks(static_cast<std::size_t>(count));
+  std::vector<int> local(label.size());
+  for (std::size_t i = 0; i < label.size(); ++i) {
+    std::vector<int>& dofs = blocks[static_cast<std::size_t>(label[i])].dofs;
+    local[i] = static_cast<int>(dofs.size());
+    dofs.push_back(static_cast<int>(i));
+  }
+  const int* outer = pattern.outerIndexPtr();
+  const int* inner = pattern.innerIndexPtr();
+  for (Block& b : blocks) {
+    // The block's pattern in increasing global order, each entry valued by its slot + 1.
+    std::vector<Eigen::Triplet<double>> triplets;
+    for (int j : b.dofs)
+      for (int k = outer[j]; k < outer[j + 1]; ++k)
+        triplets.emplace_back(local[static_cast<std::size_t>(inner[k])],
+                              local[static_cast<std::size_t>(j)], static_cast<double>(k + 1));
+    fe::SparseMatrix slots(b.size(), b.size());
+    slots.setFromTriplets(triplets.begin(), triplets.end());
+    slots.makeCompressed();
+    // Renumbered: order[new] = old local index.
+    const std::vector<int> order =
+        linalg::reverse_cuthill_mckee(b.size(), slots.outerIndexPtr(), slots.innerIndexPtr());
+    std::vector<int> renumber(order.size());
+    for (std::size_t k = 0; k < order.size(); ++k)
+      renumber[static_cast<std::size_t>(order[k])] = static_cast<int>(k);
+    for (auto& t : triplets)
+      t = Eigen::Triplet<double>(renumber[static_cast<std::size_t>(t.row())],
+                                 renumber[static_cast<std::size_t>(t.col())], t.value());
+    const std::vector<int> increasing = b.dofs;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      b.dofs[k] = increasing[static_cast<std::size_t>(order[k])];
+    slots.setZero();
+    slots.setFromTriplets(triplets.begin(), triplets.end());
+    slots.makeCompressed();
+    for (Eigen::Index k = 0; k < slots.nonZeros(); ++k)
+      b.slot.push_back(static_cast<std::size_t>(slots.valuePtr()[k]) - 1);
+    b.A = slots.cast<Complex>();
+    b.A.makeCompressed();
+    b.row_sum.setZero(b.size());
+    b.identity = count == 1;
+    for (int i = 0; i < b.size(); ++i)
+      b.identity = b.identity && b.dofs[static_cast<std::size_t>(i)] == i;
+  }
+  return blocks;
+}
+
+// from[slot[k]] for each k; empty when all are zero (Block::assemble skips the term).
+std::vector<double> gather(const std::vector<double>& from, const std::vector<std::size_t>& slot) {
+  std::vector<double> out(slot.size());
+  bool any = false;
+  for (std::size_t k = 0; k < slot.size(); ++k) {
+    out[k] = from[slot[k]];
+    any = any || out[k] != 0.0;
+  }
+  if (!any) out.clear();
+  return out;
 }
 
 }  // namespace
@@ -175,67 +332,162 @@ Eigen::VectorXd abs_row_sums(const fe::SparseMatrix& X, int n) {
 // iterative refinement x += P^{-1} (F - D x) removes the difference; its contraction on a
 // complement mode j is w s0 / |w_j^2 - w^2 + i w s0| < 1 (one step when the basis spans all
 // modes). Residuals use the exact D (sparse product plus the low-rank term).
+//
+// Blocks (issue #19): the pattern is the union of the non-zero entries of M, K(W), C(W) (with
+// every entry a speed-dependent bearing can take), G and K_loss, so D(w; W) is block diagonal
+// over its connected components at every w and W, and A^{-1} F is solved block by block, each
+// with its own ordering and band (a straight shaft: lateral, axial, torsional). restrict_to()
+// leaves out the blocks on which the load is zero: their response is exactly 0.
 struct DynamicStiffness::Impl {
-  fe::ComplexSparseMatrix D;  ///< A, or A_s when the modal path is active
-  Term mass, stiffness, damping, gyroscopic, loss;
+  fe::SparseMatrix pattern;  ///< union of the terms' non-zero entries (values unused)
+  Coefficients global;       ///< the terms per entry of `pattern`
+  std::vector<Block> blocks;
+  std::vector<char> loaded;  ///< per block: restrict_to's load reaches it
+  bool restricted = false;
+  Eigen::MatrixXcd loads;  ///< restrict_to's load
+  bool prepared = false;   ///< the banded blocks forward-substituted `loads` at the last factor
   Eigen::VectorXd row_mass, row_stiffness, row_damping, row_gyroscopic, row_loss;
-  UmfpackLu lu;
-  linalg::BandedLU banded;
-  bool banded_path = false;
   bool analysed = false;
-  mutable Eigen::VectorXcd work;  ///< banded solve workspace
-  Eigen::VectorXd row_sum;        ///< absolute row sums of D (singularity check)
-  fe::ComplexSparseMatrix M;      ///< complex copy of M for the residual
+  int n = 0;
+  double omega = 0.0, speed = 0.0;  ///< of the last factorize
+  fe::ComplexSparseMatrix M;        ///< complex copy of M for the residual
   Eigen::MatrixXcd B;
   Eigen::VectorXd c;
   double s0 = 0.0;
   Eigen::VectorXcd s_full;  ///< i w c
   Eigen::VectorXcd s;       ///< i w (c - s0)
-  Complex shift{0.0};       ///< i w s0
+  Complex shift{0.0};       ///< i w s0 (A_s = A + shift M)
   Eigen::MatrixXcd Y;
   Eigen::PartialPivLU<Eigen::MatrixXcd> capacitance;
   bool modal_path = false;
   double norm_inf = 0.0;  ///< bound of the infinity norm of the exact D (backward errors)
 
   void build_pattern(const fe::LinearSystem& system, const fe::SparseMatrix& K,
-                     const fe::SparseMatrix& C, int n) {
-    std::vector<Eigen::Triplet<Complex>> triplets;
+                     const fe::SparseMatrix& C) {
+    std::vector<Eigen::Triplet<double>> triplets;
     for (const auto* X : {&system.M, &K, &C, &system.G, &system.K_loss}) add_pattern(*X, triplets);
-    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, Complex(0.0));
-    D.resize(n, n);
-    D.setFromTriplets(triplets.begin(), triplets.end());
-    D.makeCompressed();
-    const bool ok = map_term(system.M, D, mass) && map_term(K, D, stiffness) &&
-                    map_term(C, D, damping) && map_term(system.G, D, gyroscopic) &&
-                    map_term(system.K_loss, D, loss);
-    if (!ok) throw std::logic_error("DynamicStiffness: pattern union misses an entry");
+    add_speed_bearing_pattern(system, triplets);
+    for (int i = 0; i < n; ++i) triplets.emplace_back(i, i, 0.0);
+    pattern.resize(n, n);
+    pattern.setFromTriplets(triplets.begin(), triplets.end());
+    pattern.makeCompressed();
+    blocks = split_blocks(pattern);
+    loaded.assign(blocks.size(), 1);
+    map_term(system.M, pattern, global.mass);
+    map_term(system.G, pattern, global.gyroscopic);
+    map_term(system.K_loss, pattern, global.loss);
+    for (Block& b : blocks) {
+      b.terms.mass = gather(global.mass, b.slot);
+      b.terms.gyroscopic = gather(global.gyroscopic, b.slot);
+      b.terms.loss = gather(global.loss, b.slot);
+    }
+    map_speed_terms(K, C);
     analysed = false;
   }
 
-  // A^{-1} F by the chosen factor (X is resized only when its shape differs).
-  bool factor_solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
-    if (!banded_path) return lu.solve(D, F, X);
+  // K(W), C(W) into the pattern and the blocks.
+  void map_speed_terms(const fe::SparseMatrix& K, const fe::SparseMatrix& C) {
+    map_term(K, pattern, global.stiffness);
+    map_term(C, pattern, global.damping);
+    for (Block& b : blocks) {
+      b.terms.stiffness = gather(global.stiffness, b.slot);
+      b.terms.damping = gather(global.damping, b.slot);
+    }
+  }
+
+  // A^{-1} F block by block (X is resized only when its shape differs); 0 on blocks left out.
+  // `reuse`: F is the load of restrict_to, forward-substituted during the factorisation.
+  bool factor_solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X, bool reuse = false) const {
     X.resize(F.rows(), F.cols());
-    for (Eigen::Index j = 0; j < F.cols(); ++j)
-      banded.solve(F.col(j).data(), X.col(j).data(), work.data());
+    for (const Block& b : blocks) {
+      if (!b.active) {
+        for (int g : b.dofs) X.row(g).setZero();
+      } else if (b.banded_path) {
+        for (Eigen::Index j = 0; j < F.cols(); ++j) {
+          const int column = static_cast<int>(j);
+          if (b.identity) {
+            if (reuse)
+              b.banded.solve_prepared(column, X.col(j).data(), b.work.data());
+            else
+              b.banded.solve(F.col(j).data(), X.col(j).data(), b.work.data());
+            continue;
+          }
+          Complex* x = b.x.data();
+          if (reuse) {
+            b.banded.solve_prepared(column, x, b.work.data());
+          } else {
+            for (int i = 0; i < b.size(); ++i) x[i] = F(b.dofs[static_cast<std::size_t>(i)], j);
+            b.banded.solve(x, x, b.work.data());
+          }
+          for (int i = 0; i < b.size(); ++i) X(b.dofs[static_cast<std::size_t>(i)], j) = x[i];
+        }
+      } else if (b.identity) {
+        if (!b.lu->solve(b.A, F, X)) return false;
+      } else {
+        b.b.resize(b.size(), F.cols());
+        for (int i = 0; i < b.size(); ++i) b.b.row(i) = F.row(b.dofs[static_cast<std::size_t>(i)]);
+        if (!b.lu->solve(b.A, b.b, b.x)) return false;
+        for (int i = 0; i < b.size(); ++i) X.row(b.dofs[static_cast<std::size_t>(i)]) = b.x.row(i);
+      }
+    }
     return true;
   }
 
   // P^{-1} F (A_s^{-1} F without the modal path).
-  bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) const {
-    if (!factor_solve(F, X)) return false;
+  bool apply_inverse(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X, bool reuse = false) const {
+    if (!factor_solve(F, X, reuse)) return false;
     if (modal_path) X -= Y * capacitance.solve(s.asDiagonal() * (B.transpose() * X));
     return true;
   }
 
-  // D x with the exact operator.
+  // D x with the exact operator (blocks left out by restrict_to assembled on the fly).
   Eigen::MatrixXcd apply(const Eigen::MatrixXcd& x) const {
-    Eigen::MatrixXcd y = D * x;
+    Eigen::MatrixXcd y(x.rows(), x.cols());
+    for (const Block& b : blocks) {
+      fe::ComplexSparseMatrix fresh;
+      const fe::ComplexSparseMatrix* A = &b.A;
+      if (!b.active) {
+        fresh = b.A;
+        Eigen::VectorXd sums(b.size());
+        b.assemble(omega, speed, shift.imag(), fresh.valuePtr(), sums.data());
+        A = &fresh;
+      }
+      if (b.identity) {
+        y = *A * x;
+        continue;
+      }
+      Eigen::MatrixXcd xb(b.size(), x.cols());
+      for (int i = 0; i < b.size(); ++i) xb.row(i) = x.row(b.dofs[static_cast<std::size_t>(i)]);
+      const Eigen::MatrixXcd yb = *A * xb;
+      for (int i = 0; i < b.size(); ++i) y.row(b.dofs[static_cast<std::size_t>(i)]) = yb.row(i);
+    }
     if (s_full.size() > 0) {
       if (shift != Complex(0.0)) y -= shift * (M * x);
       y += B * (s_full.asDiagonal() * (B.transpose() * x));
     }
     return y;
+  }
+
+  // The first (lowest) equation of a factorised block whose row of D cancels to round-off
+  // relative to its terms, with that ratio; -1 when none.
+  std::pair<int, double> cancelled_row(double w, double W) {
+    const double w2 = w * w, wg = w * std::abs(W);
+    std::pair<int, double> first{-1, 0.0};
+    norm_inf = 0.0;
+    for (const Block& b : blocks) {
+      if (!b.active) continue;
+      for (int i = 0; i < b.size(); ++i) {
+        const auto g = static_cast<Eigen::Index>(b.dofs[static_cast<std::size_t>(i)]);
+        const double row = b.row_sum[i];
+        norm_inf = std::max(norm_inf, row);
+        const double scale = row_stiffness[g] + w2 * row_mass[g] + w * row_damping[g] +
+                             wg * row_gyroscopic[g] + row_loss[g] + std::abs(shift) * row_mass[g];
+        if (scale > 0.0 && row < kSingularPivotRatio * scale &&
+            (first.first < 0 || g < first.first))
+          first = {static_cast<int>(g), row / scale};
+      }
+    }
+    return first;
   }
 };
 
@@ -254,6 +506,7 @@ DynamicStiffness::DynamicStiffness(const fe::LinearSystem& system, double speed,
   check_square(system.G, n_, "G");
   check_square(system.K_loss, n_, "K_loss");
   Impl& m = *impl_;
+  m.n = n_;
   m.row_mass = abs_row_sums(system.M, n_);
   m.row_gyroscopic = abs_row_sums(system.G, n_);
   m.row_loss = abs_row_sums(system.K_loss, n_);
@@ -281,16 +534,66 @@ void DynamicStiffness::set_speed(double speed) {
   Impl& m = *impl_;
   // Without speed-dependent bearings K(W) = K and C(W) = C: nothing to rebuild (W enters only
   // through the factor of G at factorize).
-  if (system_.speed_bearings.empty() && m.D.rows() == n_) return;
+  const bool first = m.pattern.rows() != n_;
+  if (system_.speed_bearings.empty() && !first) return;
   const fe::SparseMatrix K = system_.K_at(speed);
   const fe::SparseMatrix C = system_.C_at(speed);
   check_square(K, n_, "K_at");
   check_square(C, n_, "C_at");
   m.row_stiffness = abs_row_sums(K, n_);
   m.row_damping = abs_row_sums(C, n_);
-  // Speed-dependent bearings change values, not the pattern: keep the symbolic analysis then.
-  if (m.D.rows() != n_ || !map_term(K, m.D, m.stiffness) || !map_term(C, m.D, m.damping))
-    m.build_pattern(system_, K, C, n_);
+  // The pattern holds every entry the bearings can take, so later speeds change values only:
+  // the blocks and the symbolic analysis stay.
+  if (first)
+    m.build_pattern(system_, K, C);
+  else
+    m.map_speed_terms(K, C);
+}
+
+void DynamicStiffness::restrict_to(const Eigen::MatrixXcd& loads) {
+  if (loads.rows() != n_)
+    throw std::invalid_argument(fmt::format(
+        "DynamicStiffness::restrict_to: the load has {} rows, expected {}", loads.rows(), n_));
+  Impl& m = *impl_;
+  for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+    bool reached = false;
+    for (int g : m.blocks[k].dofs)
+      reached = reached || (loads.row(g).array() != Complex(0.0)).any();
+    m.loaded[k] = reached ? 1 : 0;
+    // The banded factorisation forward-substitutes this load as it goes (BandedLU::factorize
+    // with right-hand sides), so that solve() with it has only the back substitution left.
+    Block& b = m.blocks[k];
+    b.load.resize(b.size(), loads.cols());
+    if (reached)
+      for (int i = 0; i < b.size(); ++i)
+        b.load.row(i) = loads.row(b.dofs[static_cast<std::size_t>(i)]);
+  }
+  m.loads = loads;
+  m.restricted = true;
+  m.prepared = false;  // until the next factorize forward-substitutes the new load
+}
+
+void DynamicStiffness::unrestrict() {
+  impl_->restricted = false;
+  impl_->prepared = false;
+}
+
+std::vector<DynamicStiffness::BlockInfo> DynamicStiffness::blocks() const {
+  std::vector<BlockInfo> out;
+  for (const Block& b : impl_->blocks) {
+    BlockInfo info;
+    info.size = b.size();
+    info.factorised = impl_->analysed && b.active;
+    if (impl_->analysed) {
+      info.path = b.banded_path ? FactorPath::Banded : FactorPath::Sparse;
+      if (b.banded_path) {
+        info.lower_bandwidth = b.banded.lower_bandwidth();
+        info.upper_bandwidth = b.banded.upper_bandwidth();
+      }
+    }
+    out.push_back(info);
+  }
+  return out;
 }
 
 void DynamicStiffness::factorize(double omega) {
@@ -301,14 +604,23 @@ void DynamicStiffness::factorize(double omega) {
   m.modal_path = modal && omega > 0.0 && m.s0 > 0.0;
   const Complex iw(0.0, omega);
   m.shift = m.modal_path ? iw * m.s0 : Complex(0.0);
-  Complex* values = m.D.valuePtr();
-  std::fill(values, values + m.D.nonZeros(), Complex(0.0));
-  scatter(m.mass, Complex(-omega * omega) + m.shift, values);
-  scatter(m.stiffness, Complex(1.0), values);
-  scatter(m.damping, iw, values);
-  scatter(m.gyroscopic, iw * speed_, values);
-  scatter(m.loss, Complex(0.0, 1.0), values);
+  m.omega = omega;
+  m.speed = speed_;
   omega_ = omega;
+  // Blocks left out by restrict_to are not factorised and their response is 0 exactly. That is
+  // D's solution there whenever the block is regular. A block that is singular and unloaded
+  // (an axially free rotor at w = 0) has a consistent, undetermined response there; 0 is
+  // returned, and the block's singularity is not reported, since nothing excites its free
+  // motion. The modal damping term (w > 0) couples every block: nothing is left out then.
+  const bool restricted = m.restricted && !(modal && omega > 0.0);
+  m.prepared = restricted;
+  for (std::size_t k = 0; k < m.blocks.size(); ++k) {
+    Block& b = m.blocks[k];
+    b.active = !restricted || m.loaded[k] != 0;
+    // The first factorisation assembles every block: the symbolic analysis sees real values.
+    if (b.active || !m.analysed)
+      b.assemble(omega, speed_, m.shift.imag(), b.A.valuePtr(), b.row_sum.data());
+  }
 
   auto singular = [&](const std::string& measure) {
     std::string head = fmt::format(
@@ -330,40 +642,15 @@ void DynamicStiffness::factorize(double omega) {
     return NumericalError(analysis_, head + ": " + cause);
   };
 
-  // A row whose terms cancel to round-off is undetermined, whatever the pivots say (UMFPACK
+  // A row whose terms cancel to round-off is undetermined, whatever the pivots say (the LU
   // scales rows, so a matrix made entirely of round-off can show a pivot ratio of 1).
-  {
-    const double w2 = omega * omega, wg = omega * std::abs(speed_);
-    Eigen::VectorXd& row = m.row_sum;
-    row.setZero(n_);
-    for (Eigen::Index k = 0; k < m.D.outerSize(); ++k)
-      for (fe::ComplexSparseMatrix::InnerIterator it(m.D, k); it; ++it)
-        row[it.row()] += std::sqrt(std::norm(it.value()));  // |z| without hypot's cost
-    m.norm_inf = row.maxCoeff();
-    for (int i = 0; i < n_; ++i) {
-      const double scale = m.row_stiffness[i] + w2 * m.row_mass[i] + omega * m.row_damping[i] +
-                           wg * m.row_gyroscopic[i] + m.row_loss[i] +
-                           std::abs(m.shift) * m.row_mass[i];
-      if (scale > 0.0 && row[i] < kSingularPivotRatio * scale)
-        throw singular(fmt::format("row {} cancels to {:.2g} of its terms", i, row[i] / scale));
-    }
-  }
+  const auto [row, ratio] = m.cancelled_row(omega, speed_);
+  if (row >= 0) throw singular(fmt::format("row {} cancels to {:.2g} of its terms", row, ratio));
 
   if (!m.analysed) analyze();
-  bool regular = true;
-  if (m.banded_path) {
-    regular = m.banded.factorize(m.D.valuePtr()) == Status::Ok;
-    rcond_ = regular ? m.banded.pivot_ratio() : 0.0;
-  } else {
-    const int status = m.lu.factorize(m.D);
-    rcond_ = status == UMFPACK_OK ? m.lu.pivot_ratio() : 0.0;
-    if (status != UMFPACK_OK && status != UMFPACK_WARNING_singular_matrix)
-      throw NumericalError(analysis_, fmt::format("UMFPACK numeric factorisation failed (status "
-                                                  "{}) at f = {:.6g} Hz; out of memory?",
-                                                  status, omega * kHzPerRadS));
-    regular = status == UMFPACK_OK;
-  }
-  if (!regular || !(rcond_ >= kSingularPivotRatio))
+  const bool regular = factor_blocks();
+  // rcond_ is NaN when every block is left out (nothing factorised, nothing to judge).
+  if (!regular || !(rcond_ >= kSingularPivotRatio || std::isnan(rcond_)))
     throw singular(fmt::format("LU pivot ratio {:.2g}", rcond_));
 
   if (modal) {
@@ -388,24 +675,70 @@ void DynamicStiffness::factorize(double omega) {
   }
 }
 
+// Numerical LU of every active block; rcond_ = min |u_ii| / max |u_ii| over all of them (the
+// ratio of the block-diagonal factor, each block row-scaled as the whole would be). False when a
+// pivot is exactly zero.
+bool DynamicStiffness::factor_blocks() {
+  Impl& m = *impl_;
+  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+  bool regular = true, any = false;
+  for (Block& b : m.blocks) {
+    if (!b.active) continue;
+    any = true;
+    if (b.banded_path) {
+      const Status status = m.prepared
+                                ? b.banded.factorize(b.A.valuePtr(), b.row_sum.data(),
+                                                     b.load.data(), static_cast<int>(b.load.cols()))
+                                : b.banded.factorize(b.A.valuePtr(), b.row_sum.data());
+      regular = status == Status::Ok && regular;
+      smallest = std::min(smallest, b.banded.smallest_pivot());
+      largest = std::max(largest, b.banded.largest_pivot());
+      continue;
+    }
+    const int status = b.lu->factorize(b.A);
+    if (status != UMFPACK_OK && status != UMFPACK_WARNING_singular_matrix)
+      throw NumericalError(analysis_, fmt::format("UMFPACK numeric factorisation failed (status "
+                                                  "{}) at f = {:.6g} Hz; out of memory?",
+                                                  status, m.omega * kHzPerRadS));
+    regular = status == UMFPACK_OK && regular;
+    smallest = std::min(smallest, b.lu->smallest_pivot());
+    largest = std::max(largest, b.lu->largest_pivot());
+  }
+  if (!any)
+    rcond_ = std::numeric_limits<double>::quiet_NaN();
+  else
+    rcond_ = regular && largest > 0.0 ? smallest / largest : 0.0;
+  return regular;
+}
+
 void DynamicStiffness::analyze() {
   Impl& m = *impl_;
-  const int n = static_cast<int>(m.D.rows());
-  const bool sparse_needed = requested_ != FactorPath::Banded;
-  if (sparse_needed) {
-    const int status = m.lu.analyze(m.D);
-    if (status != UMFPACK_OK)
-      throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of D(w) "
-                                                  "(status {})",
-                                                  status));
+  bool all_banded = true;
+  for (Block& b : m.blocks) {
+    if (requested_ != FactorPath::Banded) {
+      b.lu = std::make_unique<UmfpackLu>();
+      const int status = b.lu->analyze(b.A);
+      if (status != UMFPACK_OK)
+        throw NumericalError(analysis_, fmt::format("UMFPACK could not analyse the pattern of "
+                                                    "D(w) (status {})",
+                                                    status));
+    }
+    if (requested_ != FactorPath::Sparse)
+      b.banded.analyze(b.size(), b.A.outerIndexPtr(), b.A.innerIndexPtr(),
+                       linalg::BandedLU::Ordering::Given);
+    // Per block: the band when it is narrow (a shaft line), UMFPACK for a branched one.
+    b.banded_path =
+        requested_ == FactorPath::Banded ||
+        (requested_ == FactorPath::Automatic &&
+         b.banded.storage_entries() <= kBandedFillRatio * b.lu->factor_entries_estimate());
+    if (b.banded_path) {
+      b.lu.reset();
+      b.work.resize(b.size());
+      b.x.resize(b.size(), 1);
+    }
+    all_banded = all_banded && b.banded_path;
   }
-  if (requested_ != FactorPath::Sparse)
-    m.banded.analyze(n, m.D.outerIndexPtr(), m.D.innerIndexPtr());
-  m.banded_path = requested_ == FactorPath::Banded ||
-                  (requested_ == FactorPath::Automatic &&
-                   m.banded.storage_entries() <= kBandedFillRatio * m.lu.factor_entries_estimate());
-  chosen_ = m.banded_path ? FactorPath::Banded : FactorPath::Sparse;
-  if (m.banded_path) m.work.resize(n);
+  chosen_ = all_banded ? FactorPath::Banded : FactorPath::Sparse;
   m.analysed = true;
 }
 
@@ -419,8 +752,20 @@ void DynamicStiffness::solve(const Eigen::MatrixXcd& F, Eigen::MatrixXcd& X) con
   if (std::isnan(omega_)) throw std::logic_error("DynamicStiffness::solve before factorize");
   if (F.rows() != n_) throw std::invalid_argument("DynamicStiffness::solve: wrong load size");
   const Impl& m = *impl_;
+  // The load of restrict_to was forward-substituted during the factorisation: reuse it when F
+  // is that load exactly (bit-identical to the full solve); it is zero on the skipped blocks.
+  const bool prepared =
+      m.prepared && F.rows() == m.loads.rows() && F.cols() == m.loads.cols() && F == m.loads;
+  for (const Block& b : m.blocks)
+    if (!b.active && !prepared)
+      for (int g : b.dofs)
+        if ((F.row(g).array() != Complex(0.0)).any())
+          throw std::invalid_argument(fmt::format(
+              "DynamicStiffness::solve: load on equation {}, outside the blocks restrict_to "
+              "kept",
+              g));
   const double f_hz = omega_ * kHzPerRadS;
-  if (!m.apply_inverse(F, X))
+  if (!m.apply_inverse(F, X, prepared))
     throw NumericalError(analysis_, fmt::format("UMFPACK solve failed at f = {:.6g} Hz", f_hz));
   if (m.modal_path) {
     // Iterative refinement until the normwise backward error

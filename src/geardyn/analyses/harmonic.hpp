@@ -54,16 +54,21 @@ enum class FactorPath {
 };
 
 /// Factorises D(w) for one reference speed and solves D(w) X = F for any number of right-hand
-/// sides. The sparsity pattern (union of M, K(W), C(W), G, K_loss) is analysed once; each
-/// frequency costs one numerical LU (banded or UMFPACK, see FactorPath; the banded path
-/// allocates nothing per frequency). With modal damping the sparse factor is of
-/// A + i w s0 M (s0: smallest modal coefficient, so the factor stays regular at undamped natural
-/// frequencies), the low-rank remainder i w B diag(c - s0) B^T is applied by the Woodbury
-/// identity (r extra solves and an r x r dense LU, r = number of damping modes), and iterative
-/// refinement against the exact D removes the i w s0 (M - B B^T) difference (see the .cpp).
-/// Singularity is judged by UMFPACK's pivot ratio and by rows that cancel to round-off.
-/// Keeps a reference to `system`. Not thread-safe (solve() uses the object's workspace): give
-/// each thread its own; results do not depend on which object or thread computed them.
+/// sides. The sparsity pattern (union of the non-zero entries of M, K(W), C(W) with every entry
+/// a speed-dependent bearing can take, G, K_loss) is analysed once and split into its connected
+/// components ("blocks": on a straight shaft line the lateral, axial and torsional motions; a
+/// gear mesh or a cross-coupled bearing joins them), over which D is block diagonal at every
+/// frequency and speed; each block has its own ordering and factor. Each frequency costs one
+/// numerical LU per block (banded or UMFPACK, see FactorPath, chosen per block; the banded path
+/// allocates nothing per frequency). restrict_to() skips the blocks a load does not reach. With
+/// modal damping the sparse factor is of A + i w s0 M (s0: smallest modal coefficient, so the
+/// factor stays regular at undamped natural frequencies), the low-rank remainder i w B diag(c - s0)
+/// B^T is applied by the Woodbury identity (r extra solves and an r x r dense LU, r = number of
+/// damping modes), and iterative refinement against the exact D removes the i w s0 (M - B B^T)
+/// difference (see the .cpp). Singularity is judged by UMFPACK's pivot ratio and by rows that
+/// cancel to round-off. Keeps a reference to `system`. Not thread-safe (solve() uses the object's
+/// workspace): give each thread its own; results do not depend on which object or thread computed
+/// them.
 class DynamicStiffness {
  public:
   /// `analysis` names the analysis in error messages.
@@ -78,8 +83,21 @@ class DynamicStiffness {
   void set_speed(double speed);
   double speed() const { return speed_; }
 
+  /// From the next factorize on, factorises only the blocks on which some column of `loads`
+  /// (n x m) has a non-zero entry; solve() then returns exactly 0 on the other blocks and
+  /// requires its F to be zero there (std::invalid_argument otherwise). Exact for any load
+  /// with that pattern: an unloaded regular block has response 0. An unloaded singular block
+  /// (free axial motion at w = 0) is not reported (0 is returned: nothing excites it). With
+  /// modal damping at w > 0 every block is factorised (the modal term couples them). The
+  /// banded factorisation also forward-substitutes `loads` as it goes, so a solve() with
+  /// exactly these loads only back-substitutes (bit-identical to the full solve).
+  void restrict_to(const Eigen::MatrixXcd& loads);
+  /// Factorises every block again from the next factorize on (the default).
+  void unrestrict();
+
   /// Factorises D(omega), omega [rad/s] >= 0. Throws NumericalError naming the frequency and
-  /// the likely cause when D (or, with modal damping, its sparse part) is singular.
+  /// the likely cause when D (or, with modal damping, its sparse part) is singular on the
+  /// blocks it factorises.
   void factorize(double omega);
   /// X = D(omega)^{-1} F for the omega of the last factorize (F: n x m).
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& F) const;
@@ -88,16 +106,32 @@ class DynamicStiffness {
   /// D(omega) x for the last factorised omega (for residual checks).
   Eigen::MatrixXcd apply(const Eigen::MatrixXcd& x) const;
 
-  /// Reciprocal pivot ratio min|U_ii| / max|U_ii| reported by UMFPACK for the last factor.
+  /// Reciprocal pivot ratio min|U_ii| / max|U_ii| of the last factor (row-scaled), over the
+  /// blocks it factorised (NaN when restrict_to left out every block).
   double reciprocal_pivot_ratio() const { return rcond_; }
   int size() const { return n_; }
-  /// The path taken (Banded or Sparse; fixed at the first factorize, Automatic before).
+  /// The path taken (Banded when every block is banded, else Sparse: UMFPACK is called; fixed
+  /// at the first factorize, Automatic before).
   FactorPath factor_path() const { return chosen_; }
+
+  /// One block of D's pattern (a connected component).
+  struct BlockInfo {
+    int size = 0;                             ///< equations
+    FactorPath path = FactorPath::Automatic;  ///< Banded or Sparse once analysed
+    int lower_bandwidth = 0;                  ///< after RCM (banded path only)
+    int upper_bandwidth = 0;                  ///< after RCM (banded path only)
+    bool factorised = false;                  ///< at the last factorize
+  };
+  /// The blocks, numbered by their lowest equation.
+  std::vector<BlockInfo> blocks() const;
 
  private:
   struct Impl;
-  /// Symbolic analysis of D's pattern; chooses the factor path.
+  /// Symbolic analysis of each block; chooses its factor path.
   void analyze();
+  /// Numerical LU of the blocks factorised at this frequency; sets rcond_. False when a pivot
+  /// is exactly zero.
+  bool factor_blocks();
   const fe::LinearSystem& system_;
   std::string analysis_;
   int n_ = 0;

@@ -177,15 +177,21 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
 
   const std::string& name = context.name();
   Progress& progress = context.progress();
+  // The unbalance loads are lateral: the blocks of D they do not reach (a shaft line's axial
+  // and torsional motion, unless a gear mesh or a bearing couples them) are not factorised and
+  // respond with exactly 0, and the factorisation forward-substitutes the load as it goes
+  // (DynamicStiffness::restrict_to). One order: set once per solver; several: per order.
   std::vector<std::unique_ptr<DynamicStiffness>> solvers;
   std::vector<Eigen::MatrixXcd> responses(1);
   solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+  solvers.back()->restrict_to(unit_load.front());
   auto solve_speed = [&](std::size_t i, unsigned t) {
     DynamicStiffness& D = *solvers[t];
     Eigen::MatrixXcd& X = responses[t];
     const double speed = result.speeds[i];
     D.set_speed(speed);
     for (std::size_t o = 0; o < n_orders; ++o) {
+      if (n_orders > 1) D.restrict_to(unit_load[o]);
       D.factorize(result.orders[o] * speed);
       D.solve(unit_load[o], X);
       record_speed(dofs, sensor_eq, orbit_nodes, X.col(0), speed * speed, i, o, result);
@@ -197,8 +203,10 @@ UnbalanceResult run_unbalance(const model::Model& model, const UnbalanceSettings
   progress.update(1);
   const unsigned threads = sweep_threads(settings.threads, n_speeds - 1,
                                          solvers.front()->factor_path(), result.thread_note);
-  for (unsigned t = 1; t < threads; ++t)
+  for (unsigned t = 1; t < threads; ++t) {
     solvers.push_back(std::make_unique<DynamicStiffness>(system, result.speeds.front(), name));
+    solvers.back()->restrict_to(unit_load.front());
+  }
   responses.resize(threads);
   result.threads_used = static_cast<int>(threads);
   for_each_point(1, n_speeds, threads, solve_speed,

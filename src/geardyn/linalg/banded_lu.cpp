@@ -146,10 +146,15 @@ std::pair<int, int> bandwidths(int n, const int* outer, const int* inner,
   return {kl, ku};
 }
 
-void BandedLU::analyze(int n, const int* outer, const int* inner) {
+void BandedLU::analyze(int n, const int* outer, const int* inner, Ordering ordering) {
   if (n <= 0) throw std::invalid_argument("BandedLU::analyze: empty matrix");
   n_ = n;
-  perm_ = reverse_cuthill_mckee(n, outer, inner);
+  if (ordering == Ordering::Given) {
+    perm_.resize(static_cast<std::size_t>(n));
+    std::iota(perm_.begin(), perm_.end(), 0);
+  } else {
+    perm_ = reverse_cuthill_mckee(n, outer, inner);
+  }
   std::tie(kl_, ku_) = bandwidths(n, outer, inner, perm_);
   kv_ = kl_ + ku_;
   ld_ = static_cast<std::size_t>(2 * kl_ + ku_ + 1);
@@ -158,15 +163,22 @@ void BandedLU::analyze(int n, const int* outer, const int* inner) {
   for (std::size_t k = 0; k < un; ++k)
     new_index[static_cast<std::size_t>(perm_[k])] = static_cast<int>(k);
   const auto nnz = static_cast<std::size_t>(outer[n]);
-  position_.resize(nnz);
   new_row_.resize(nnz);
+  // Entries grouped by renumbered column (counting sort), so that the elimination assembles
+  // each column just before it first touches it, while it is in cache.
+  column_start_.assign(un + 1, 0);
+  for (int j = 0; j < n; ++j)
+    column_start_[static_cast<std::size_t>(new_index[static_cast<std::size_t>(j)]) + 1] +=
+        outer[j + 1] - outer[j];
+  std::partial_sum(column_start_.begin(), column_start_.end(), column_start_.begin());
+  entries_.resize(nnz);
+  std::vector<int> next(column_start_.begin(), column_start_.end() - 1);
   for (int j = 0; j < n; ++j) {
     const int c = new_index[static_cast<std::size_t>(j)];
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
       const int r = new_index[static_cast<std::size_t>(inner[k])];
       new_row_[static_cast<std::size_t>(k)] = r;
-      position_[static_cast<std::size_t>(k)] =
-          static_cast<std::size_t>(kv_ + r - c) + static_cast<std::size_t>(c) * ld_;
+      entries_[static_cast<std::size_t>(next[static_cast<std::size_t>(c)]++)] = {k, r, kv_ + r - c};
     }
   }
   row_scale_.assign(un, 0.0);
@@ -184,9 +196,11 @@ double BandedLU::storage_entries() const {
 
 // Step j of the elimination (LAPACK xGBTF2): pivot search in column j, row interchange over
 // the columns it reaches, multipliers, rank-1 update of the band. `last_column`: the last
-// column touched by a pivot row so far.
-void BandedLU::eliminate_column(int j, int& last_column) {
-  const int km = std::min(kl_, n_ - 1 - j);
+// column touched by a pivot row so far. KM > 0: the rows below the diagonal are KM (= kl, a
+// compile-time count, so the short loops unroll); KM = 0: `km` of them (the last kl steps).
+template <int KM>
+void BandedLU::eliminate_column(int j, int km_runtime, int& last_column) {
+  const int km = KM > 0 ? KM : km_runtime;
   Complex* column = &at(j, j);
   int p = 0;
   double best = -1.0;
@@ -198,13 +212,27 @@ void BandedLU::eliminate_column(int j, int& last_column) {
     }
   }
   pivot_[static_cast<std::size_t>(j)] = j + p;
-  if (best == 0.0) return;
+  if (best == 0.0) {
+    inverse_pivot_[static_cast<std::size_t>(j)] = Complex(0.0);
+    smallest_pivot_ = 0.0;
+    return;
+  }
   last_column = std::max(last_column, std::min(j + ku_ + p, n_ - 1));
   if (p != 0)
     for (int c = j; c <= last_column; ++c) std::swap(at(j, c), at(j + p, c));
+  // u_jj is final here: later steps interchange and update rows below j only.
+  const double d = magnitude(column[0]);
+  smallest_pivot_ = std::min(smallest_pivot_, d);
+  largest_pivot_ = std::max(largest_pivot_, d);
   const Complex inverse = reciprocal(column[0]);
-  for (int i = 1; i <= km; ++i) column[i] *= inverse;
-  const double* l = reinterpret_cast<const double*>(column);
+  inverse_pivot_[static_cast<std::size_t>(j)] = inverse;
+  double* l = reinterpret_cast<double*>(column);
+  const double vr = inverse.real(), vi = inverse.imag();
+  for (int i = 1; i <= km; ++i) {
+    const double lr = l[2 * i], li = l[2 * i + 1];
+    l[2 * i] = lr * vr - li * vi;
+    l[2 * i + 1] = lr * vi + li * vr;
+  }
   for (int c = j + 1; c <= last_column; ++c) {
     double* u = reinterpret_cast<double*>(&at(j, c));  // u[0..1] = a(j, c), then rows below
     const double ur = u[0], ui = u[1];
@@ -217,56 +245,163 @@ void BandedLU::eliminate_column(int j, int& last_column) {
   }
 }
 
-Status BandedLU::factorize(const Complex* values) {
-  if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
-  std::fill(band_.begin(), band_.end(), Complex(0.0));
-  std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
-  for (std::size_t k = 0; k < position_.size(); ++k)
-    row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
-  for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
-  for (std::size_t k = 0; k < position_.size(); ++k)
-    band_[position_[k]] += row_scale_[static_cast<std::size_t>(new_row_[k])] * values[k];
-
-  int last_column = 0;
-  for (int j = 0; j < n_; ++j) eliminate_column(j, last_column);
-
-  double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
-  for (int j = 0; j < n_; ++j) {
-    const double d = magnitude(at(j, j));
-    smallest = std::min(smallest, d);
-    largest = std::max(largest, d);
-    inverse_pivot_[static_cast<std::size_t>(j)] = d > 0.0 ? reciprocal(at(j, j)) : Complex(0.0);
+// All steps: those with kl rows below the diagonal by the unrolled kernel when KL = kl_.
+// Column c of the row-scaled matrix into the band storage (its other entries zero).
+void BandedLU::assemble_column(int c) {
+  Complex* column = band_.data() + static_cast<std::size_t>(c) * ld_;
+  std::fill(column, column + ld_, Complex(0.0));
+  for (int e = column_start_[static_cast<std::size_t>(c)];
+       e < column_start_[static_cast<std::size_t>(c) + 1]; ++e) {
+    const Entry& entry = entries_[static_cast<std::size_t>(e)];
+    column[entry.offset] += row_scale_[static_cast<std::size_t>(entry.row)] * values_[entry.source];
   }
-  pivot_ratio_ = largest > 0.0 ? smallest / largest : 0.0;
-  return smallest > 0.0 ? Status::Ok : Status::Singular;
 }
 
-void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
-  const auto band = [&](int row, int col) -> const Complex& {
-    return band_[static_cast<std::size_t>(kv_ + row - col) + static_cast<std::size_t>(col) * ld_];
+// All steps: those with kl rows below the diagonal by the unrolled kernel when KL = kl_. Step j
+// touches columns j .. j + kl + ku at most, which are assembled just before.
+template <int KL>
+void BandedLU::eliminate_all() {
+  int last_column = 0, assembled = 0;
+  const auto un = static_cast<std::size_t>(n_);
+  const auto step = [&](int j, auto kernel) {
+    for (const int need = std::min(n_ - 1, j + kv_); assembled <= need; ++assembled)
+      assemble_column(assembled);
+    kernel(j);
+    // Column j of L is final: the forward substitution of the prepared loads takes it now,
+    // while it is in cache (the same operations in the same order as solve()).
+    for (std::size_t c = 0; c < static_cast<std::size_t>(prepared_columns_); ++c)
+      forward_step(j, prepared_.data() + c * un);
   };
-  for (int k = 0; k < n_; ++k) {
-    const auto old = static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)]);
-    work[k] = row_scale_[static_cast<std::size_t>(k)] * b[old];
+  const int interior = KL > 0 ? std::max(0, n_ - KL) : 0;
+  for (int j = 0; j < interior; ++j)
+    step(j, [&](int i) { eliminate_column<KL>(i, KL, last_column); });
+  for (int j = interior; j < n_; ++j)
+    step(j, [&](int i) { eliminate_column<0>(i, std::min(kl_, n_ - 1 - i), last_column); });
+}
+
+void BandedLU::eliminate() {
+  // Unrolled kernels for the narrow bands of shaft lines (kl up to 16); generic beyond.
+  switch (kl_) {
+    case 1:
+      return eliminate_all<1>();
+    case 2:
+      return eliminate_all<2>();
+    case 3:
+      return eliminate_all<3>();
+    case 4:
+      return eliminate_all<4>();
+    case 5:
+      return eliminate_all<5>();
+    case 6:
+      return eliminate_all<6>();
+    case 7:
+      return eliminate_all<7>();
+    case 8:
+      return eliminate_all<8>();
+    case 9:
+      return eliminate_all<9>();
+    case 10:
+      return eliminate_all<10>();
+    case 11:
+      return eliminate_all<11>();
+    case 12:
+      return eliminate_all<12>();
+    case 13:
+      return eliminate_all<13>();
+    case 14:
+      return eliminate_all<14>();
+    case 15:
+      return eliminate_all<15>();
+    case 16:
+      return eliminate_all<16>();
+    default:
+      return eliminate_all<0>();
   }
-  // L y = P_r c: interchanges and multipliers in the order they were made.
-  for (int j = 0; j < n_; ++j) {
-    const int p = pivot_[static_cast<std::size_t>(j)];
-    if (p != j) std::swap(work[j], work[p]);
-    const Complex y = work[j];
-    if (y == Complex(0.0)) continue;
-    const int km = std::min(kl_, n_ - 1 - j);
-    multiply_subtract(&band(j, j) + 1, y, work + j + 1, km);
-  }
-  // U z = y (upper bandwidth kl + ku after the interchanges).
+}
+
+Status BandedLU::factorize(const Complex* values) {
+  if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
+  std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
+  for (std::size_t k = 0; k < new_row_.size(); ++k)
+    row_scale_[static_cast<std::size_t>(new_row_[k])] += magnitude(values[k]);
+  return factorize_summed(values, nullptr, 0);
+}
+
+Status BandedLU::factorize(const Complex* values, const double* row_sums) {
+  return factorize(values, row_sums, nullptr, 0);
+}
+
+Status BandedLU::factorize(const Complex* values, const double* row_sums, const Complex* rhs,
+                           int columns) {
+  if (n_ == 0) throw std::logic_error("BandedLU::factorize before analyze");
+  for (std::size_t k = 0; k < row_scale_.size(); ++k)
+    row_scale_[k] = row_sums[static_cast<std::size_t>(perm_[k])];
+  return factorize_summed(values, rhs, columns);
+}
+
+// row_scale_ holds the absolute row sums (new numbering) on entry. `rhs` (columns of size()
+// entries, analysed numbering) are forward-substituted into prepared_ during the elimination.
+Status BandedLU::factorize_summed(const Complex* values, const Complex* rhs, int columns) {
+  for (double& s : row_scale_) s = s > 0.0 ? 1.0 / s : 1.0;
+  values_ = values;
+  prepared_columns_ = columns;
+  const auto un = static_cast<std::size_t>(n_);
+  if (prepared_.size() < un * static_cast<std::size_t>(columns))
+    prepared_.resize(un * static_cast<std::size_t>(columns));
+  for (std::size_t c = 0; c < static_cast<std::size_t>(columns); ++c)
+    for (std::size_t k = 0; k < un; ++k)
+      prepared_[c * un + k] = row_scale_[k] * rhs[c * un + static_cast<std::size_t>(perm_[k])];
+
+  smallest_pivot_ = std::numeric_limits<double>::infinity();
+  largest_pivot_ = 0.0;
+  eliminate();
+  values_ = nullptr;
+  pivot_ratio_ = largest_pivot_ > 0.0 ? smallest_pivot_ / largest_pivot_ : 0.0;
+  return smallest_pivot_ > 0.0 ? Status::Ok : Status::Singular;
+}
+
+// One step of L y = P_r c: the interchange and the multipliers of elimination step j.
+void BandedLU::forward_step(int j, Complex* y) const {
+  const int p = pivot_[static_cast<std::size_t>(j)];
+  if (p != j) std::swap(y[j], y[p]);
+  const Complex t = y[j];
+  if (t == Complex(0.0)) return;
+  const Complex* column =
+      band_.data() + static_cast<std::size_t>(kv_) + static_cast<std::size_t>(j) * ld_;  // a(j, j)
+  multiply_subtract(column + 1, t, y + j + 1, std::min(kl_, n_ - 1 - j));
+}
+
+// U z = y (upper bandwidth kl + ku after the interchanges), then x = P_c z.
+void BandedLU::back_substitute(Complex* work, Complex* x) const {
   for (int j = n_ - 1; j >= 0; --j) {
     if (work[j] == Complex(0.0)) continue;
     work[j] *= inverse_pivot_[static_cast<std::size_t>(j)];
     const Complex z = work[j];
     const int top = std::max(0, j - kv_);
-    multiply_subtract(&band(top, j), z, work + top, j - top);
+    const Complex* column = band_.data() + static_cast<std::size_t>(kv_ + top - j) +
+                            static_cast<std::size_t>(j) * ld_;  // a(top, j)
+    multiply_subtract(column, z, work + top, j - top);
   }
   for (int k = 0; k < n_; ++k) x[perm_[static_cast<std::size_t>(k)]] = work[k];
+}
+
+void BandedLU::solve(const Complex* b, Complex* x, Complex* work) const {
+  for (int k = 0; k < n_; ++k) {
+    const auto old = static_cast<std::size_t>(perm_[static_cast<std::size_t>(k)]);
+    work[k] = row_scale_[static_cast<std::size_t>(k)] * b[old];
+  }
+  // L y = P_r c: interchanges and multipliers in the order they were made.
+  for (int j = 0; j < n_; ++j) forward_step(j, work);
+  back_substitute(work, x);
+}
+
+void BandedLU::solve_prepared(int column, Complex* x, Complex* work) const {
+  if (column < 0 || column >= prepared_columns_)
+    throw std::logic_error("BandedLU::solve_prepared: no such prepared right-hand side");
+  const Complex* y =
+      prepared_.data() + static_cast<std::size_t>(column) * static_cast<std::size_t>(n_);
+  std::copy(y, y + n_, work);
+  back_substitute(work, x);
 }
 
 }  // namespace geardyn::linalg
