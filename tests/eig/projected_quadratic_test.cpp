@@ -149,6 +149,10 @@ TEST(ProjectedQuadratic, DeflatesFreeRigidBodyMotionsExactly) {
         projected.solve(assembly::pencil_at(system, speed), speed, inc.dK, inc.dC, qo);
     ASSERT_EQ(r.status, Status::Ok) << r.message;
     EXPECT_EQ(deflated_zeros(system, r), 4) << rpm;
+    // Undamped and gyroscopic: the projected pencil is solved in its Hermitian form, whose
+    // roots are imaginary by construction (a conservative system neither grows nor decays).
+    for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k)
+      EXPECT_EQ(r.eigenvalues[k].real(), 0.0) << k;
   }
   // A torsional damper at one bearing: the free torsion is no longer at rest under C (its root
   // is -c / J_total, real), so only the axial motion is deflated.

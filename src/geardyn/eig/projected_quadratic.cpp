@@ -257,6 +257,133 @@ Eigen::VectorXcd null_vector(const StateOperator& op, Complex lambda) {
   return y;
 }
 
+// Undamped gyroscopic pencils (the projected D skew-symmetric: D = W G only; K, M symmetric
+// positive definite after the rigid-body deflation), the usual Campbell diagram: with states
+// u = [x'; x], diag(M, K) u' = S u, S = [-D, -K; K, 0] skew-symmetric, and with the Cholesky
+// factors M = Lm Lm^T, K = Lk Lk^T the operator S' = L^{-1} S L^{-T} is real skew-symmetric, so
+// H = i S' is Hermitian, its eigenvalues mu real and lambda = -i mu imaginary to rounding
+// (P. Lancaster, Linear Algebra Appl. 256 (1997) on gyroscopic systems; F. Tisseur & K. Meerbergen,
+// SIAM Review 43 (2001) 235-286, sec. 3.5). The Hermitian tridiagonalisation and the QR of a real
+// tridiagonal cost about a third of the nonsymmetric Hessenberg QR; each wanted vector is one
+// inverse iteration on the tridiagonal, O(m), then the Householder back-transformation, O(m^2).
+struct GyroscopicOperator {
+  Eigen::Index m = 0;
+  Eigen::LLT<Eigen::MatrixXd> lm, lk;
+  Eigen::Tridiagonalization<Eigen::MatrixXcd> tri;
+  Eigen::VectorXd diagonal, off_diagonal;
+};
+
+bool symmetric_to_rounding(const Eigen::MatrixXd& A, double sign) {
+  const double scale = A.cwiseAbs().maxCoeff();
+  return (A - sign * A.transpose()).cwiseAbs().maxCoeff() <= 1e-13 * scale;
+}
+
+// The upper roots lambda = i |mu| (mu < 0) of an undamped gyroscopic projected pencil; false
+// when the pencil is not one (damping, a non-symmetric K, K or M not positive definite).
+bool gyroscopic_eigenvalues(const ReducedPencil& p, GyroscopicOperator& g,
+                            std::vector<Complex>& lambda) {
+  if (!symmetric_to_rounding(p.D, -1.0) || !symmetric_to_rounding(p.K, 1.0) ||
+      !symmetric_to_rounding(p.M, 1.0))
+    return false;
+  const Eigen::Index m = p.M.rows();
+  g.m = m;
+  g.lm.compute(p.M);
+  g.lk.compute(p.K);
+  if (g.lm.info() != Eigen::Success || g.lk.info() != Eigen::Success) return false;
+  const Eigen::MatrixXd Lk = g.lk.matrixL();
+  // S' = [-Lm^{-1} D Lm^{-T}, -Lm^{-1} Lk; Lk^T Lm^{-T}, 0].
+  Eigen::MatrixXd top = g.lm.matrixL().solve(p.D);
+  top = g.lm.matrixL().solve(top.transpose()).transpose();
+  const Eigen::MatrixXd corner = g.lm.matrixL().solve(Lk);
+  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(2 * m, 2 * m);
+  const Complex i(0.0, 1.0);
+  H.topLeftCorner(m, m) = -i * top.cast<Complex>();
+  H.topRightCorner(m, m) = -i * corner.cast<Complex>();
+  H.bottomLeftCorner(m, m) = i * corner.transpose().cast<Complex>();
+  g.tri.compute(H);
+  g.diagonal = g.tri.diagonal();
+  g.off_diagonal = g.tri.subDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
+  es.computeFromTridiagonal(g.diagonal, g.off_diagonal, Eigen::EigenvaluesOnly);
+  if (es.info() != Eigen::Success) return false;
+  lambda.clear();
+  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k)
+    if (es.eigenvalues()[k] < 0.0) lambda.emplace_back(0.0, -es.eigenvalues()[k]);
+  return static_cast<Eigen::Index>(lambda.size()) == m;  // one of each +-mu pair
+}
+
+// v with (T - mu I) v = 0 for the symmetric tridiagonal T (diagonal d, off-diagonal e): two
+// steps of inverse iteration, the solves by Gaussian elimination with partial pivoting (the
+// upper factor gains a second superdiagonal; the scheme of LAPACK's xGTTRF / xGTTRS, Anderson et
+// al. 1999). Empty when the residual 1 / growth of the unit vector is not at rounding level.
+Eigen::VectorXd tridiagonal_null_vector(const Eigen::VectorXd& d, const Eigen::VectorXd& e,
+                                        double mu) {
+  const Eigen::Index n = d.size();
+  Eigen::VectorXd a = d.array() - mu, up = Eigen::VectorXd::Zero(n), up2 = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd low = Eigen::VectorXd::Zero(n);
+  std::vector<bool> swapped(static_cast<std::size_t>(n), false);
+  if (n > 1) up.head(n - 1) = e;
+  const double scale =
+      d.cwiseAbs().maxCoeff() + 2.0 * (n > 1 ? e.cwiseAbs().maxCoeff() : 0.0) + std::abs(mu);
+  const double tiny = 1e-14 * scale;
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const double below = e[k];
+    if (std::abs(a[k]) >= std::abs(below)) {
+      if (a[k] == 0.0) a[k] = tiny;
+      low[k] = below / a[k];
+      a[k + 1] -= low[k] * up[k];
+    } else {
+      const double factor = a[k] / below;
+      a[k] = below;
+      low[k] = factor;
+      const double next = a[k + 1];
+      a[k + 1] = up[k] - factor * next;
+      up[k] = next;
+      if (k + 2 < n) {
+        up2[k] = up[k + 1];
+        up[k + 1] = -factor * up[k + 1];
+      }
+      swapped[static_cast<std::size_t>(k)] = true;
+    }
+  }
+  if (a[n - 1] == 0.0) a[n - 1] = tiny;
+  Eigen::VectorXd v(n);
+  for (Eigen::Index k = 0; k < n; ++k) v[k] = 1.0 + 0.5 * std::sin(1.0 + static_cast<double>(k));
+  v.normalize();
+  double growth = 0.0;
+  for (int step = 0; step < 2; ++step) {
+    for (Eigen::Index k = 0; k + 1 < n; ++k) {
+      if (swapped[static_cast<std::size_t>(k)]) std::swap(v[k], v[k + 1]);
+      v[k + 1] -= low[k] * v[k];
+    }
+    for (Eigen::Index k = n - 1; k >= 0; --k) {
+      double r = v[k];
+      if (k + 1 < n) r -= up[k] * v[k + 1];
+      if (k + 2 < n) r -= up2[k] * v[k + 2];
+      v[k] = r / a[k];
+    }
+    growth = v.norm();
+    if (!(growth > 0.0) || !std::isfinite(growth)) return {};
+    v /= growth;
+  }
+  if (!(1.0 / growth <= 1e-11 * scale)) return {};
+  return v;
+}
+
+// y of the upper root lambda = i omega: w = Q v (eigenvector of H for mu = -omega), the state
+// u = L^{-T} w = [lambda y; y], so y = Lk^{-T} w_2.
+Eigen::VectorXcd gyroscopic_vector(const GyroscopicOperator& g, Complex lambda) {
+  const Eigen::VectorXd v = tridiagonal_null_vector(g.diagonal, g.off_diagonal, -lambda.imag());
+  if (v.size() == 0) return {};
+  const Eigen::VectorXcd w = g.tri.matrixQ() * v.cast<Complex>();
+  Eigen::VectorXcd y = w.tail(g.m);
+  g.lk.matrixU().solveInPlace(y);
+  const Eigen::VectorXd moduli = y.cwiseAbs2();
+  const double norm = std::sqrt(moduli.sum());
+  if (!(norm > 0.0)) return {};
+  return y / norm;
+}
+
 // Indices of the n_modes entries of `lambda` nearest the target, in the order of
 // QuadraticEigenResult (ascending |lambda|, then Im): the choice of solve_quadratic's dense path.
 std::vector<std::size_t> wanted(const std::vector<Complex>& lambda, Complex target, int n_modes) {
@@ -286,8 +413,13 @@ ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target,
   ReducedModes out;
   out.shift = sigma;
   StateOperator op;
-  std::vector<Complex> lambda = reduced_eigenvalues(p, sigma, op, out);
-  if (out.status != Status::Ok) return out;
+  GyroscopicOperator gyro;
+  std::vector<Complex> lambda;
+  const bool gyroscopic = gyroscopic_eigenvalues(p, gyro, lambda);
+  if (!gyroscopic) {
+    lambda = reduced_eigenvalues(p, sigma, op, out);
+    if (out.status != Status::Ok) return out;
+  }
   // The deflated rigid-body roots: two exact zeros per motion, listed first.
   const auto n_zero = static_cast<std::size_t>(2 * n_rigid);
   lambda.insert(lambda.begin(), n_zero, Complex(0.0, 0.0));
@@ -308,7 +440,8 @@ ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target,
         out.status = Status::NotConverged;
         return out;
       }
-    const Eigen::VectorXcd y = null_vector(op, lambda[i]);
+    const Eigen::VectorXcd y =
+        gyroscopic ? gyroscopic_vector(gyro, lambda[i]) : null_vector(op, lambda[i]);
     if (y.size() == 0) {
       out.status = Status::NotConverged;
       return out;
