@@ -207,6 +207,17 @@ TEST(CampbellThreads, WarmAndColdStartAgreeWithRigidBodyRoots) {
     }
 }
 
+TEST(CampbellThreads, ChunksDependOnSpeedsAndModelSizeOnly) {
+  // A sixteenth of the speeds, at least 16, and at most 64 MiB of shapes per chunk: 9 candidate
+  // shapes of 60006 complex entries (the 10000-element benchmark rotor) are 8.64 MB per speed,
+  // so 7 speeds fit, below the minimum of 16; 6006 entries (1000 elements) give 77 speeds.
+  EXPECT_EQ(campbell_chunk_speeds(100, 42, 9), 16u);
+  EXPECT_EQ(campbell_chunk_speeds(1000, 42, 9), 63u);
+  EXPECT_EQ(campbell_chunk_speeds(10000, 6006, 9), 77u);
+  EXPECT_EQ(campbell_chunk_speeds(10000, 60006, 9), 16u);
+  EXPECT_EQ(campbell_chunk_speeds(1, 42, 9), 16u);
+}
+
 // Records what run_campbell reports.
 class RecordingProgress final : public Progress {
  public:

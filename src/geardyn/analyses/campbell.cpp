@@ -801,22 +801,22 @@ FactorPath blas_path(const fe::LinearSystem& system, const CampbellSettings& set
 
 // Phases (a) and (b) of run_campbell over every speed: batches of one chunk per thread, each
 // chunk solved by one thread from the seed, then the batch tracked in speed order.
-void sweep_speeds(const CampbellSettings& settings,
+void sweep_speeds(const CampbellSettings& settings, std::size_t chunk,
                   std::vector<std::unique_ptr<SpeedSolver>>& solvers, Tracker& tracker,
                   Progress& progress) {
   const std::size_t n_speeds = settings.speeds.size();
-  const std::size_t n_chunks = (n_speeds + kCampbellChunkSpeeds - 1) / kCampbellChunkSpeeds;
+  const std::size_t n_chunks = (n_speeds + chunk - 1) / chunk;
   std::atomic<std::size_t> solved_speeds{0};
   for (std::size_t c0 = 0; c0 < n_chunks; c0 += solvers.size()) {
     const std::size_t c1 = std::min(n_chunks, c0 + solvers.size());
-    const std::size_t first = c0 * kCampbellChunkSpeeds;
-    const std::size_t last = std::min(n_speeds, c1 * kCampbellChunkSpeeds);
+    const std::size_t first = c0 * chunk;
+    const std::size_t last = std::min(n_speeds, c1 * chunk);
     std::vector<SpeedSolve> batch(last - first);
     auto solve_chunk = [&](std::size_t c, unsigned t) {
       SpeedSolver& solver = *solvers[t];
       solver.start_chunk();
-      const std::size_t end = std::min(n_speeds, (c + 1) * kCampbellChunkSpeeds);
-      for (std::size_t i = c * kCampbellChunkSpeeds; i < end; ++i) {
+      const std::size_t end = std::min(n_speeds, (c + 1) * chunk);
+      for (std::size_t i = c * chunk; i < end; ++i) {
         batch[i - first] = solver.solve(settings.speeds[i]);
         ++solved_speeds;
       }
@@ -829,6 +829,15 @@ void sweep_speeds(const CampbellSettings& settings,
 
 }  // namespace
 
+std::size_t campbell_chunk_speeds(std::size_t n_speeds, std::size_t n_dofs,
+                                  std::size_t n_candidates) {
+  const double shape_bytes =
+      static_cast<double>(std::max<std::size_t>(n_dofs * n_candidates, 1)) * 16.0;
+  const auto by_memory = static_cast<std::size_t>(kCampbellChunkBytes / shape_bytes);
+  const std::size_t sixteenth = (n_speeds + 15) / 16;
+  return std::max(kCampbellMinChunkSpeeds, std::min(sixteenth, by_memory));
+}
+
 CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
                             const Context& context) {
   const fe::LinearSystem& system = context.system();
@@ -840,18 +849,20 @@ CampbellResult run_campbell(const model::Model& model, const CampbellSettings& s
   result.speeds = settings.speeds;
   result.lines = engine_order_lines(model, system, settings);
   const std::size_t n_speeds = settings.speeds.size();
-  const std::size_t n_chunks = (n_speeds + kCampbellChunkSpeeds - 1) / kCampbellChunkSpeeds;
+  // Spare modes give the tracking room when a mode climbs out of the computed window.
+  const int n_candidates = settings.n_modes + std::max(2, settings.n_modes / 2);
+  const std::size_t chunk = campbell_chunk_speeds(n_speeds, static_cast<std::size_t>(system.size()),
+                                                  static_cast<std::size_t>(n_candidates));
+  const std::size_t n_chunks = (n_speeds + chunk - 1) / chunk;
   const unsigned threads =
       sweep_threads(settings.threads, n_chunks, blas_path(system, settings), result.thread_note);
   result.threads_used = static_cast<int>(threads);
-  // Spare modes give the tracking room when a mode climbs out of the computed window.
-  const int n_candidates = settings.n_modes + std::max(2, settings.n_modes / 2);
   std::vector<std::unique_ptr<SpeedSolver>> solvers;
   for (unsigned t = 0; t < threads; ++t)
     solvers.push_back(std::make_unique<SpeedSolver>(system, settings, n_candidates));
   Tracker tracker(system, settings, n_candidates, result);
   progress.start("campbell", n_speeds);
-  sweep_speeds(settings, solvers, tracker, progress);
+  sweep_speeds(settings, chunk, solvers, tracker, progress);
   progress.finish();
   tracker.finish();
 

@@ -17,11 +17,15 @@
 
 namespace geardyn::analyses {
 
-/// Consecutive speeds solved as one chunk from the seeded solver state (see run_campbell). Each
-/// chunk repeats the enrichment of the projection basis its speeds need (about 12 % more
-/// operations than one sequential sweep on BM_Campbell100, 25 % with chunks of 8); at most
-/// threads x kCampbellChunkSpeeds speeds of mode shapes are held at once.
-inline constexpr std::size_t kCampbellChunkSpeeds = 16;
+/// Speeds per chunk (see run_campbell): about a sixteenth of the speeds (room for up to 8 threads
+/// to share the work), at least kCampbellMinChunkSpeeds, and at most what keeps one chunk's mode
+/// shapes within kCampbellChunkBytes (but never below the minimum). A function of the number of
+/// speeds, DOFs and candidate modes only, never of the thread count. Each chunk repeats the
+/// enrichment of the projection basis its speeds need, so fewer, longer chunks cost less.
+inline constexpr std::size_t kCampbellMinChunkSpeeds = 16;
+inline constexpr double kCampbellChunkBytes = 64.0 * 1024 * 1024;
+std::size_t campbell_chunk_speeds(std::size_t n_speeds, std::size_t n_dofs,
+                                  std::size_t n_candidates);
 
 struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   std::vector<double> speeds;  ///< reference speeds [rad/s]
@@ -150,7 +154,7 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score);
 ///
 /// Two phases, so that the results are bit-identical for any number of threads:
 ///  (a) the eigen-solves (and the description of every mode: rigid-body test, families,
-///      whirl) of each speed, in fixed chunks of kCampbellChunkSpeeds consecutive speeds whose
+///      whirl) of each speed, in chunks of campbell_chunk_speeds() consecutive speeds whose
 ///      bounds do not depend on the thread count. Each worker thread owns its solver, seeded
 ///      the same way on every thread (a solve at the first speed; the projection basis so built
 ///      is kept) and returned to that seed at the start of every chunk (the kept basis; the
@@ -158,7 +162,7 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score);
 ///      the thread that ran it. One thread runs the same chunks.
 ///  (b) the tracking (MAC scores against the previous speed, optimal assignment), sequential
 ///      and cheap, over the solved speeds in order, after each batch of chunks (one per thread,
-///      so that at most threads x kCampbellChunkSpeeds speeds of mode shapes are held).
+///      so that at most threads x kCampbellChunkBytes of mode shapes are held).
 /// The refinements of critical speeds and onsets then run in order on one solver returned to
 /// its seed. Errors from a worker are rethrown (the one of the lowest chunk).
 CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
