@@ -276,4 +276,27 @@ BENCHMARK(BM_UnbalanceScan)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
+// BM_Campbell100 on `threads` worker threads (issue 19; the results are bit-identical for any
+// count): wall-clock time and the CPU time of the whole process (all threads).
+void BM_Campbell100Threads(benchmark::State& state) {
+  const auto m = rotor(static_cast<int>(state.range(0)));
+  const auto system = assembly::build_system(m);
+  analyses::CampbellSettings settings;
+  settings.n_modes = 6;
+  settings.threads = static_cast<int>(state.range(1));
+  for (int i = 0; i < 100; ++i) settings.speeds.push_back(units::rpm_to_rad_per_s(i * 100.0));
+  analyses::CampbellResult r;
+  for (auto _ : state)
+    r = analyses::run_campbell(m, settings, analyses::Context("campbell").with_system(&system));
+  state.counters["operations"] = r.total_operations;
+  state.counters["basis"] = r.projection_basis;
+  state.counters["threads_used"] = r.threads_used;
+}
+BENCHMARK(BM_Campbell100Threads)
+    ->ArgsProduct({{100, 1000}, {1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime()
+    ->Iterations(1);
+
 }  // namespace

@@ -3,11 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 
+#include "geardyn/analyses/harmonic.hpp"
 #include "geardyn/assembly/system_pencil.hpp"
 #include "geardyn/core/error.hpp"
 #include "geardyn/core/units.hpp"
@@ -154,22 +157,35 @@ void validate(const CampbellSettings& settings, const fe::LinearSystem& system,
                      "a system without DOFs");
 }
 
+// Counts the solves the projection could not certify, and keeps where and why the first was.
+void add_fallback(CampbellResult& result, const std::string& reason) {
+  if (reason.empty()) return;
+  ++result.projection_fallbacks;
+  if (result.first_fallback.empty()) result.first_fallback = reason;
+}
+
 // The eigen-solves of a sweep. Method Auto on models above kProjectionMinDofs: the projection
 // onto one speed-independent basis (eig/projected_quadratic.hpp), kept and enriched from speed to
 // speed; a speed where it cannot certify every mode (NotConverged, FewerModes, a failed basis) is
-// solved again by solve_quadratic, the reference path, and counted. Dense / Sparse: the
-// reference path only.
+// solved again by solve_quadratic, the reference path. Dense / Sparse: the reference path only.
+// Not thread-safe (the basis grows): one per thread.
 class ModeSolver {
  public:
   ModeSolver(const fe::LinearSystem& system, const CampbellSettings& settings)
       : system_(system), settings_(settings) {
-    if (settings.method == EigenMethod::Auto && system.size() > kProjectionMinDofs)
-      projection_.emplace(assembly::pencil_parts(system));
+    if (projects(system, settings)) projection_.emplace(assembly::pencil_parts(system));
   }
 
-  // The modes of `pencil` (= assembly::pencil_at(system, speed)); `label` gets the method used.
+  static bool projects(const fe::LinearSystem& system, const CampbellSettings& settings) {
+    return settings.method == EigenMethod::Auto && system.size() > kProjectionMinDofs;
+  }
+
+  // The modes of `pencil` (= assembly::pencil_at(system, speed)); `label` gets the method used,
+  // `fallback` where and why the projection could not certify them (empty when it could).
   eig::QuadraticEigenResult solve(const eig::QuadraticPencil& pencil, double speed,
-                                  const eig::QuadraticEigenOptions& qo, std::string& label) {
+                                  const eig::QuadraticEigenOptions& qo, std::string& label,
+                                  std::string& fallback) {
+    fallback.clear();
     if (projection_) {
       if (!settings_.warm_start) projection_.emplace(assembly::pencil_parts(system_));
       const assembly::SpeedIncrements inc = assembly::speed_increments(system_, speed);
@@ -178,9 +194,7 @@ class ModeSolver {
         label = "projected";
         return r;
       }
-      ++fallbacks_;
-      if (first_fallback_.empty())
-        first_fallback_ = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, r.message);
+      fallback = fmt::format("at {:.6g} rpm: {}", speed * kRpmPerRadS, r.message);
     }
     eig::QuadraticEigenOptions reference = qo;
     reference.method = to_eig_method(settings_.method);
@@ -188,8 +202,13 @@ class ModeSolver {
     label = std::string(eig::to_string(r.method_used));
     return r;
   }
-  int fallbacks() const { return fallbacks_; }
-  const std::string& first_fallback() const { return first_fallback_; }
+  // The basis the chunks start from (no-ops without a kept projection: cold start, no projection).
+  void keep_basis() {
+    if (projection_ && settings_.warm_start) projection_->keep_basis();
+  }
+  void restore_basis() {
+    if (projection_ && settings_.warm_start) projection_->restore_basis();
+  }
   Eigen::Index basis_size() const { return projection_ ? projection_->basis_size() : 0; }
 
  private:
@@ -198,106 +217,187 @@ class ModeSolver {
   const fe::LinearSystem& system_;
   const CampbellSettings& settings_;
   std::optional<eig::ProjectedQuadratic> projection_;
-  int fallbacks_ = 0;
-  std::string first_fallback_;
 };
 
-// The elastic modes computed at one speed, and how the solve went.
+// The modes computed at one speed (phase (a) of run_campbell), and how the solve went.
 struct SpeedSolve {
   std::vector<Mode> candidates;  // every elastic mode computed, in the solver's order
-  Status status = Status::Ok;    // FewerModes counts as Ok while the tracks are covered
+  Status status = Status::Ok;    // the solver's; FewerModes is judged by the tracker
   std::string message;
+  int converged = 0;      // roots returned, rigid-body roots included
+  int rigid_roots = 0;    // rigid-body roots among them
   bool complete = false;  // a dense solve: every root the model has was computed
+  std::string method;     // "projected", "dense", "sparse"
+  int operations = 0;
+  std::vector<std::string> fallbacks;  // solves the projection could not certify
+  Eigen::Index basis_size = 0;         // projection basis after the solve
 };
 
-// Tracks modes from speed to speed: the tracking state and the solver's memory.
-class Tracker {
+// One worker's solver over chunks of speeds (phase (a) of run_campbell): the ModeSolver, the
+// rigid-body test and what is carried from speed to speed within a chunk (the Arnoldi start
+// vector, the room made for rigid-body roots), all returned to the seed at the start of every
+// chunk. Not copyable: the rigid-body test points at pencil_.
+class SpeedSolver {
  public:
-  Tracker(const fe::LinearSystem& system, const CampbellSettings& settings, ModeSolver& solver,
-          CampbellResult& result)
-      : system_(system), settings_(settings), solver_(solver), result_(result) {
-    n_tracks_ = settings.n_modes;
-    // Spare modes give the tracking room when a mode climbs out of the computed window.
-    n_candidates_ = settings.n_modes + std::max(2, settings.n_modes / 2);
-    result_.candidates_per_speed = n_candidates_;
+  SpeedSolver(const fe::LinearSystem& system, const CampbellSettings& settings, int n_candidates)
+      : system_(system),
+        settings_(settings),
+        n_candidates_(n_candidates),
+        modes_(system, settings) {
+    // Without speed-dependent bearings K(Omega) = K: the rigid-body space (rigid_body_space of
+    // K, the costly part of the test) is the same at every speed and is built once; the test
+    // reads the damping of the current speed's pencil through its pointer to pencil_.
+    if (system.speed_bearings.empty())
+      fixed_rigid_.emplace(system, settings.speeds.front(), &pencil_);
   }
+  SpeedSolver(const SpeedSolver&) = delete;
+  SpeedSolver& operator=(const SpeedSolver&) = delete;
 
-  // Solves at speeds[i] and extends every track by one point.
-  SpeedSolve step(std::size_t i);
-  const std::vector<std::string>& methods() const { return methods_; }
+  // The same on every instance: solves the first speed (which finds the rigid-body roots) and
+  // keeps the basis so built. Runs once. (Seeding with the last speed too would save the
+  // enrichment each chunk repeats, about 12 % of the operations on BM_Campbell100, but the
+  // first speed is then solved in the larger basis: on the rotor of campbell_projection_test
+  // its double root at rest moves 1.1e-10 away from the dense solver's, against 2e-11 here.)
+  void seed() {
+    if (seeded_) return;
+    seed_operations_ = solve(settings_.speeds.front()).operations;
+    seed_rigid_roots_ = rigid_roots_;
+    modes_.keep_basis();
+    seeded_ = true;
+  }
+  // Back to the seed: the kept basis, no start vector, the seed's rigid-body roots.
+  void start_chunk() {
+    seed();
+    modes_.restore_basis();
+    start_vector_.resize(0);
+    rigid_roots_ = seed_rigid_roots_;
+  }
+  SpeedSolve solve(double speed);
+  ModeSolver& modes() { return modes_; }
+  int seed_operations() const { return seed_operations_; }
 
  private:
-  SpeedSolve solve(double speed);
-  Eigen::MatrixXd score(const std::vector<Mode>& candidates, bool first) const;
+  std::vector<Mode> describe(const eig::QuadraticEigenResult& cx, double speed,
+                             const RigidBodyTest& rigid, int& found_rigid) const;
+
+  const fe::LinearSystem& system_;
+  const CampbellSettings& settings_;
+  int n_candidates_ = 0;
+  ModeSolver modes_;
+  eig::QuadraticPencil pencil_;  // of the speed being solved
+  std::optional<RigidBodyTest> fixed_rigid_;
+  Eigen::VectorXd start_vector_;
+  // Rigid-body roots (lambda = 0, e.g. free torsion: a double root per rigid-body motion) have
+  // no frequency to track; they are solved for, counted and left out of the tracking, and the
+  // request grows by their number so that n_candidates elastic modes remain.
+  int rigid_roots_ = 0;
+  int seed_rigid_roots_ = 0;
+  int seed_operations_ = 0;
+  bool seeded_ = false;
+};
+
+std::vector<Mode> SpeedSolver::describe(const eig::QuadraticEigenResult& cx, double speed,
+                                        const RigidBodyTest& rigid, int& found_rigid) const {
+  std::vector<Mode> modes;
+  modes.reserve(static_cast<std::size_t>(cx.eigenvalues.size()));
+  found_rigid = 0;
+  for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
+    modes.push_back(describe_mode(system_, cx.eigenvalues[j], cx.eigenvectors.col(j),
+                                  cx.residuals[j], speed, rigid));
+    if (modes.back().rigid_body) ++found_rigid;
+  }
+  return modes;
+}
+
+SpeedSolve SpeedSolver::solve(double speed) {
+  pencil_ = assembly::pencil_at(system_, speed);
+  std::optional<RigidBodyTest> at_speed;
+  if (!fixed_rigid_) at_speed.emplace(system_, speed, &pencil_);
+  const RigidBodyTest& rigid = fixed_rigid_ ? *fixed_rigid_ : *at_speed;
+  eig::QuadraticEigenOptions qo;
+  qo.method = to_eig_method(settings_.method);
+  qo.start = start_vector_;
+  SpeedSolve out;
+  eig::QuadraticEigenResult cx;
+  std::vector<Mode> modes;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    qo.n_modes = n_candidates_ + rigid_roots_;
+    std::string fallback;
+    cx = modes_.solve(pencil_, speed, qo, out.method, fallback);
+    if (!fallback.empty()) out.fallbacks.push_back(std::move(fallback));
+    out.operations += cx.operations;
+    modes = describe(cx, speed, rigid, out.rigid_roots);
+    if (out.rigid_roots <= rigid_roots_) break;
+    rigid_roots_ = out.rigid_roots;  // one more solve with room for the rigid-body roots
+  }
+  out.status = cx.status;
+  out.message = cx.message;
+  out.converged = cx.converged;
+  out.complete = out.method == "dense";
+  out.basis_size = modes_.basis_size();
+  if (out.method == "sparse" && settings_.warm_start) start_vector_ = eig::start_vector(cx);
+  out.candidates.reserve(modes.size());
+  for (Mode& m : modes)
+    if (!m.rigid_body) out.candidates.push_back(std::move(m));
+  return out;
+}
+
+// MAC |a^H b|^2 / ((a^H a)(b^H b)) with the squared norms given (the formula of mac()).
+double mac_of(const Eigen::VectorXcd& a, double na, const Eigen::VectorXcd& b, double nb) {
+  if (na == 0.0 || nb == 0.0) return 0.0;
+  return std::norm(a.dot(b)) / (na * nb);
+}
+
+// Tracks modes from speed to speed (phase (b) of run_campbell), in speed order, and gathers
+// what the speeds' solves report into the result.
+class Tracker {
+ public:
+  Tracker(const fe::LinearSystem& system, const CampbellSettings& settings, int n_candidates,
+          CampbellResult& result)
+      : system_(system), settings_(settings), result_(result) {
+    n_tracks_ = settings.n_modes;
+    result_.candidates_per_speed = n_candidates;
+  }
+
+  // Extends every track by the modes solved at speeds[i]; called for i = 0, 1, ... in order.
+  void track(std::size_t i, SpeedSolve& solved);
+  // The status, message and methods of the sweep.
+  void finish();
+
+ private:
+  void start_tracks(const SpeedSolve& solved);
+  void gather(std::size_t i, SpeedSolve& solved);
+  const Eigen::VectorXcd& reference(std::size_t t) const {
+    return reference_index_[t] >= 0 ? previous_[static_cast<std::size_t>(reference_index_[t])].shape
+                                    : stale_[t];
+  }
+  Eigen::MatrixXd score(const std::vector<Mode>& candidates, const std::vector<double>& norms,
+                        bool first) const;
   std::vector<int> assign(const Eigen::MatrixXd& score, int n_cand, bool first) const;
   void record(std::size_t i, double speed, const std::vector<Mode>& candidates,
               const std::vector<int>& assigned, const Eigen::MatrixXd& score, bool first);
 
   const fe::LinearSystem& system_;
   const CampbellSettings& settings_;
-  ModeSolver& solver_;
   CampbellResult& result_;
   int n_tracks_ = 0;
-  int n_candidates_ = 0;
-  std::vector<Eigen::VectorXcd> reference_;        // last assigned shape of each track
+  // The reference of each track is its last assigned shape: the candidate reference_index_ of
+  // the previous speed (previous_), or stale_ when the track had no candidate there.
+  std::vector<int> reference_index_;
+  std::vector<Eigen::VectorXcd> stale_;
   std::vector<std::complex<double>> reference_l_;  // and its eigenvalue
   std::vector<bool> has_reference_;
-  std::vector<bool> reference_fresh_;  // the reference is from the previous speed
-  std::vector<Mode> previous_;         // every elastic mode computed at the previous speed
-  Eigen::VectorXd start_vector_;
+  std::vector<Mode> previous_;          // every elastic mode computed at the previous speed
+  std::vector<double> previous_norms_;  // their squared norms
   std::vector<std::string> methods_;
-  // Rigid-body roots (lambda = 0, e.g. free torsion: a double root per rigid-body motion) have
-  // no frequency to track; they are solved for, counted and left out of the tracking, and the
-  // request grows by their number so that n_candidates elastic modes remain.
-  int rigid_roots_ = 0;
+  Status status_ = Status::Ok;
+  std::string first_problem_;
+  int problem_speeds_ = 0;
 };
 
-SpeedSolve Tracker::solve(double speed) {
-  const eig::QuadraticPencil pencil = assembly::pencil_at(system_, speed);
-  const RigidBodyTest rigid(system_, speed, &pencil);
-  eig::QuadraticEigenOptions qo;
-  qo.method = to_eig_method(settings_.method);
-  qo.start = start_vector_;
-  eig::QuadraticEigenResult cx;
-  std::vector<Mode> modes;
-  int found_rigid = 0;
-  std::string method;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    qo.n_modes = n_candidates_ + rigid_roots_;
-    cx = solver_.solve(pencil, speed, qo, method);
-    result_.total_operations += cx.operations;
-    modes.clear();
-    found_rigid = 0;
-    for (Eigen::Index j = 0; j < cx.eigenvalues.size(); ++j) {
-      modes.push_back(describe_mode(system_, cx.eigenvalues[j], cx.eigenvectors.col(j),
-                                    cx.residuals[j], speed, rigid));
-      if (modes.back().rigid_body) ++found_rigid;
-    }
-    if (found_rigid <= rigid_roots_) break;
-    rigid_roots_ = found_rigid;  // one more solve with room for the rigid-body roots
-  }
-  result_.rigid_body_roots = std::max(result_.rigid_body_roots, found_rigid);
-  if (std::find(methods_.begin(), methods_.end(), method) == methods_.end())
-    methods_.push_back(method);
-  SpeedSolve out;
-  // The spares are optional: fewer modes only matters below the number of tracks.
-  out.status = cx.status;
-  out.complete = method == "dense";
-  if (out.status == Status::FewerModes && (cx.converged - found_rigid >= n_tracks_ || out.complete))
-    out.status = Status::Ok;
-  out.message = cx.message;
-  if (method == "sparse" && settings_.warm_start) start_vector_ = eig::start_vector(cx);
-
-  for (Mode& m : modes) {
-    if (m.rigid_body) continue;
-    result_.max_residual = std::max(result_.max_residual, m.residual);
-    out.candidates.push_back(std::move(m));
-  }
-  return out;
-}
-
 // Score of every (track, candidate) pair: the MAC with the track's last shape.
-Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates, bool first) const {
+Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates,
+                               const std::vector<double>& norms, bool first) const {
   const int n_cand = static_cast<int>(candidates.size());
   Eigen::MatrixXd score = Eigen::MatrixXd::Zero(n_tracks_, n_cand);
   if (first) return score;
@@ -309,14 +409,15 @@ Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates, bool first) 
     // it is as good as the solver's; score candidates against the whole subspace, spanned by
     // every mode computed at the previous speed with that eigenvalue, tracked or spare.
     std::vector<const Eigen::VectorXcd*> group;
-    if (reference_fresh_[ut]) {
+    if (reference_index_[ut] >= 0) {
       for (const Mode& p : previous_)
         if (std::abs(p.eigenvalue - reference_l_[ut]) <=
             kRepeatedTolerance * std::max(std::abs(reference_l_[ut]), 1e-300))
           group.push_back(&p.shape);
     }
+    const Eigen::VectorXcd& ref = reference(ut);
     if (group.size() > 1) {
-      Eigen::MatrixXcd basis(reference_[ut].size(), static_cast<Eigen::Index>(group.size()));
+      Eigen::MatrixXcd basis(ref.size(), static_cast<Eigen::Index>(group.size()));
       for (std::size_t g = 0; g < group.size(); ++g)
         basis.col(static_cast<Eigen::Index>(g)) = *group[g];
       const Eigen::HouseholderQR<Eigen::MatrixXcd> qr(basis);
@@ -325,8 +426,13 @@ Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates, bool first) 
       for (int c = 0; c < n_cand; ++c)
         score(t, c) = subspace_mac(Q, candidates[static_cast<std::size_t>(c)].shape);
     } else {
-      for (int c = 0; c < n_cand; ++c)
-        score(t, c) = mac(reference_[ut], candidates[static_cast<std::size_t>(c)].shape);
+      const double nr = reference_index_[ut] >= 0
+                            ? previous_norms_[static_cast<std::size_t>(reference_index_[ut])]
+                            : ref.squaredNorm();
+      for (int c = 0; c < n_cand; ++c) {
+        const auto uc = static_cast<std::size_t>(c);
+        score(t, c) = mac_of(ref, nr, candidates[uc].shape, norms[uc]);
+      }
     }
   }
   return score;
@@ -355,8 +461,11 @@ void Tracker::record(std::size_t i, double speed, const std::vector<Mode>& candi
     TrackPoint& pt = result_.tracks[ut][i];
     pt.speed = speed;
     const int c = assigned[ut];
-    reference_fresh_[ut] = c >= 0;
     if (c < 0) {
+      // The reference stays the last assigned shape: copied out of the previous speed's modes,
+      // which the current ones replace.
+      if (reference_index_[ut] >= 0) stale_[ut] = reference(ut);
+      reference_index_[ut] = -1;
       pt.ambiguous = true;
       ++result_.ambiguous_points;
       continue;
@@ -372,39 +481,76 @@ void Tracker::record(std::size_t i, double speed, const std::vector<Mode>& candi
     pt.mac = first || !has_reference_[ut] ? 1.0 : score(t, c);
     pt.ambiguous = pt.mac < settings_.mac_threshold;
     if (pt.ambiguous) ++result_.ambiguous_points;
-    reference_[ut] = m.shape;
+    reference_index_[ut] = c;
+    stale_[ut].resize(0);
     reference_l_[ut] = m.eigenvalue;
     has_reference_[ut] = true;
   }
 }
 
-SpeedSolve Tracker::step(std::size_t i) {
-  const double speed = settings_.speeds[i];
-  SpeedSolve solved = solve(speed);
-  if (result_.tracks.empty()) {
-    // More tracks asked than the model has modes: track those that exist.
-    if (solved.complete && static_cast<int>(solved.candidates.size()) < n_tracks_) {
-      result_.fewer_modes_note = fmt::format(
-          "n_modes = {} asks for more modes than the model has: {} elastic modes exist ({} "
-          "unconstrained DOFs) and are tracked",
-          n_tracks_, solved.candidates.size(), system_.size());
-      n_tracks_ = static_cast<int>(solved.candidates.size());
-    }
-    const auto n = static_cast<std::size_t>(n_tracks_);
-    result_.tracks.assign(n, std::vector<TrackPoint>(settings_.speeds.size()));
-    reference_.assign(n, Eigen::VectorXcd());
-    reference_l_.assign(n, {0.0, 0.0});
-    has_reference_.assign(n, false);
-    reference_fresh_.assign(n, false);
+// At the first speed: the tracks, fewer when the model has fewer modes than asked.
+void Tracker::start_tracks(const SpeedSolve& solved) {
+  if (solved.complete && static_cast<int>(solved.candidates.size()) < n_tracks_) {
+    result_.fewer_modes_note = fmt::format(
+        "n_modes = {} asks for more modes than the model has: {} elastic modes exist ({} "
+        "unconstrained DOFs) and are tracked",
+        n_tracks_, solved.candidates.size(), system_.size());
+    n_tracks_ = static_cast<int>(solved.candidates.size());
   }
+  const auto n = static_cast<std::size_t>(n_tracks_);
+  result_.tracks.assign(n, std::vector<TrackPoint>(settings_.speeds.size()));
+  reference_index_.assign(n, -1);
+  stale_.assign(n, Eigen::VectorXcd());
+  reference_l_.assign(n, {0.0, 0.0});
+  has_reference_.assign(n, false);
+}
+
+// What the solve at speeds[i] reports: status, method, operations, fallbacks, residuals.
+void Tracker::gather(std::size_t i, SpeedSolve& solved) {
+  result_.total_operations += solved.operations;
+  result_.rigid_body_roots = std::max(result_.rigid_body_roots, solved.rigid_roots);
+  result_.projection_basis =
+      std::max(result_.projection_basis, static_cast<int>(solved.basis_size));
+  for (const std::string& f : solved.fallbacks) add_fallback(result_, f);
+  if (std::find(methods_.begin(), methods_.end(), solved.method) == methods_.end())
+    methods_.push_back(solved.method);
+  for (const Mode& m : solved.candidates)
+    result_.max_residual = std::max(result_.max_residual, m.residual);
+  // The spares are optional: fewer modes only matters below the number of tracks.
+  if (solved.status == Status::FewerModes &&
+      (solved.converged - solved.rigid_roots >= n_tracks_ || solved.complete))
+    solved.status = Status::Ok;
+  if (solved.status != Status::Ok) {
+    ++problem_speeds_;
+    status_ = worse(status_, solved.status);
+    if (first_problem_.empty())
+      first_problem_ =
+          fmt::format("at {:.6g} rpm: {}", settings_.speeds[i] * kRpmPerRadS, solved.message);
+  }
+}
+
+void Tracker::track(std::size_t i, SpeedSolve& solved) {
+  if (result_.tracks.empty()) start_tracks(solved);
+  gather(i, solved);
+  std::vector<double> norms(solved.candidates.size());
+  for (std::size_t c = 0; c < norms.size(); ++c)
+    norms[c] = solved.candidates[c].shape.squaredNorm();
   const bool first =
       std::none_of(has_reference_.begin(), has_reference_.end(), [](bool b) { return b; });
-  const Eigen::MatrixXd s = score(solved.candidates, first);
+  const Eigen::MatrixXd s = score(solved.candidates, norms, first);
   const std::vector<int> assigned = assign(s, static_cast<int>(solved.candidates.size()), first);
-  record(i, speed, solved.candidates, assigned, s, first);
+  record(i, settings_.speeds[i], solved.candidates, assigned, s, first);
   previous_ = std::move(solved.candidates);
+  previous_norms_ = std::move(norms);
   solved.candidates.clear();
-  return solved;
+}
+
+void Tracker::finish() {
+  for (const auto& m : methods_) result_.method += (result_.method.empty() ? "" : ", ") + m;
+  result_.status = status_;
+  if (status_ != Status::Ok)
+    result_.message = fmt::format("eigen-solve trouble at {} of {} speeds; first {}",
+                                  problem_speeds_, settings_.speeds.size(), first_problem_);
 }
 
 // A root of a function of the speed, followed between two grid speeds where it changes sign.
@@ -419,9 +565,10 @@ struct Bracket {
 // (otherwise another mode is too close to tell them apart by eigenvalue).
 class RootProbe {
  public:
+  // Counts its solves, their operations and fallbacks in `result`.
   RootProbe(const fe::LinearSystem& system, const CampbellSettings& settings, ModeSolver& solver,
-            int& solves)
-      : system_(system), settings_(settings), solver_(solver), solves_(solves) {}
+            CampbellResult& result)
+      : system_(system), settings_(settings), solver_(solver), result_(result) {}
 
   bool enabled() const { return settings_.refine_crossings; }
 
@@ -431,9 +578,11 @@ class RootProbe {
     qo.method = to_eig_method(settings_.method);
     qo.n_modes = std::min<int>(3, static_cast<int>(system_.size()));
     qo.target = predicted;
-    std::string method;
-    const eig::QuadraticEigenResult cx = solver_.solve(pencil, speed, qo, method);
-    ++solves_;
+    std::string method, fallback;
+    const eig::QuadraticEigenResult cx = solver_.solve(pencil, speed, qo, method, fallback);
+    ++result_.refinement_solves;
+    result_.total_operations += cx.operations;
+    add_fallback(result_, fallback);
     const double inf = std::numeric_limits<double>::infinity();
     double nearest = inf, second = inf;
     Eigen::Index best = -1;
@@ -470,7 +619,7 @@ class RootProbe {
   const fe::LinearSystem& system_;
   const CampbellSettings& settings_;
   ModeSolver& solver_;
-  int& solves_;
+  CampbellResult& result_;
 };
 
 // Root of g(mode(Omega), Omega) between lo and hi (g of opposite signs) by regula falsi with the
@@ -634,6 +783,61 @@ std::vector<InstabilityOnset> find_onsets(const CampbellResult& result, const Ro
 
 }  // namespace
 
+namespace {
+
+// The path whose BLAS rule applies (sweep_threads): the projection (CHOLMOD / UMFPACK for its
+// basis and checks), Arnoldi (UMFPACK) and the condensation of DOFs without mass (UMFPACK) call
+// the system BLAS (FactorPath::Sparse); the dense solve of a pencil with mass on every DOF runs
+// on Eigen alone (FactorPath::Banded: no system BLAS).
+FactorPath blas_path(const fe::LinearSystem& system, const CampbellSettings& settings) {
+  const eig::QuadraticEigenOptions defaults;
+  const bool dense =
+      !ModeSolver::projects(system, settings) &&
+      (settings.method == EigenMethod::Dense ||
+       (settings.method == EigenMethod::Auto && system.size() <= defaults.dense_limit));
+  const bool mass_everywhere = system.M.rows() > 0 && system.M.diagonal().minCoeff() > 0.0;
+  return dense && mass_everywhere ? FactorPath::Banded : FactorPath::Sparse;
+}
+
+// Phases (a) and (b) of run_campbell over every speed: batches of one chunk per thread, each
+// chunk solved by one thread from the seed, then the batch tracked in speed order.
+void sweep_speeds(const CampbellSettings& settings, std::size_t chunk,
+                  std::vector<std::unique_ptr<SpeedSolver>>& solvers, Tracker& tracker,
+                  Progress& progress) {
+  const std::size_t n_speeds = settings.speeds.size();
+  const std::size_t n_chunks = (n_speeds + chunk - 1) / chunk;
+  std::atomic<std::size_t> solved_speeds{0};
+  for (std::size_t c0 = 0; c0 < n_chunks; c0 += solvers.size()) {
+    const std::size_t c1 = std::min(n_chunks, c0 + solvers.size());
+    const std::size_t first = c0 * chunk;
+    const std::size_t last = std::min(n_speeds, c1 * chunk);
+    std::vector<SpeedSolve> batch(last - first);
+    auto solve_chunk = [&](std::size_t c, unsigned t) {
+      SpeedSolver& solver = *solvers[t];
+      solver.start_chunk();
+      const std::size_t end = std::min(n_speeds, (c + 1) * chunk);
+      for (std::size_t i = c * chunk; i < end; ++i) {
+        batch[i - first] = solver.solve(settings.speeds[i]);
+        ++solved_speeds;
+      }
+    };
+    for_each_point(c0, c1, static_cast<unsigned>(c1 - c0), solve_chunk,
+                   [&](std::size_t) { progress.update(solved_speeds.load()); });
+    for (std::size_t i = first; i < last; ++i) tracker.track(i, batch[i - first]);
+  }
+}
+
+}  // namespace
+
+std::size_t campbell_chunk_speeds(std::size_t n_speeds, std::size_t n_dofs,
+                                  std::size_t n_candidates) {
+  const double shape_bytes =
+      static_cast<double>(std::max<std::size_t>(n_dofs * n_candidates, 1)) * 16.0;
+  const auto by_memory = static_cast<std::size_t>(kCampbellChunkBytes / shape_bytes);
+  const std::size_t sixteenth = (n_speeds + 15) / 16;
+  return std::max(kCampbellMinChunkSpeeds, std::min(sixteenth, by_memory));
+}
+
 CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
                             const Context& context) {
   const fe::LinearSystem& system = context.system();
@@ -645,36 +849,33 @@ CampbellResult run_campbell(const model::Model& model, const CampbellSettings& s
   result.speeds = settings.speeds;
   result.lines = engine_order_lines(model, system, settings);
   const std::size_t n_speeds = settings.speeds.size();
-  ModeSolver solver(system, settings);
-  Tracker tracker(system, settings, solver, result);
-  Status status = Status::Ok;
-  std::string first_problem;
-  int problem_speeds = 0;
+  // Spare modes give the tracking room when a mode climbs out of the computed window.
+  const int n_candidates = settings.n_modes + std::max(2, settings.n_modes / 2);
+  const std::size_t chunk = campbell_chunk_speeds(n_speeds, static_cast<std::size_t>(system.size()),
+                                                  static_cast<std::size_t>(n_candidates));
+  const std::size_t n_chunks = (n_speeds + chunk - 1) / chunk;
+  const unsigned threads =
+      sweep_threads(settings.threads, n_chunks, blas_path(system, settings), result.thread_note);
+  result.threads_used = static_cast<int>(threads);
+  std::vector<std::unique_ptr<SpeedSolver>> solvers;
+  for (unsigned t = 0; t < threads; ++t)
+    solvers.push_back(std::make_unique<SpeedSolver>(system, settings, n_candidates));
+  Tracker tracker(system, settings, n_candidates, result);
   progress.start("campbell", n_speeds);
-  for (std::size_t i = 0; i < n_speeds; ++i) {
-    const SpeedSolve solved = tracker.step(i);
-    if (solved.status != Status::Ok) {
-      ++problem_speeds;
-      status = worse(status, solved.status);
-      if (first_problem.empty())
-        first_problem =
-            fmt::format("at {:.6g} rpm: {}", settings.speeds[i] * kRpmPerRadS, solved.message);
-    }
-    progress.update(i + 1);
-  }
+  sweep_speeds(settings, chunk, solvers, tracker, progress);
   progress.finish();
+  tracker.finish();
 
-  const RootProbe probe(system, settings, solver, result.refinement_solves);
+  // The refinements, in order, on one solver returned to the seed (the seed solves, the same on
+  // every thread, are counted once).
+  SpeedSolver& refiner = *solvers.front();
+  refiner.start_chunk();
+  result.total_operations += refiner.seed_operations();
+  const RootProbe probe(system, settings, refiner.modes(), result);
   result.critical_speeds = find_critical_speeds(result, probe);
   result.onsets = find_onsets(result, probe);
-  for (const auto& m : tracker.methods()) result.method += (result.method.empty() ? "" : ", ") + m;
-  result.projection_basis = static_cast<int>(solver.basis_size());
-  result.projection_fallbacks = solver.fallbacks();
-  result.first_fallback = solver.first_fallback();
-  result.status = status;
-  if (status != Status::Ok)
-    result.message = fmt::format("eigen-solve trouble at {} of {} speeds; first {}", problem_speeds,
-                                 n_speeds, first_problem);
+  result.projection_basis =
+      std::max(result.projection_basis, static_cast<int>(refiner.modes().basis_size()));
   result.run_time_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
@@ -965,6 +1166,7 @@ std::vector<std::string> campbell_notes(const CampbellResult& result) {
                           result.projection_fallbacks, result.first_fallback)
             : std::string()));
   if (!result.fewer_modes_note.empty()) notes.push_back(result.fewer_modes_note + ".");
+  if (!result.thread_note.empty()) notes.push_back(result.thread_note);
   if (!result.onsets.empty()) {
     std::string list;
     for (const auto& o : result.onsets)

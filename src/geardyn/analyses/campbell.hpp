@@ -4,6 +4,7 @@
 // assignment, so crossing modes keep their identity), engine-order lines and critical speeds
 // where a tracked mode meets a line, f_mode(Omega) = order Omega / 2pi.
 #include <complex>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,16 @@
 #include "geardyn/model/model.hpp"
 
 namespace geardyn::analyses {
+
+/// Speeds per chunk (see run_campbell): about a sixteenth of the speeds (room for up to 8 threads
+/// to share the work), at least kCampbellMinChunkSpeeds, and at most what keeps one chunk's mode
+/// shapes within kCampbellChunkBytes (but never below the minimum). A function of the number of
+/// speeds, DOFs and candidate modes only, never of the thread count. Each chunk repeats the
+/// enrichment of the projection basis its speeds need, so fewer, longer chunks cost less.
+inline constexpr std::size_t kCampbellMinChunkSpeeds = 16;
+inline constexpr double kCampbellChunkBytes = 64.0 * 1024 * 1024;
+std::size_t campbell_chunk_speeds(std::size_t n_speeds, std::size_t n_dofs,
+                                  std::size_t n_candidates);
 
 struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   std::vector<double> speeds;  ///< reference speeds [rad/s]
@@ -28,10 +39,15 @@ struct CampbellSettings : model::SettingsOf<CampbellSettings> {
   /// regenerated model reference); set by library callers.
   bool refine_crossings = true;
   EigenMethod method = EigenMethod::Auto;
-  /// Start each speed from the previous one's solver state (the projection basis, enriched so
-  /// far; the Arnoldi start vector). false: every speed is solved from scratch (the cold start
-  /// that tests compare against; slower). Not a model key; set by library callers.
+  /// Start each speed from the previous one's solver state within its chunk of speeds (the
+  /// projection basis, enriched so far; the Arnoldi start vector; see run_campbell). false:
+  /// every speed is solved from scratch (the cold start that tests compare against; slower).
+  /// Not a model key; set by library callers.
   bool warm_start = true;
+  /// Worker threads over the chunks of speeds (<= 0: all cores). The results are bit-identical
+  /// for any count (see run_campbell); 1 when the solves call a system BLAS that is not safe
+  /// from several threads (CampbellResult::thread_note says so).
+  int threads = 1;
 };
 
 /// One tracked mode at one speed (shapes are not kept: n_speeds x n_modes x n would be large).
@@ -103,13 +119,17 @@ struct CampbellResult {
   int rigid_body_roots = 0;      ///< roots at 0 Hz (rigid-body motion) left out of the tracking
   double max_residual = 0;
   std::string method;  ///< solver method(s) used: "projected", "dense", "sparse"
-  /// Size of the projection basis at the end of the sweep (0: no projection; see ModeSolver in
-  /// campbell.cpp and eig/projected_quadratic.hpp).
+  /// Largest size of the projection basis over the sweep and the refinements (0: no
+  /// projection; see ModeSolver in campbell.cpp and eig/projected_quadratic.hpp).
   int projection_basis = 0;
   /// Solves the projection could not certify, redone by the reference solver (method lists it).
   int projection_fallbacks = 0;
   std::string first_fallback;  ///< where and why the first of them happened
+  /// Operations of the solves (linear solves with a factor) at the speeds and in the
+  /// refinements, plus those of the seed solves counted once (see run_campbell).
   int total_operations = 0;
+  int threads_used = 1;
+  std::string thread_note;  ///< why fewer threads ran than asked for (empty when none)
   double run_time_s = 0;
 };
 
@@ -131,6 +151,20 @@ std::vector<int> best_assignment(const Eigen::MatrixXd& score);
 /// Runs the sweep on the context's linear system. Throws InputError (located by the context)
 /// for invalid settings (no speeds, speeds not strictly increasing or negative, n_modes < 1,
 /// threshold outside [0, 1], non-positive orders).
+///
+/// Two phases, so that the results are bit-identical for any number of threads:
+///  (a) the eigen-solves (and the description of every mode: rigid-body test, families,
+///      whirl) of each speed, in chunks of campbell_chunk_speeds() consecutive speeds whose
+///      bounds do not depend on the thread count. Each worker thread owns its solver, seeded
+///      the same way on every thread (a solve at the first speed; the projection basis so built
+///      is kept) and returned to that seed at the start of every chunk (the kept basis; the
+///      Arnoldi start vector dropped), so a speed's result depends on its chunk only, never on
+///      the thread that ran it. One thread runs the same chunks.
+///  (b) the tracking (MAC scores against the previous speed, optimal assignment), sequential
+///      and cheap, over the solved speeds in order, after each batch of chunks (one per thread,
+///      so that at most threads x kCampbellChunkBytes of mode shapes are held).
+/// The refinements of critical speeds and onsets then run in order on one solver returned to
+/// its seed. Errors from a worker are rethrown (the one of the lowest chunk).
 CampbellResult run_campbell(const model::Model& model, const CampbellSettings& settings,
                             const Context& context);
 

@@ -53,6 +53,7 @@ std::vector<model::Field> keys() {
           .ge(0)
           .le(1)
           .to_settings(&CampbellSettings::mac_threshold),
+      point_threads_key().to_settings(&CampbellSettings::threads),
   };
 }
 
