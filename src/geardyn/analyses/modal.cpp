@@ -69,9 +69,11 @@ ModeKind mode_kind(const fe::ModeFamilies& f) {
 }
 
 Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& shape,
-                      std::complex<double> lambda, double speed) {
+                      std::complex<double> lambda, double speed, const fe::ModeFamilies* families) {
   if (lambda.imag() == 0.0) return Whirl::None;  // a real root does not oscillate
-  if (fe::mode_families(system, shape).lateral < 0.01) return Whirl::None;
+  const double lateral =
+      families != nullptr ? families->lateral : fe::mode_families(system, shape).lateral;
+  if (lateral < 0.01) return Whirl::None;
   const fe::DofMap& dofs = system.dofs;
   auto value = [&](int node, model::Component c) -> std::complex<double> {
     const int e = dofs.dof(node, c);
@@ -113,12 +115,9 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
   Mode m;
   m.eigenvalue = lambda;
   m.shape = shape;
-  const double largest = shape.size() > 0 ? shape.cwiseAbs().maxCoeff() : 0.0;
-  if (largest > 0.0) {
-    Eigen::Index imax = 0;
-    shape.cwiseAbs().maxCoeff(&imax);
-    m.shape /= shape[imax];
-  }
+  Eigen::Index imax = 0;
+  const double largest = shape.size() > 0 ? shape.cwiseAbs2().maxCoeff(&imax) : 0.0;
+  if (largest > 0.0) m.shape /= shape[imax];
   m.residual = residual;
   m.rigid_body = rigid(lambda, m.shape);
   if (m.rigid_body) {
@@ -132,7 +131,8 @@ Mode describe_mode(const fe::LinearSystem& system, std::complex<double> lambda,
   }
   m.families = fe::mode_families(system, m.shape);
   m.kind = m.rigid_body ? ModeKind::Rigid : mode_kind(m.families);
-  m.whirl = m.rigid_body ? Whirl::None : whirl_direction(system, m.shape, lambda, speed);
+  m.whirl =
+      m.rigid_body ? Whirl::None : whirl_direction(system, m.shape, lambda, speed, &m.families);
   return m;
 }
 

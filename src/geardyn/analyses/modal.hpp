@@ -146,8 +146,10 @@ eig::Method to_eig_method(EigenMethod method);
 /// of the spin axis' tip (theta_y, -theta_x) at the node that tilts most is used; its sense is
 /// Im(theta_x conj(theta_y)). None for real roots, modes with less than 1 % lateral energy and
 /// orbits flatter than 1e-4 (|2 Im(X conj(Y))| / (|X|^2 + |Y|^2), 1 for a circle, 0 for a line).
+/// `families`: the shape's fe::mode_families when already computed (nullptr: computed here).
 Whirl whirl_direction(const fe::LinearSystem& system, const Eigen::VectorXcd& shape,
-                      std::complex<double> lambda, double speed);
+                      std::complex<double> lambda, double speed,
+                      const fe::ModeFamilies* families = nullptr);
 
 ModeKind mode_kind(const fe::ModeFamilies& families);
 
