@@ -263,15 +263,60 @@ Eigen::VectorXcd null_vector(const StateOperator& op, Complex lambda) {
 // factors M = Lm Lm^T, K = Lk Lk^T the operator S' = L^{-1} S L^{-T} is real skew-symmetric, so
 // H = i S' is Hermitian, its eigenvalues mu real and lambda = -i mu imaginary to rounding
 // (P. Lancaster, Linear Algebra Appl. 256 (1997) on gyroscopic systems; F. Tisseur & K. Meerbergen,
-// SIAM Review 43 (2001) 235-286, sec. 3.5). The Hermitian tridiagonalisation and the QR of a real
-// tridiagonal cost about a third of the nonsymmetric Hessenberg QR; each wanted vector is one
-// inverse iteration on the tridiagonal, O(m), then the Householder back-transformation, O(m^2).
+// SIAM Review 43 (2001) 235-286, sec. 3.5). Real Householder reflections bring S' to skew
+// tridiagonal form T = Q^T S' Q (sub-diagonal t); H's tridiagonal iT is, after the diagonal
+// phase scaling D (d_0 = 1, d_k+1 = i sign(t_k) d_k), the real symmetric tridiagonal J with zero
+// diagonal and off-diagonal |t|: J = D^H (iT) D. Its QR (eigenvalues only) and the reduction
+// cost a small part of the nonsymmetric Hessenberg QR; each wanted vector is one inverse
+// iteration on J, O(m), then z = D u and the back-transformation Q z, O(m^2).
 struct GyroscopicOperator {
   Eigen::Index m = 0;
   Eigen::LLT<Eigen::MatrixXd> lm, lk;
-  Eigen::Tridiagonalization<Eigen::MatrixXcd> tri;
-  Eigen::VectorXd diagonal, off_diagonal;
+  Eigen::MatrixXd reflectors;  // column k: the Householder vector of step k (rows k+1..)
+  Eigen::VectorXd beta;        // and its 2 / (v^T v) (0: no reflection)
+  Eigen::VectorXd diagonal, off_diagonal;  // of J
+  Eigen::VectorXd sign;                    // sign(t_k), for D
 };
+
+// Q^T S Q = T, skew tridiagonal, by Householder reflections P_k = I - beta v v^T (the scheme of
+// the symmetric reduction, G. H. Golub & C. F. Van Loan, Matrix Computations, 4th ed. 2013,
+// sec. 8.3.1): a reflection keeps a matrix skew, and for skew A, P A P = A + beta (v w^T - w v^T)
+// with w = A v (v^T A v = 0). Returns the sub-diagonal t; S is overwritten.
+Eigen::VectorXd skew_tridiagonalize(Eigen::MatrixXd& S, GyroscopicOperator& g) {
+  const Eigen::Index n = S.rows();
+  Eigen::VectorXd t(std::max<Eigen::Index>(n - 1, 0));
+  g.reflectors.setZero(n, n);
+  g.beta.setZero(n);
+  for (Eigen::Index k = 0; k + 1 < n; ++k) {
+    const Eigen::Index len = n - k - 1;
+    const Eigen::VectorXd x = S.col(k).tail(len);
+    const double rest = len > 1 ? x.tail(len - 1).squaredNorm() : 0.0;
+    if (rest == 0.0) {
+      t[k] = x[0];
+      continue;
+    }
+    const double alpha = -std::copysign(std::sqrt(x[0] * x[0] + rest), x[0]);
+    const Eigen::VectorXd v = x - alpha * Eigen::VectorXd::Unit(len, 0);
+    const double beta = 2.0 / v.squaredNorm();
+    t[k] = alpha;
+    auto A = S.bottomRightCorner(len, len);
+    const Eigen::VectorXd w = A * v;
+    A.noalias() += beta * (v * w.transpose() - w * v.transpose());
+    g.reflectors.col(k).tail(len) = v;
+    g.beta[k] = beta;
+  }
+  return t;
+}
+
+// x <- Q x = P_0 P_1 ... x (the last reflection first).
+void apply_q(const GyroscopicOperator& g, Eigen::VectorXd& x) {
+  const Eigen::Index n = x.size();
+  for (Eigen::Index k = n - 2; k >= 0; --k) {
+    if (g.beta[k] == 0.0) continue;
+    const auto v = g.reflectors.col(k).tail(n - k - 1);
+    x.tail(n - k - 1) -= (g.beta[k] * v.dot(x.tail(n - k - 1))) * v;
+  }
+}
 
 bool symmetric_to_rounding(const Eigen::MatrixXd& A, double sign) {
   const double scale = A.cwiseAbs().maxCoeff();
@@ -295,14 +340,14 @@ bool gyroscopic_eigenvalues(const ReducedPencil& p, GyroscopicOperator& g,
   Eigen::MatrixXd top = g.lm.matrixL().solve(p.D);
   top = g.lm.matrixL().solve(top.transpose()).transpose();
   const Eigen::MatrixXd corner = g.lm.matrixL().solve(Lk);
-  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(2 * m, 2 * m);
-  const Complex i(0.0, 1.0);
-  H.topLeftCorner(m, m) = -i * top.cast<Complex>();
-  H.topRightCorner(m, m) = -i * corner.cast<Complex>();
-  H.bottomLeftCorner(m, m) = i * corner.transpose().cast<Complex>();
-  g.tri.compute(H);
-  g.diagonal = g.tri.diagonal();
-  g.off_diagonal = g.tri.subDiagonal();
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(2 * m, 2 * m);
+  S.topLeftCorner(m, m) = -top;
+  S.topRightCorner(m, m) = -corner;
+  S.bottomLeftCorner(m, m) = corner.transpose();
+  const Eigen::VectorXd t = skew_tridiagonalize(S, g);
+  g.diagonal.setZero(2 * m);
+  g.off_diagonal = t.cwiseAbs();
+  g.sign = t.unaryExpr([](double x) { return x < 0.0 ? -1.0 : 1.0; });
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
   es.computeFromTridiagonal(g.diagonal, g.off_diagonal, Eigen::EigenvaluesOnly);
   if (es.info() != Eigen::Success) return false;
@@ -375,8 +420,20 @@ Eigen::VectorXd tridiagonal_null_vector(const Eigen::VectorXd& d, const Eigen::V
 Eigen::VectorXcd gyroscopic_vector(const GyroscopicOperator& g, Complex lambda) {
   const Eigen::VectorXd v = tridiagonal_null_vector(g.diagonal, g.off_diagonal, -lambda.imag());
   if (v.size() == 0) return {};
-  const Eigen::VectorXcd w = g.tri.matrixQ() * v.cast<Complex>();
-  Eigen::VectorXcd y = w.tail(g.m);
+  // z = D u, d_k in {1, i, -1, -i}: real and imaginary parts, each taken through Q.
+  const Eigen::Index n = v.size();
+  Eigen::VectorXd zr = Eigen::VectorXd::Zero(n), zi = Eigen::VectorXd::Zero(n);
+  Complex d(1.0, 0.0);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    zr[k] = d.real() * v[k];
+    zi[k] = d.imag() * v[k];
+    if (k + 1 < n) d *= Complex(0.0, g.sign[k]);
+  }
+  apply_q(g, zr);
+  apply_q(g, zi);
+  Eigen::VectorXcd y(g.m);
+  y.real() = zr.tail(g.m);
+  y.imag() = zi.tail(g.m);
   g.lk.matrixU().solveInPlace(y);
   const Eigen::VectorXd moduli = y.cwiseAbs2();
   const double norm = std::sqrt(moduli.sum());
