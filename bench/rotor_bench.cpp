@@ -258,7 +258,7 @@ BENCHMARK(BM_UnbalanceSolves)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 
-// The stability scan run_unbalance adds (analyses/stability_check.cpp, helper R1's work):
+// The eigenvalue stability scan (analyses/stability_check.cpp) without the energy certificate:
 // measured apart so that the direct solves and the scan can be reported separately.
 void BM_UnbalanceScan(benchmark::State& state) {
   const auto m = rotor(static_cast<int>(state.range(0)));

@@ -125,10 +125,11 @@ F sensors_key() { return names("sensors", Ref::Sensor, "Sensors reported.").note
 
 F point_threads_key() {
   return integer("threads",
-                 "Worker threads over the frequencies or speeds (0: all cores). Each point is "
-                 "solved on its own, so the results are bit-identical for any count; 1 on the "
-                 "sparse (UMFPACK) path when the system BLAS is a sequential OpenBLAS (the notes "
-                 "say so). Inside a sweep, whose points already run on threads, keep 1.")
+                 "Worker threads over the frequencies or speeds (0: all cores). Each point (for "
+                 "campbell: each fixed chunk of speeds, started from one seeded basis) is solved "
+                 "on its own, so the results are bit-identical for any count; 1 on the sparse "
+                 "(UMFPACK, CHOLMOD) paths when the system BLAS is a sequential OpenBLAS (the "
+                 "notes say so). Inside a sweep, whose points already run on threads, keep 1.")
       .def("1")
       .ge(0)
       .le(4096);

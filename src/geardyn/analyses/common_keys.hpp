@@ -67,7 +67,7 @@ model::keys::F unbalances_key();
 model::keys::F sensors_key();
 
 /// `threads`: worker threads over the points of a frequency or speed sweep (used by harmonic,
-/// unbalance).
+/// unbalance, campbell).
 model::keys::F point_threads_key();
 
 /// `pair` (used by gear_pair, mesh_force, mesh_harmonics).
