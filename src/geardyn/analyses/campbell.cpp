@@ -253,16 +253,22 @@ class SpeedSolver {
   SpeedSolver(const SpeedSolver&) = delete;
   SpeedSolver& operator=(const SpeedSolver&) = delete;
 
-  // The same on every instance: solves the first speed (which finds the rigid-body roots) and
-  // the fastest one (whose gyroscopic directions every chunk would otherwise add again by
-  // enrichment), then keeps the basis so built. Runs once.
+  // The same on every instance: solves the first speed (which finds the rigid-body roots) and,
+  // on large models, the fastest one (whose gyroscopic directions every chunk would otherwise
+  // add again by enrichment, a full-size solve per vector), then keeps the basis so built. Runs
+  // once. On small models the larger basis costs more in every projected solve than the
+  // enrichment saves. Measured (BM_Campbell100, ROSS rotors of bench/ross, idle, 2026-11-27):
+  // 294 DOFs 0.14 s without vs 0.22 s with, 6 006 DOFs 3.42 vs 3.67 s, 60 006 DOFs 30.5 vs
+  // 27.0 s.
+  static constexpr Eigen::Index kTopSpeedSeedDofs = 20000;
   void seed() {
     if (seeded_) return;
     seed_operations_ = solve(settings_.speeds.front()).operations;
     const double top =
         *std::max_element(settings_.speeds.begin(), settings_.speeds.end(),
                           [](double a, double b) { return std::abs(a) < std::abs(b); });
-    if (top != settings_.speeds.front()) seed_operations_ += solve(top).operations;
+    if (system_.size() > kTopSpeedSeedDofs && top != settings_.speeds.front())
+      seed_operations_ += solve(top).operations;
     seed_rigid_roots_ = rigid_roots_;
     modes_.keep_basis();
     seeded_ = true;
