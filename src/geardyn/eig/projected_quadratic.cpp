@@ -301,7 +301,8 @@ Eigen::VectorXd skew_tridiagonalize(Eigen::MatrixXd& S, GyroscopicOperator& g) {
     t[k] = alpha;
     auto A = S.bottomRightCorner(len, len);
     const Eigen::VectorXd w = A * v;
-    A.noalias() += beta * (v * w.transpose() - w * v.transpose());
+    A.noalias() += (beta * v) * w.transpose();  // two rank-1 updates, no temporary matrix
+    A.noalias() -= (beta * w) * v.transpose();
     g.reflectors.col(k).tail(len) = v;
     g.beta[k] = beta;
   }
