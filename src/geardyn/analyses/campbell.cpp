@@ -350,12 +350,6 @@ SpeedSolve SpeedSolver::solve(double speed) {
   return out;
 }
 
-// MAC |a^H b|^2 / ((a^H a)(b^H b)) with the squared norms given (the formula of mac()).
-double mac_of(const Eigen::VectorXcd& a, double na, const Eigen::VectorXcd& b, double nb) {
-  if (na == 0.0 || nb == 0.0) return 0.0;
-  return std::norm(a.dot(b)) / (na * nb);
-}
-
 // Tracks modes from speed to speed (phase (b) of run_campbell), in speed order, and gathers
 // what the speeds' solves report into the result.
 class Tracker {
@@ -439,7 +433,7 @@ Eigen::MatrixXd Tracker::score(const std::vector<Mode>& candidates,
                             : ref.squaredNorm();
       for (int c = 0; c < n_cand; ++c) {
         const auto uc = static_cast<std::size_t>(c);
-        score(t, c) = mac_of(ref, nr, candidates[uc].shape, norms[uc]);
+        score(t, c) = mac(ref, nr, candidates[uc].shape, norms[uc]);
       }
     }
   }

@@ -38,9 +38,12 @@ eig::Method to_eig_method(EigenMethod method) {
 }
 
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b) {
-  const double na = a.squaredNorm(), nb = b.squaredNorm();
-  if (na == 0.0 || nb == 0.0) return 0.0;
-  return std::norm(a.dot(b)) / (na * nb);
+  return mac(a, a.squaredNorm(), b, b.squaredNorm());
+}
+
+double mac(const Eigen::VectorXcd& a, double a_norm2, const Eigen::VectorXcd& b, double b_norm2) {
+  if (a_norm2 == 0.0 || b_norm2 == 0.0) return 0.0;
+  return std::norm(a.dot(b)) / (a_norm2 * b_norm2);
 }
 
 RigidBodyTest::RigidBodyTest(const fe::LinearSystem& system, double speed,

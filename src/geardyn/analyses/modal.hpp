@@ -157,6 +157,8 @@ ModeKind mode_kind(const fe::ModeFamilies& families);
 /// "A correlation coefficient for modal vector analysis", Proc. 1st International Modal Analysis
 /// Conference, 1982).
 double mac(const Eigen::VectorXcd& a, const Eigen::VectorXcd& b);
+/// The same with the squared norms a^H a, b^H b already computed (sweeps that score many pairs).
+double mac(const Eigen::VectorXcd& a, double a_norm2, const Eigen::VectorXcd& b, double b_norm2);
 
 /// Decides whether a computed root is a rigid-body root, from its shape, not from the size of
 /// lambda (whose rounding grows with mesh refinement, see eig/rigid_body.hpp):

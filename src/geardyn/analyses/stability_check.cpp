@@ -25,20 +25,7 @@ constexpr double kRpmPerRadS = 60.0 / units::kTwoPi;
 // growth rate is still checked.
 constexpr double kRigidFraction = 1e-4;
 
-}  // namespace
-
-namespace {
-
 using SparseMatrix = Eigen::SparseMatrix<double>;
-
-// Largest |a_ij - sign a_ji| relative to the largest |a_ij| (sign +1: symmetry, -1: skew).
-double asymmetry(const SparseMatrix& A, double sign) {
-  if (A.nonZeros() == 0) return 0.0;
-  const SparseMatrix D = A - sign * SparseMatrix(A.transpose());
-  const double largest = A.coeffs().cwiseAbs().maxCoeff();
-  const double diff = D.nonZeros() > 0 ? D.coeffs().cwiseAbs().maxCoeff() : 0.0;
-  return largest > 0.0 ? diff / largest : 0.0;
-}
 
 // A Cholesky factorisation succeeds (CHOLMOD reports any pivot <= 0).
 bool positive_definite(const SparseMatrix& A) {
@@ -80,8 +67,12 @@ std::string stiffness_semi_definite(const fe::LinearSystem& system) {
 std::string energy_certificate(const fe::LinearSystem& system, double tau) {
   const Eigen::Index n = system.size();
   if (!system.speed_bearings.empty()) return "speed-dependent bearings";
-  if (asymmetry(system.K, 1.0) > 1e-13) return "K is not symmetric (cross-coupled stiffness)";
-  if (system.G.rows() == n && asymmetry(system.G, -1.0) > 1e-13) return "G is not skew-symmetric";
+  if (linalg::relative_asymmetry(system.K) > 1e-13)
+    return "K is not symmetric (cross-coupled stiffness)";
+  // G skew: its symmetric part (G + G^T) / 2 vanishes.
+  if (system.G.rows() == n &&
+      (system.G + SparseMatrix(system.G.transpose())).norm() > 1e-13 * system.G.norm())
+    return "G is not skew-symmetric";
   if (system.has_modal_damping() && system.modal_coefficients.minCoeff() < 0.0)
     return "negative modal damping";
   if (!positive_definite(system.M)) return "M is not positive definite";

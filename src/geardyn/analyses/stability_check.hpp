@@ -55,7 +55,7 @@
 // L. Meirovitch, Methods of Analytical Dynamics, McGraw-Hill 1970, ch. 6). With tau =
 // kGrowthTolerance x kBandMargin x band_top, the growth rule (1) can call no mode unstable, so
 // the verdict "stable" holds at every speed of the list without solving. The checks: exact
-// symmetry of K (to 1e-13 of its largest entry) and skew-symmetry of G; no speed-dependent
+// symmetry of K and skew-symmetry of G (to 1e-13 in the Frobenius norm); no speed-dependent
 // bearing (their K(W), C(W) would have to be checked at every speed); modal damping
 // coefficients >= 0; Cholesky factorisations of M and of C_s + tau M succeed (positive
 // definite); and K positive semi-definite: its lowest eigenvalues (M-orthogonal to the rigid-

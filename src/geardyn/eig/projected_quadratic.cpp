@@ -125,6 +125,27 @@ std::vector<Eigen::Index> one_of_each_pair(const Eigen::VectorXcd& nu) {
   return kept;
 }
 
+// Two steps of inverse iteration (J. H. Wilkinson, The Algebraic Eigenvalue Problem, 1965,
+// ch. 9) from a fixed start with no structure of the modes: `solve(v)` overwrites v with
+// (A - shift I)^{-1} v. The shift is an eigenvalue exact to rounding, so two steps give its
+// vector to working precision when it is simple. False when the residual 1 / growth of the unit
+// result is not at rounding level relative to `scale` (a defective or multiple root).
+template <class Vector, class Solve>
+bool inverse_iteration(Vector& v, double scale, const Solve& solve) {
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    v[k] = 1.0 + 0.5 * std::sin(1.0 + static_cast<double>(k));
+  v.normalize();
+  double growth = 0.0;
+  for (int step = 0; step < 2; ++step) {
+    solve(v);
+    growth = v.norm();
+    if (!(growth > 0.0) || !std::isfinite(growth)) return false;
+    v /= growth;
+  }
+  // (A - shift I) v = v_previous / growth: the residual of the unit vector v is 1 / growth.
+  return 1.0 / growth <= 1e-11 * scale;
+}
+
 // The shift-inverted state operator T = (A - sigma B)^{-1} B of the projected pencil on scaled
 // states [y; lambda y / s] (the operator of solve_quadratic's dense path, so the eigenvalues are
 // the same), kept in Hessenberg form T = Q H Q^T: its eigenvalues nu come from the QR iteration
@@ -132,7 +153,7 @@ std::vector<Eigen::Index> one_of_each_pair(const Eigen::VectorXcd& nu) {
 // inverse iteration on H - nu I, O(m^2) per mode (LAPACK's xHSEIN does the same: E. Anderson et
 // al., LAPACK Users' Guide, SIAM 1999, sec. 2.4.8), instead of an O(m^3) LU per mode.
 struct StateOperator {
-  double sigma = 0.0, s = 1.0;
+  double sigma = 0.0;
   Eigen::Index m = 0;
   Eigen::MatrixXd H;                                   // upper Hessenberg
   Eigen::HessenbergDecomposition<Eigen::MatrixXd> hd;  // its Q
@@ -180,7 +201,6 @@ std::vector<Complex> reduced_eigenvalues(const ReducedPencil& p, double sigma, S
   T.bottomLeftCorner(m, m) = (Eigen::MatrixXd::Identity(m, m) - sigma * X) / s;
   T.bottomRightCorner(m, m) = -sigma * Y;
   op.sigma = sigma;
-  op.s = s;
   op.m = m;
   op.hd.compute(T);
   op.H = op.hd.matrixH();
@@ -205,10 +225,8 @@ std::vector<Complex> reduced_eigenvalues(const ReducedPencil& p, double sigma, S
   return lambda;
 }
 
-// y with P(lambda) y = 0 by inverse iteration on the Hessenberg form (J. H. Wilkinson, The
-// Algebraic Eigenvalue Problem, 1965, ch. 9): nu = 1 / (lambda - sigma) is exact to rounding, so
-// two solves of (H - nu I) v = b from a fixed start give the state vector to working precision
-// when nu is simple; y is the upper half of Q v. Gaussian elimination with partial pivoting on a
+// y with P(lambda) y = 0 by inverse iteration on the Hessenberg form, nu = 1 / (lambda - sigma)
+// the shift; y is the upper half of Q v. Gaussian elimination with partial pivoting on a
 // Hessenberg matrix interchanges neighbouring rows only: O(m^2). Empty when the residual of v is
 // not at rounding level (a defective root).
 Eigen::VectorXcd null_vector(const StateOperator& op, Complex lambda) {
@@ -232,22 +250,14 @@ Eigen::VectorXcd null_vector(const StateOperator& op, Complex lambda) {
   }
   if (A(n - 1, n - 1) == 0.0) A(n - 1, n - 1) = tiny;
   Eigen::VectorXcd v(n);
-  for (Eigen::Index k = 0; k < n; ++k)
-    v[k] = 1.0 + 0.5 * std::sin(1.0 + static_cast<double>(k));  // no structure of the modes
-  v.normalize();
-  double growth = 0.0;
-  for (int step = 0; step < 2; ++step) {
+  const bool ok = inverse_iteration(v, scale, [&](Eigen::VectorXcd& x) {
     for (Eigen::Index k = 0; k + 1 < n; ++k) {
-      if (swapped[static_cast<std::size_t>(k)]) std::swap(v[k], v[k + 1]);
-      v[k + 1] -= factor[static_cast<std::size_t>(k)] * v[k];
+      if (swapped[static_cast<std::size_t>(k)]) std::swap(x[k], x[k + 1]);
+      x[k + 1] -= factor[static_cast<std::size_t>(k)] * x[k];
     }
-    A.triangularView<Eigen::Upper>().solveInPlace(v);
-    growth = v.norm();
-    if (!(growth > 0.0) || !std::isfinite(growth)) return {};
-    v /= growth;
-  }
-  // (H - nu I) v = v_previous / growth: the residual of the unit vector v is 1 / growth.
-  if (!(1.0 / growth <= 1e-11 * scale)) return {};
+    A.triangularView<Eigen::Upper>().solveInPlace(x);
+  });
+  if (!ok) return {};
   const Eigen::VectorXd zr = op.hd.matrixQ() * v.real(), zi = op.hd.matrixQ() * v.imag();
   const double norm = std::sqrt(zr.head(op.m).squaredNorm() + zi.head(op.m).squaredNorm());
   if (!(norm > 0.0)) return {};
@@ -358,10 +368,10 @@ bool gyroscopic_eigenvalues(const ReducedPencil& p, GyroscopicOperator& g,
   return static_cast<Eigen::Index>(lambda.size()) == m;  // one of each +-mu pair
 }
 
-// v with (T - mu I) v = 0 for the symmetric tridiagonal T (diagonal d, off-diagonal e): two
-// steps of inverse iteration, the solves by Gaussian elimination with partial pivoting (the
-// upper factor gains a second superdiagonal; the scheme of LAPACK's xGTTRF / xGTTRS, Anderson et
-// al. 1999). Empty when the residual 1 / growth of the unit vector is not at rounding level.
+// v with (T - mu I) v = 0 for the symmetric tridiagonal T (diagonal d, off-diagonal e) by inverse
+// iteration, the solves by Gaussian elimination with partial pivoting (the upper factor gains a
+// second superdiagonal; the scheme of LAPACK's xGTTRF / xGTTRS, Anderson et al. 1999). Empty
+// when inverse_iteration fails.
 Eigen::VectorXd tridiagonal_null_vector(const Eigen::VectorXd& d, const Eigen::VectorXd& e,
                                         double mu) {
   const Eigen::Index n = d.size();
@@ -394,25 +404,19 @@ Eigen::VectorXd tridiagonal_null_vector(const Eigen::VectorXd& d, const Eigen::V
   }
   if (a[n - 1] == 0.0) a[n - 1] = tiny;
   Eigen::VectorXd v(n);
-  for (Eigen::Index k = 0; k < n; ++k) v[k] = 1.0 + 0.5 * std::sin(1.0 + static_cast<double>(k));
-  v.normalize();
-  double growth = 0.0;
-  for (int step = 0; step < 2; ++step) {
+  const bool ok = inverse_iteration(v, scale, [&](Eigen::VectorXd& x) {
     for (Eigen::Index k = 0; k + 1 < n; ++k) {
-      if (swapped[static_cast<std::size_t>(k)]) std::swap(v[k], v[k + 1]);
-      v[k + 1] -= low[k] * v[k];
+      if (swapped[static_cast<std::size_t>(k)]) std::swap(x[k], x[k + 1]);
+      x[k + 1] -= low[k] * x[k];
     }
     for (Eigen::Index k = n - 1; k >= 0; --k) {
-      double r = v[k];
-      if (k + 1 < n) r -= up[k] * v[k + 1];
-      if (k + 2 < n) r -= up2[k] * v[k + 2];
-      v[k] = r / a[k];
+      double r = x[k];
+      if (k + 1 < n) r -= up[k] * x[k + 1];
+      if (k + 2 < n) r -= up2[k] * x[k + 2];
+      x[k] = r / a[k];
     }
-    growth = v.norm();
-    if (!(growth > 0.0) || !std::isfinite(growth)) return {};
-    v /= growth;
-  }
-  if (!(1.0 / growth <= 1e-11 * scale)) return {};
+  });
+  if (!ok) return {};
   return v;
 }
 
@@ -466,6 +470,39 @@ std::vector<std::size_t> wanted(const std::vector<Complex>& lambda, Complex targ
 // 1e-6 relative of another one (a double root, e.g. the two whirls of an isotropic rotor at
 // rest, whose vectors inverse iteration cannot separate) or a vector fails: the caller then
 // solves the projected pencil with solve_quadratic's vectors.
+// The n_modes roots nearest the target among the elastic ones and 2 n_rigid exact zeros (two
+// per deflated rigid-body motion, listed first), into out.lambda / Y / rigid in the order of
+// QuadraticEigenResult; `vector_of(i)` gives the vector of elastic root i (empty: out.status
+// becomes NotConverged and the selection stops). Returns the number of roots selected.
+template <class VectorOf>
+Eigen::Index select_roots(std::vector<Complex> elastic, Eigen::Index n_rigid, Complex target,
+                          int n_modes, Eigen::Index m, const VectorOf& vector_of,
+                          ReducedModes& out) {
+  const auto n_zero = static_cast<std::size_t>(2 * n_rigid);
+  elastic.insert(elastic.begin(), n_zero, Complex(0.0, 0.0));
+  const std::vector<Complex>& lambda = elastic;
+  const std::vector<std::size_t> order = wanted(lambda, target, n_modes);
+  const auto k = static_cast<Eigen::Index>(order.size());
+  out.lambda.resize(k);
+  out.Y.setZero(m, k);
+  out.rigid.assign(order.size(), -1);
+  for (Eigen::Index j = 0; j < k; ++j) {
+    const std::size_t i = order[static_cast<std::size_t>(j)];
+    out.lambda[j] = lambda[i];
+    if (i < n_zero) {
+      out.rigid[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(i / 2);
+      continue;
+    }
+    const Eigen::VectorXcd y = vector_of(i - n_zero);
+    if (y.size() == 0) {
+      out.status = Status::NotConverged;
+      return j;
+    }
+    out.Y.col(j) = y;
+  }
+  return k;
+}
+
 ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target, int n_modes,
                            Eigen::Index n_rigid) {
   ReducedModes out;
@@ -478,35 +515,13 @@ ReducedModes solve_reduced(const ReducedPencil& p, double sigma, Complex target,
     lambda = reduced_eigenvalues(p, sigma, op, out);
     if (out.status != Status::Ok) return out;
   }
-  // The deflated rigid-body roots: two exact zeros per motion, listed first.
-  const auto n_zero = static_cast<std::size_t>(2 * n_rigid);
-  lambda.insert(lambda.begin(), n_zero, Complex(0.0, 0.0));
-  const std::vector<std::size_t> order = wanted(lambda, target, n_modes);
-  const auto k = static_cast<Eigen::Index>(order.size());
-  out.lambda.resize(k);
-  out.Y.setZero(p.M.rows(), k);
-  out.rigid.assign(static_cast<std::size_t>(k), -1);
-  for (Eigen::Index j = 0; j < k; ++j) {
-    const std::size_t i = order[static_cast<std::size_t>(j)];
-    if (i < n_zero) {
-      out.lambda[j] = 0.0;
-      out.rigid[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(i / 2);
-      continue;
-    }
-    for (std::size_t o = n_zero; o < lambda.size(); ++o)
-      if (o != i && std::abs(lambda[o] - lambda[i]) <= 1e-6 * std::abs(lambda[i])) {
-        out.status = Status::NotConverged;
-        return out;
-      }
-    const Eigen::VectorXcd y =
-        gyroscopic ? gyroscopic_vector(gyro, lambda[i]) : null_vector(op, lambda[i]);
-    if (y.size() == 0) {
-      out.status = Status::NotConverged;
-      return out;
-    }
-    out.lambda[j] = lambda[i];
-    out.Y.col(j) = y;
-  }
+  const auto vector_of = [&](std::size_t i) -> Eigen::VectorXcd {
+    for (std::size_t o = 0; o < lambda.size(); ++o)  // a double root: vectors not separable
+      if (o != i && std::abs(lambda[o] - lambda[i]) <= 1e-6 * std::abs(lambda[i])) return {};
+    return gyroscopic ? gyroscopic_vector(gyro, lambda[i]) : null_vector(op, lambda[i]);
+  };
+  const Eigen::Index k = select_roots(lambda, n_rigid, target, n_modes, p.M.rows(), vector_of, out);
+  if (out.status != Status::Ok) return out;
   if (k < n_modes) {
     out.status = Status::FewerModes;
     out.message =
@@ -701,23 +716,14 @@ ReducedModes ProjectedQuadratic::Impl::modes(const ReducedPencil& p,
   out.status = red.status;
   out.message = red.message;
   out.shift = red.shift_used;
-  // With the deflated rigid-body roots (two zeros per motion, first), the wanted ones again.
-  const auto n_zero = static_cast<std::size_t>(2 * R.cols());
-  std::vector<Complex> lambda(n_zero, Complex(0.0, 0.0));
-  lambda.insert(lambda.end(), red.eigenvalues.begin(), red.eigenvalues.end());
-  const std::vector<std::size_t> order = wanted(lambda, qo.target, qo.n_modes);
-  const auto k = static_cast<Eigen::Index>(order.size());
-  out.lambda.resize(k);
-  out.Y.setZero(p.M.rows(), k);
-  out.rigid.assign(order.size(), -1);
-  for (Eigen::Index j = 0; j < k; ++j) {
-    const std::size_t i = order[static_cast<std::size_t>(j)];
-    out.lambda[j] = lambda[i];
-    if (i < n_zero)
-      out.rigid[static_cast<std::size_t>(j)] = static_cast<Eigen::Index>(i / 2);
-    else
-      out.Y.col(j) = red.eigenvectors.col(static_cast<Eigen::Index>(i - n_zero));
-  }
+  // With the deflated rigid-body roots, the wanted ones again.
+  const std::vector<Complex> elastic(red.eigenvalues.begin(), red.eigenvalues.end());
+  const Eigen::Index k = select_roots(
+      elastic, R.cols(), qo.target, qo.n_modes, p.M.rows(),
+      [&](std::size_t i) {
+        return Eigen::VectorXcd(red.eigenvectors.col(static_cast<Eigen::Index>(i)));
+      },
+      out);
   if (out.status == Status::FewerModes && k == qo.n_modes) out.status = Status::Ok;
   return out;
 }
@@ -808,7 +814,6 @@ QuadraticEigenResult ProjectedQuadratic::solve(const QuadraticPencil& full, doub
       r.message = "projected solve: " + red.message;
       return r;
     }
-    // x = V y as two real products (V is real), then the largest entry scaled to 1.
     // x = V y for the real and imaginary parts in one product (V is real), then the largest
     // entry scaled to 1.
     const Eigen::Index k_modes = red.Y.cols();
