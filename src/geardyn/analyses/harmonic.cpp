@@ -4,6 +4,7 @@
 #include <umfpack.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <map>
@@ -218,6 +219,7 @@ struct Block {
   linalg::BandedLU banded;        ///< when it takes the banded path
   bool banded_path = false;
   bool active = true;             ///< factorised at the last factorize
+  bool assembled = false;         ///< A's values are those of the last factorize
   bool identity = false;          ///< the whole system in its own numbering (no gather needed)
   mutable Eigen::MatrixXcd b, x;  ///< gathered load and solution (sparse path)
   mutable Eigen::VectorXcd work;  ///< banded solve workspace
@@ -225,7 +227,37 @@ struct Block {
 
   int size() const { return static_cast<int>(dofs.size()); }
 
-  // Values of A (and their absolute row sums) at frequency w, speed W and modal shift w s0.
+  /// Absolute row sums of the last factorised values (local numbering).
+  const double* row_sums() const {
+    return banded_path && !assembled ? banded.row_sums() : row_sum.data();
+  }
+
+  // The banded factor takes D as a combination of its real terms (K, M, C, G, K_loss; the
+  // weights are in factor_blocks) and assembles it itself.
+  // Its columns are scaled by |K_ii|^(-1/2) (|M_ii|^(-1/2) when some K_ii is zero; none when
+  // some M_ii is zero too): a beam's rotations and displacements then weigh alike, and the
+  // pivots stay on the diagonal however fine the mesh.
+  void set_banded_terms() {
+    const auto data = [](const std::vector<double>& v) { return v.empty() ? nullptr : v.data(); };
+    banded.set_terms({data(terms.stiffness), data(terms.mass), data(terms.damping),
+                      data(terms.gyroscopic), data(terms.loss)});
+    std::vector<double> scale(static_cast<std::size_t>(size()), 0.0);
+    const auto diagonal_scale = [&](const std::vector<double>& term) {
+      if (term.empty()) return false;
+      for (int j = 0; j < size(); ++j) {
+        double d = 0.0;
+        for (int k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k)
+          if (A.innerIndexPtr()[k] == j) d = std::abs(term[static_cast<std::size_t>(k)]);
+        if (!(d > 0.0)) return false;
+        scale[static_cast<std::size_t>(j)] = 1.0 / std::sqrt(d);
+      }
+      return true;
+    };
+    const bool scaled = diagonal_scale(terms.stiffness) || diagonal_scale(terms.mass);
+    banded.set_column_scale(scaled ? scale.data() : nullptr);
+  }
+
+  // Values of A (and their row sums of |Re| + |Im|) at frequency w, speed W and modal shift w s0.
   void assemble(double w, double speed, double shift, Complex* values, double* sums) const {
     const double w2 = w * w, ww = w * speed;
     std::fill(sums, sums + size(), 0.0);
@@ -248,7 +280,7 @@ struct Block {
       if (G != nullptr) im += ww * G[k];
       if (L != nullptr) im += L[k];
       values[k] = Complex(re, im);
-      sums[inner[k]] += std::sqrt(re * re + im * im);  // |z| without hypot's cost
+      sums[inner[k]] += std::abs(re) + std::abs(im);  // |z|_1, as the banded factor's
     }
   }
 };
@@ -392,6 +424,7 @@ struct DynamicStiffness::Impl {
     for (Block& b : blocks) {
       b.terms.stiffness = gather(global.stiffness, b.slot);
       b.terms.damping = gather(global.damping, b.slot);
+      if (analysed && b.banded_path) b.set_banded_terms();
     }
   }
 
@@ -446,7 +479,7 @@ struct DynamicStiffness::Impl {
     for (const Block& b : blocks) {
       fe::ComplexSparseMatrix fresh;
       const fe::ComplexSparseMatrix* A = &b.A;
-      if (!b.active) {
+      if (!b.assembled) {
         fresh = b.A;
         Eigen::VectorXd sums(b.size());
         b.assemble(omega, speed, shift.imag(), fresh.valuePtr(), sums.data());
@@ -478,7 +511,7 @@ struct DynamicStiffness::Impl {
       if (!b.active) continue;
       for (int i = 0; i < b.size(); ++i) {
         const auto g = static_cast<Eigen::Index>(b.dofs[static_cast<std::size_t>(i)]);
-        const double row = b.row_sum[i];
+        const double row = b.row_sums()[i];
         norm_inf = std::max(norm_inf, row);
         const double scale = row_stiffness[g] + w2 * row_mass[g] + w * row_damping[g] +
                              wg * row_gyroscopic[g] + row_loss[g] + std::abs(shift) * row_mass[g];
@@ -618,8 +651,10 @@ void DynamicStiffness::factorize(double omega) {
     Block& b = m.blocks[k];
     b.active = !restricted || m.loaded[k] != 0;
     // The first factorisation assembles every block: the symbolic analysis sees real values.
-    if (b.active || !m.analysed)
-      b.assemble(omega, speed_, m.shift.imag(), b.A.valuePtr(), b.row_sum.data());
+    // The banded factor assembles its block itself; the values are kept for the residuals of
+    // the modal path only.
+    b.assembled = !m.analysed || (b.active && (!b.banded_path || m.modal_path));
+    if (b.assembled) b.assemble(omega, speed_, m.shift.imag(), b.A.valuePtr(), b.row_sum.data());
   }
 
   auto singular = [&](const std::string& measure) {
@@ -642,13 +677,12 @@ void DynamicStiffness::factorize(double omega) {
     return NumericalError(analysis_, head + ": " + cause);
   };
 
+  if (!m.analysed) analyze();
+  const bool regular = factor_blocks();
   // A row whose terms cancel to round-off is undetermined, whatever the pivots say (the LU
   // scales rows, so a matrix made entirely of round-off can show a pivot ratio of 1).
   const auto [row, ratio] = m.cancelled_row(omega, speed_);
   if (row >= 0) throw singular(fmt::format("row {} cancels to {:.2g} of its terms", row, ratio));
-
-  if (!m.analysed) analyze();
-  const bool regular = factor_blocks();
   // rcond_ is NaN when every block is left out (nothing factorised, nothing to judge).
   if (!regular || !(rcond_ >= kSingularPivotRatio || std::isnan(rcond_)))
     throw singular(fmt::format("LU pivot ratio {:.2g}", rcond_));
@@ -686,10 +720,14 @@ bool DynamicStiffness::factor_blocks() {
     if (!b.active) continue;
     any = true;
     if (b.banded_path) {
-      const Status status = m.prepared
-                                ? b.banded.factorize(b.A.valuePtr(), b.row_sum.data(),
-                                                     b.load.data(), static_cast<int>(b.load.cols()))
-                                : b.banded.factorize(b.A.valuePtr(), b.row_sum.data());
+      // D = K - w^2 M + i w C + i w W G + i K_loss, with the modal shift i w s0 M.
+      const double w = m.omega;
+      const std::array<Complex, 5> weights{Complex(1.0), Complex(-w * w, m.shift.imag()),
+                                           Complex(0.0, w), Complex(0.0, w * m.speed),
+                                           Complex(0.0, 1.0)};
+      const Status status = m.prepared ? b.banded.factorize_terms(weights.data(), b.load.data(),
+                                                                  static_cast<int>(b.load.cols()))
+                                       : b.banded.factorize_terms(weights.data());
       regular = status == Status::Ok && regular;
       smallest = std::min(smallest, b.banded.smallest_pivot());
       largest = std::max(largest, b.banded.largest_pivot());
@@ -732,6 +770,7 @@ void DynamicStiffness::analyze() {
         (requested_ == FactorPath::Automatic &&
          b.banded.storage_entries() <= kBandedFillRatio * b.lu->factor_entries_estimate());
     if (b.banded_path) {
+      b.set_banded_terms();
       b.lu.reset();
       b.work.resize(b.size());
       b.x.resize(b.size(), 1);

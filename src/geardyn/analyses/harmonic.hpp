@@ -49,7 +49,7 @@ enum class FactorPath {
   Automatic,  ///< Banded when its band holds at most kBandedFillRatio x the entries UMFPACK's
               ///< analysis estimates for L + U (shaft lines), UMFPACK otherwise; a property of
               ///< the pattern, so every frequency and every thread takes the same path
-  Banded,     ///< RCM ordering + banded LU with partial pivoting (linalg/banded_lu.hpp)
+  Banded,     ///< RCM ordering + banded LU, threshold partial pivoting (linalg/banded_lu.hpp)
   Sparse      ///< UMFPACK with its fill-reducing ordering, symbolic analysis kept
 };
 
