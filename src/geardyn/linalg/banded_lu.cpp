@@ -131,6 +131,14 @@ using Quad = double __attribute__((vector_size(32)));
 
 [[gnu::always_inline]] inline Quad splat(double a) { return Quad{a, a, a, a}; }
 
+// Lanes of a column's entries r + i i: their moduli |r| + |i| into the row sums of A (`sum`)
+// and, times the column's scale s, of A S (`scaled`).
+[[gnu::always_inline]] inline void add_moduli(Quad r, Quad i, Quad s, double* sum, double* scaled) {
+  const Quad m = (r < 0.0 ? -r : r) + (i < 0.0 ? -i : i);
+  store(sum, load(sum) + m);
+  store(scaled, load(scaled) + s * m);
+}
+
 // x -= l u on `count` rows (wide bands and the last kl steps), real and imaginary parts apart.
 [[gnu::always_inline]] inline void update_rows(double* xr, double* xi, const double* lr,
                                                const double* li, double ur, double ui, int count) {
@@ -502,9 +510,7 @@ template <int D>
   for (std::size_t k = 0; k < dense_width_; k += kLanes) {
     Quad r, i;
     lanes(k, r, i);
-    const Quad m = (r < 0.0 ? -r : r) + (i < 0.0 ? -i : i);
-    store(sum + k, load(sum + k) + m);
-    store(scaled + k, load(scaled + k) + qs * m);
+    add_moduli(r, i, qs, sum + k, scaled + k);
     store(band_re + k, r * qs);
     store(band_im + k, i * qs);
   }
@@ -579,12 +585,8 @@ template <int D>
   if (c >= ku_) {
     double* sum = row_sum_.data() + (c - ku_);
     double* scaled = scaled_sum_.data() + (c - ku_);
-    for (std::size_t k = 0; k < dense_width_; k += kLanes) {
-      const Quad a = load(band_re + k), b = load(band_im + k);
-      const Quad m = (a < 0.0 ? -a : a) + (b < 0.0 ? -b : b);
-      store(sum + k, load(sum + k) + m);
-      store(scaled + k, load(scaled + k) + qs * m);
-    }
+    for (std::size_t k = 0; k < dense_width_; k += kLanes)
+      add_moduli(load(band_re + k), load(band_im + k), qs, sum + k, scaled + k);
   } else {
     for (int r = 0; r <= std::min(n_ - 1, c + kl_); ++r) {
       const auto k = static_cast<std::size_t>(kv_ + r - c);
